@@ -1,0 +1,29 @@
+# linkwork: one DAG re-deriving five planar-linkage papers.
+# Bare `snakemake` reads profiles/default/profile.yaml (all cores).
+import sys
+from pathlib import Path
+
+import yaml
+from snakemake.utils import min_version
+
+min_version("9.0")
+
+sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
+from linkwork.config import validate_config  # noqa: E402
+
+configfile: "config/config.yaml"
+
+# Schema (types, ranges, unknown keys) and physical checks, before any job.
+with open(Path(workflow.basedir) / "config" / "schema.yaml") as fh:
+    validate_config(config, yaml.safe_load(fh))
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/stiffness.smk"
+include: "workflow/rules/reports.smk"
+
+
+rule all:
+    input:
+        "results/stiffness/stiffness.nc",
+        expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
+        "results/reports/index.html",

@@ -1,0 +1,155 @@
+"""Published numbers beside reproduced ones: deviation, tolerance, verdict.
+
+A published-numbers file (``config/published/<paper>.yaml``, already parsed to a
+dict) holds
+
+``quantities``
+    entries with ``id``, ``quantity`` (text), ``value``, ``unit``, ``where``
+    (table, figure, text), ``tolerance`` (``{abs: x}`` or ``{rel: x}``) and a
+    ``measure`` saying how to read the value from a result Dataset.
+``tables``
+    printed tables, expanded cell by cell: ``key`` (the coordinate the first
+    column selects), ``columns`` (published column -> result variable),
+    ``rows``, a shared ``unit``, ``where`` and ``tolerance``.
+
+A measure is ``{variable, reduce, dim}`` with ``reduce`` one of ``max``,
+``min``, ``mean``, ``argmax``, ``argmin`` (the coordinate value of the extreme),
+``range`` (max - min) or ``at`` (with ``at: {coord: value}``); an optional
+``scale`` converts the result's unit to the published unit (for example 180/pi).
+
+Published numbers are read here and nowhere else in the library; they never
+enter a computation.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+VERDICTS = ("matches", "deviates", "not reproducible")
+COLUMNS = [
+    "model",
+    "id",
+    "quantity",
+    "where",
+    "published",
+    "reproduced",
+    "unit",
+    "deviation",
+    "relative_deviation",
+    "tolerance",
+    "verdict",
+]
+
+
+def evaluate_measure(ds: xr.Dataset, measure: Mapping[str, Any]) -> float:
+    """Read one number from a result Dataset as a published-number entry says.
+
+    Returns NaN when the variable or coordinate is missing (not reproducible).
+    """
+    name = measure["variable"]
+    if name not in ds:
+        return math.nan
+    da = ds[name]
+    reduce = measure["reduce"]
+    dim = measure.get("dim", da.dims[0] if da.dims else None)
+    if reduce == "at":
+        try:
+            value = float(da.sel(measure["at"]))
+        except KeyError:
+            return math.nan
+    elif reduce in ("max", "min", "mean"):
+        value = float(getattr(da, reduce)(dim))
+    elif reduce == "range":
+        value = float(da.max(dim) - da.min(dim))
+    elif reduce in ("argmax", "argmin"):
+        index = int(getattr(da, reduce)(dim))
+        value = float(da[dim][index])
+    else:
+        raise ValueError(f"unknown reduce {reduce!r} in measure {dict(measure)}")
+    return value * float(measure.get("scale", 1.0))
+
+
+def tolerance_of(entry: Mapping[str, Any]) -> float:
+    """Absolute tolerance of a published entry (relative tolerances scaled by |value|)."""
+    tol = entry["tolerance"]
+    if "abs" in tol:
+        return float(tol["abs"])
+    return float(tol["rel"]) * abs(float(entry["value"]))
+
+
+def verdict(published: float, reproduced: float, tolerance: float) -> str:
+    """'matches' within the tolerance, 'deviates' beyond it, 'not reproducible' if NaN.
+
+    A hair of floating-point slack (1e-9 of the tolerance) keeps a deviation of
+    exactly the tolerance on the matching side.
+    """
+    if not np.isfinite(reproduced):
+        return "not reproducible"
+    return "matches" if abs(reproduced - published) <= tolerance * (1 + 1e-9) else "deviates"
+
+
+def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
+    """Turn printed tables into one quantity entry per cell."""
+    entries = []
+    for table in published.get("tables", []):
+        key = table["key"]
+        names = table["column_names"]
+        for row in table["rows"]:
+            key_value = row[0]
+            for col_name, value in zip(names, row[1:], strict=True):
+                variable = table["columns"][col_name]
+                entries.append(
+                    {
+                        "id": f"{table['id']}.{col_name}@{key_value:g}",
+                        "quantity": f"{col_name} at {key} = {key_value:g}",
+                        "value": value,
+                        "unit": table["unit"],
+                        "where": table["where"],
+                        "tolerance": table["tolerance"],
+                        "measure": {
+                            "variable": variable,
+                            "reduce": "at",
+                            "at": {table["coordinate"]: key_value},
+                            **({"scale": table["scale"]} if "scale" in table else {}),
+                        },
+                    }
+                )
+    return entries
+
+
+def compare(published: Mapping[str, Any], ds: xr.Dataset, model: str = "") -> pd.DataFrame:
+    """The comparison table for one result Dataset (one model variant)."""
+    rows = []
+    for entry in [*published.get("quantities", []), *expand_tables(published)]:
+        value = float(entry["value"])
+        reproduced = evaluate_measure(ds, entry["measure"])
+        tol = tolerance_of(entry)
+        deviation = reproduced - value
+        rows.append(
+            {
+                "model": model,
+                "id": entry["id"],
+                "quantity": entry["quantity"],
+                "where": entry["where"],
+                "published": value,
+                "reproduced": reproduced,
+                "unit": entry["unit"],
+                "deviation": deviation,
+                "relative_deviation": deviation / value if value != 0 else math.nan,
+                "tolerance": tol,
+                "verdict": verdict(value, reproduced, tol),
+            }
+        )
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def verdict_counts(table: pd.DataFrame) -> dict[str, int]:
+    """How many rows of each verdict (all three keys always present)."""
+    counts = table["verdict"].value_counts()
+    return {v: int(counts.get(v, 0)) for v in VERDICTS}

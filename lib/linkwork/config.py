@@ -1,0 +1,91 @@
+"""Validate the whole config before any job runs.
+
+Two layers: the JSON schema (types, ranges, no unknown keys) and physical
+checks (a linkage must assemble at every crank angle it is asked for).  Every
+error names the config key and the offending value.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import jsonschema
+import numpy as np
+
+from . import from_config
+from .kinematics import four_bar
+
+_NUMBERLIKE = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
+
+
+class ConfigError(ValueError):
+    """A config value is invalid; the message names the key and the value."""
+
+
+def _key(path) -> str:
+    return ".".join(str(p) for p in path) or "<root>"
+
+
+def _schema_message(error: jsonschema.ValidationError) -> str:
+    key = _key(error.absolute_path)
+    value = error.instance
+    if error.validator == "additionalProperties":
+        allowed = sorted(error.schema.get("properties", {}))
+        extra = sorted(set(value) - set(allowed)) if isinstance(value, dict) else []
+        names = ", ".join(f"{key}.{e}" if key != "<root>" else e for e in extra)
+        return f"config key {names}: unknown key (allowed here: {', '.join(allowed)})"
+    if error.validator == "type" and isinstance(value, str) and _NUMBERLIKE.match(value):
+        return (
+            f"config key {key}: value {value!r} was read as a string, not a number "
+            "(YAML needs a dot and a signed exponent, e.g. 1.0e-6)"
+        )
+    return f"config key {key}: value {value!r}: {error.message}"
+
+
+def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
+    """Check ``config`` against the JSON schema; raise ConfigError listing every problem."""
+    validator = jsonschema.Draft202012Validator(schema)
+    errors = sorted(validator.iter_errors(config), key=lambda e: [str(p) for p in e.absolute_path])
+    if errors:
+        raise ConfigError("invalid config:\n  " + "\n  ".join(_schema_message(e) for e in errors))
+
+
+def check_stiffness(section: Mapping[str, Any], key: str = "stiffness") -> None:
+    """The stiffness linkage must assemble on both crank-angle grids."""
+    if section["reference_form"] not in section["forms"]:
+        raise ConfigError(
+            f"config key {key}.reference_form: value {section['reference_form']!r} is not one of "
+            f"{key}.forms {section['forms']!r}"
+        )
+    numerics = section["numerics"]
+    linkage = section["linkage"]
+    try:
+        lw = from_config.four_bar(linkage, numerics["assembly_tol"])
+    except ValueError as exc:
+        raise ConfigError(f"config key {key}.linkage: {exc}") from None
+    for grid_key in ("paper_step_deg", "fine_step_deg"):
+        step = section["grids"][grid_key]
+        n = 360.0 / step
+        if abs(n - round(n)) > 1e-9:
+            raise ConfigError(f"config key {key}.grids.{grid_key}: value {step!r} does not divide 360 deg")
+        try:
+            four_bar(lw, np.radians(from_config.angle_grid_deg(step)))
+        except ValueError as exc:
+            values = ", ".join(f"{k}={linkage[k]!r}" for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
+            raise ConfigError(f"config key {key}.linkage ({values}): {exc}") from None
+
+
+#: Physical checks per paper section; a paper adds its own here.
+PHYSICAL_CHECKS: dict[str, Callable[[Mapping[str, Any], str], None]] = {
+    "stiffness": check_stiffness,
+}
+
+
+def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
+    """Schema first, then the physical checks of every paper section present."""
+    validate_schema(config, schema)
+    for key, check in PHYSICAL_CHECKS.items():
+        if key in config:
+            check(config[key], key)

@@ -1,0 +1,51 @@
+# Reports: jupytext percent scripts executed and rendered to self-contained HTML.
+import json
+
+REPORT_INPUTS = {
+    "stiffness": {
+        "result": "results/stiffness/stiffness.nc",
+        "comparison": "results/stiffness/comparison.csv",
+        "published": "config/published/stiffness.yaml",
+    },
+}
+
+
+def report_inputs(wildcards):
+    return {
+        "notebook": f"reports/{wildcards.paper}.py",
+        "renderer": "workflow/scripts/render_report.py",
+        "style": "reports/_common.py",
+        **REPORT_INPUTS[wildcards.paper],
+    }
+
+
+rule report:
+    input:
+        unpack(report_inputs),
+    output:
+        "results/reports/{paper}.html",
+    wildcard_constraints:
+        paper="|".join(BUILT_PAPERS),
+    shell:
+        "python {input.renderer} {input.notebook} {output} "
+        + " ".join(f"--input {k}={{input.{k}}}" for k in ["result", "comparison", "published"])
+
+
+rule index:
+    input:
+        notebook="reports/index.py",
+        renderer="workflow/scripts/render_report.py",
+        style="reports/_common.py",
+        comparisons=expand("results/{paper}/comparison.csv", paper=BUILT_PAPERS),
+        reports=expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
+    output:
+        "results/reports/index.html",
+    params:
+        papers=json.dumps(config["papers"]),
+        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"]}),
+        comparison_args=lambda wildcards, input: " ".join(
+            f"--input comparison_{paper}={path}" for paper, path in zip(BUILT_PAPERS, input.comparisons)
+        ),
+    shell:
+        "python {input.renderer} {input.notebook} {output} {params.comparison_args}"
+        " --param papers={params.papers:q} --param reference_forms={params.reference_forms:q}"

@@ -1,0 +1,18 @@
+"""Rule <paper>_compare: result netCDF + published numbers -> comparison table (CSV), one block per model form."""
+
+import pandas as pd
+import xarray as xr
+import yaml
+
+from linkwork import results
+from linkwork.compare import compare
+
+section = snakemake.params.section  # noqa: F821
+with open(snakemake.input.published) as fh:  # noqa: F821
+    published = yaml.safe_load(fh)
+with xr.open_dataset(snakemake.input.result) as ds:  # noqa: F821
+    ds = ds.load()
+forms = section.get("forms", [""])
+table = pd.concat([compare(published, ds.sel(form=f) if f else ds, model=f) for f in forms], ignore_index=True)
+results.write_text(table.to_csv(index=False, float_format="%.10g"), snakemake.output[0])  # noqa: F821
+print(table.groupby("model")["verdict"].value_counts().to_string(), flush=True)
