@@ -272,8 +272,8 @@ def four_bar(linkage: FourBar, crank_angle: ArrayLike) -> FourBarMotion:
     singular = sol.singular
     nan = np.nan
     w2, w3, e2, e3 = (np.where(singular, nan, x) for x in (w2, w3, e2, e3))
-    mu = np.abs(np.angle(np.exp(1j * (sol.angle_q - sol.angle_p))))  # angle between A->B and O'->B
-    mu = np.pi - mu  # between B->A and B->O'
+    # angle between B->A and B->O' equals the angle between A->B and O'->B
+    mu = np.abs(np.angle(np.exp(1j * (sol.angle_q - sol.angle_p))))
     return FourBarMotion(alpha, a, sol.point, sol.angle_p, sol.angle_q, w2, w3, e2, e3, mu, singular)
 
 

@@ -1,0 +1,90 @@
+"""Benchmarks of the foundation (issue: kinematics, stiffness job, report render).
+
+Run: make bench   (or: python benchmarks/foundation.py [--repeats N])
+
+Method: wall-clock time.perf_counter; each measurement is repeated (after one
+warm-up) and the median is reported with min and max.  The stiffness job and the
+report render are timed as whole subprocesses in a temporary copy of the project
+(imports and Snakemake start-up included), on whatever machine runs the script.
+Figures go to results/benchmarks/foundation.json (a side file, not a result).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+PROJECT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(PROJECT / "lib"))
+from linkwork.kinematics import FourBar, four_bar  # noqa: E402
+
+TARGETS = {"kinematics_1e6_s": 0.5, "stiffness_job_s": 10.0, "report_render_s": 30.0}
+
+
+def timed(fn, repeats: int) -> dict[str, float]:
+    fn()  # warm-up
+    samples = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        samples.append(time.perf_counter() - start)
+    return {"median": statistics.median(samples), "min": min(samples), "max": max(samples), "repeats": repeats}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+
+    linkage = FourBar(0.015, 0.138, 0.115, 0.170)
+    alpha = np.linspace(0.0, 2 * np.pi, 1_000_000)
+    figures = {"kinematics_1e6_s": timed(lambda: four_bar(linkage, alpha), args.repeats)}
+    print(f"kinematics, 1e6 crank angles (positions, rates, accelerations): {figures['kinematics_1e6_s']['median']:.3f} s", flush=True)
+
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(PROJECT / "lib"))
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        for name in ("Snakefile", "config", "workflow", "lib", "reports", "profiles"):
+            src = PROJECT / name
+            (shutil.copytree if src.is_dir() else shutil.copy2)(src, root / name)
+        run = lambda *cmd: subprocess.run(cmd, cwd=root, env=env, check=True, capture_output=True)  # noqa: E731
+        print("building the stiffness target once ...", flush=True)
+        run(sys.executable, "-m", "snakemake", "--cores", "1")
+        figures["stiffness_job_s"] = timed(
+            lambda: run(sys.executable, "-m", "snakemake", "results/stiffness/stiffness.nc", "--cores", "1", "--forcerun", "stiffness"),
+            args.repeats,
+        )
+        print(f"stiffness rule end to end (snakemake start-up included): {figures['stiffness_job_s']['median']:.2f} s", flush=True)
+        figures["report_render_s"] = timed(
+            lambda: run(
+                sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", "results/bench.html",
+                "--input", "result=results/stiffness/stiffness.nc", "--input", "comparison=results/stiffness/comparison.csv",
+                "--input", "published=config/published/stiffness.yaml",
+            ),
+            args.repeats,
+        )
+        print(f"stiffness report render: {figures['report_render_s']['median']:.2f} s", flush=True)
+
+    for key, limit in TARGETS.items():
+        figures[key]["target"] = limit
+        figures[key]["ok"] = figures[key]["median"] <= limit
+    out = PROJECT / "results" / "benchmarks" / "foundation.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps({"cpu_count": os.cpu_count(), **figures}, indent=2))
+    print(f"wrote {out.relative_to(PROJECT)}")
+    if not all(f["ok"] for f in figures.values() if isinstance(f, dict)):
+        sys.exit("a benchmark missed its target")
+
+
+if __name__ == "__main__":
+    main()

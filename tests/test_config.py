@@ -1,0 +1,60 @@
+"""Config validation: schema and physical checks name the key and the value."""
+
+import copy
+
+import pytest
+import yaml
+
+from linkwork.config import ConfigError, validate_config
+
+
+def test_project_config_is_valid(config, schema):
+    validate_config(config, schema)
+
+
+def _expect(config, schema, *fragments):
+    with pytest.raises(ConfigError) as info:
+        validate_config(config, schema)
+    for fragment in fragments:
+        assert fragment in str(info.value), str(info.value)
+
+
+def test_zero_or_negative_length(config, schema):
+    for bad in (0.0, -0.015):
+        c = copy.deepcopy(config)
+        c["stiffness"]["linkage"]["crank_m"] = bad
+        _expect(c, schema, "stiffness.linkage.crank_m", repr(bad))
+
+
+def test_linkage_that_cannot_be_assembled(config, schema):
+    c = copy.deepcopy(config)
+    c["stiffness"]["linkage"]["crank_m"] = 0.2
+    _expect(c, schema, "stiffness.linkage", "crank_m=0.2", "cannot be assembled", "crank angle")
+
+
+def test_number_read_as_a_string(config, schema):
+    c = copy.deepcopy(config)
+    c["stiffness"]["numerics"]["assembly_tol"] = yaml.safe_load("x: 1e-6")["x"]
+    assert c["stiffness"]["numerics"]["assembly_tol"] == "1e-6"  # PyYAML really does this
+    _expect(c, schema, "stiffness.numerics.assembly_tol", "'1e-6'", "string")
+
+
+def test_unknown_key(config, schema):
+    c = copy.deepcopy(config)
+    c["stiffness"]["linkage"]["crank_mm"] = 15.0
+    _expect(c, schema, "stiffness.linkage.crank_mm", "unknown key")
+    c = copy.deepcopy(config)
+    c["stifness"] = {}
+    _expect(c, schema, "stifness", "unknown key")
+
+
+def test_reference_form_must_be_computed(config, schema):
+    c = copy.deepcopy(config)
+    c["stiffness"]["forms"] = ["equilibrium"]
+    _expect(c, schema, "stiffness.reference_form", "'tables'")
+
+
+def test_grid_step_must_divide_a_turn(config, schema):
+    c = copy.deepcopy(config)
+    c["stiffness"]["grids"]["fine_step_deg"] = 7.0
+    _expect(c, schema, "stiffness.grids.fine_step_deg", "7.0")

@@ -1,0 +1,181 @@
+"""Energy-method stiffness against independent routes: statics + quadrature, and a frame FE solve."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from linkwork.fem import assemble_frame, solve_static
+from linkwork.kinematics import FourBar, four_bar
+from linkwork.stiffness import (
+    Section,
+    equivalent_stiffness,
+    paper_angles,
+    printed_eq8,
+    printed_eq14,
+    unit_force_internal_forces,
+    unit_moment_internal_forces,
+)
+
+LINKAGE = FourBar(crank=0.015, coupler=0.138, rocker=0.115, ground=0.170, branch=1)
+SECTIONS = (Section(2.1e8, 0.0330, 1.49e-5), Section(2.1e8, 0.0081, 5.46e-6), Section(2.1e8, 0.0132, 2.35e-5))
+ALPHA = np.radians(np.arange(0.0, 360.0, 10.0))
+
+
+def _joints(alpha):
+    m = four_bar(LINKAGE, np.array([alpha]))
+    return np.zeros(2), m.A[0], m.B[0], LINKAGE.rocker_pivot
+
+
+def _members(alpha):
+    o, a, b, o2 = _joints(alpha)
+    # members as (start, end): OA from O, AB from A, BO' from O' (the paper's x origins)
+    return [(o, a), (a, b), (o2, b)]
+
+
+def _reactions_moment_case(l4):
+    """Pinned O (Rx, Ry), roller O' (Ry'), unit moment at O': solve the three equilibrium equations."""
+    # unknowns (Rx, Ry, Ry2): sum Fx = 0, sum Fy = 0, sum M about O = 1 + l4 * Ry2 = 0
+    a = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 1.0], [0.0, 0.0, l4]])
+    return np.linalg.solve(a, np.array([0.0, 0.0, -1.0]))
+
+
+def _section_forces(case, point, tangent):
+    """Axial force and bending moment at a section from statics (independent of Tables 1-2)."""
+    if case == "force":  # clamp at O, unit horizontal force at O': take the part beyond the section
+        load, at = np.array([1.0, 0.0]), LINKAGE.rocker_pivot
+        arm = at - point
+        moment = arm[0] * load[1] - arm[1] * load[0]
+        return load @ tangent, moment
+    rx, ry, _ = _reactions_moment_case(LINKAGE.ground)  # part between O and the section
+    r = np.array([rx, ry])
+    arm = -point
+    return r @ tangent, arm[0] * r[1] - arm[1] * r[0]
+
+
+def _energy_integrand(case, start, end, section):
+    length = np.linalg.norm(end - start)
+    tangent = (end - start) / length
+
+    def density(x):
+        n, m = _section_forces(case, start + x * tangent, tangent)
+        return n**2 / (section.youngs_modulus * section.area) + m**2 / (section.youngs_modulus * section.second_moment)
+
+    return density, length
+
+
+def _quadrature_compliance(case, alpha):
+    total = 0.0
+    for (start, end), sec in zip(_members(alpha), SECTIONS, strict=True):
+        f, length = _energy_integrand(case, start, end, sec)
+        total += quad(f, 0.0, length, epsabs=0.0, epsrel=1e-13)[0]
+    return total
+
+
+def test_equilibrium_form_matches_statics_and_quadrature():
+    curves = equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "equilibrium")
+    for i, alpha in enumerate(ALPHA):
+        assert np.isclose(1 / _quadrature_compliance("force", alpha), curves.linear[i], rtol=1e-11)
+        assert np.isclose(1 / _quadrature_compliance("moment", alpha), curves.rotational[i], rtol=1e-11)
+
+
+def test_trapezoid_quadrature_converges_at_second_order_to_the_closed_form():
+    alpha = np.radians(100.0)
+    exact = 1 / equivalent_stiffness(LINKAGE, SECTIONS, np.array([alpha]), "equilibrium").linear[0]
+    panels = np.array([4, 8, 16, 32, 64])
+    errors = []
+    for n in panels:
+        total = 0.0
+        for (start, end), sec in zip(_members(alpha), SECTIONS, strict=True):
+            f, length = _energy_integrand("force", start, end, sec)
+            x = np.linspace(0.0, length, n + 1)
+            y = np.array([f(xi) for xi in x])
+            total += np.trapezoid(y, x)
+        errors.append(abs(total - exact))
+    rate = -np.polyfit(np.log(panels), np.log(errors), 1)[0]
+    assert 1.98 < rate < 2.02, (rate, errors)
+
+
+def test_equilibrium_form_matches_frame_finite_elements():
+    curves = equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "equilibrium")
+    props = [(s.youngs_modulus, s.area, s.second_moment) for s in SECTIONS]
+    for i, alpha in enumerate(ALPHA):
+        o, a, b, o2 = _joints(alpha)
+        nodes = np.array([o, a, b, o2])
+        k = assemble_frame(nodes, [(0, 1), (1, 2), (2, 3)], props)
+        f = np.zeros(12)
+        f[9] = 1.0  # unit horizontal force at O', frame clamped at O
+        x = solve_static(k, f, [0, 1, 2])[9]
+        m = np.zeros(12)
+        m[11] = 1.0  # unit moment at O', O pinned, O' on a vertical roller
+        phi = solve_static(k, m, [0, 1, 10])[11]
+        assert np.isclose(1 / x, curves.linear[i], rtol=1e-9)
+        assert np.isclose(1 / phi, curves.rotational[i], rtol=1e-9)
+
+
+def test_tables_form_is_the_printed_tables_integrated():
+    """Quadrature of the expressions exactly as printed in Tables 1-2 equals the 'tables' closed form."""
+    l1, l2, l3, l4 = LINKAGE.lengths
+    curves = equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "tables")
+    a, b, g = curves.alpha, curves.beta, curves.gamma
+    for i in range(0, len(ALPHA), 5):
+        ai, bi, gi = a[i], b[i], g[i]
+        table1 = [
+            (lambda x: np.cos(ai), lambda x: x * np.sin(ai)),
+            (lambda x: np.cos(gi), lambda x: l1 * np.sin(ai) - x * np.sin(gi)),
+            (lambda x: np.cos(bi), lambda x: x * np.sin(bi)),
+        ]
+        table2 = [
+            (lambda x: np.sin(ai) / l4, lambda x: x * np.cos(ai) / l4),
+            (lambda x: np.sin(gi) / l4, lambda x: x * np.cos(gi) / l4 - l1 * np.cos(ai) / l4),
+            (lambda x: np.sin(bi) / l4, lambda x: x * np.cos(bi) / l4 - 1.0),
+        ]
+        for rows, expected in ((table1, 1 / curves.linear[i]), (table2, 1 / curves.rotational[i])):
+            total = 0.0
+            for (n, m), length, s in zip(rows, (l1, l2, l3), SECTIONS, strict=True):
+                total += quad(
+                    lambda x: n(x) ** 2 / (s.youngs_modulus * s.area) + m(x) ** 2 / (s.youngs_modulus * s.second_moment),
+                    0.0,
+                    length,
+                    epsrel=1e-13,
+                )[0]
+            assert np.isclose(total, expected, rtol=1e-11)
+
+
+def test_printed_equations_against_the_tables():
+    """Eq. (8) is Table 1 integrated; eq. (14) differs from Table 2 integrated by its E2 I2 slip only."""
+    l1, l2, l3, l4 = LINKAGE.lengths
+    tables = equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "tables")
+    a, b, g = tables.alpha, tables.beta, tables.gamma
+    assert np.allclose(printed_eq8(l1, l2, l3, SECTIONS, a, b, g), 1 / tables.linear, rtol=1e-12, atol=0)
+    e2i2 = SECTIONS[1].youngs_modulus * SECTIONS[1].second_moment
+    e3i3 = SECTIONS[2].youngs_modulus * SECTIONS[2].second_moment
+    slip = l3**3 * np.cos(b) ** 2 / (3 * l4**2) * (1 / e2i2 - 1 / e3i3)
+    diff = printed_eq14(l1, l2, l3, l4, SECTIONS, a, b, g) - 1 / tables.rotational
+    assert np.allclose(diff, slip, rtol=1e-9, atol=0)
+    assert np.abs(slip).min() > 0  # the slip really changes every value
+
+
+def test_moment_continuity_at_joint_b_separates_the_forms():
+    """Statics makes the bending moment continuous at the rigid joint B; the printed tables do not."""
+    l1, l2, l3, l4 = LINKAGE.lengths
+    a, b, g = paper_angles(LINKAGE, np.radians(np.arange(0.0, 360.0, 1.0)))
+    for form, continuous in (("equilibrium", True), ("tables", False)):
+        for forces in (unit_force_internal_forces(l1, a, b, g, form), unit_moment_internal_forces(l1, l4, a, b, g, form)):
+            ab, bo = forces[1], forces[2]
+            jump = np.abs(np.abs(ab.m0 + ab.m1 * l2) - np.abs(bo.m0 + bo.m1 * l3))
+            assert (jump.max() < 1e-12) == continuous
+
+
+def test_stiffness_is_proportional_to_youngs_modulus():
+    base = equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "equilibrium")
+    steel = tuple(Section(s.youngs_modulus * 1000, s.area, s.second_moment) for s in SECTIONS)
+    scaled = equivalent_stiffness(LINKAGE, steel, ALPHA, "equilibrium")
+    assert np.allclose(scaled.linear, 1000 * base.linear, rtol=1e-12)
+    assert np.allclose(scaled.rotational, 1000 * base.rotational, rtol=1e-12)
+
+
+def test_bad_form_and_section_rejected():
+    with pytest.raises(ValueError, match="unknown stiffness form"):
+        equivalent_stiffness(LINKAGE, SECTIONS, ALPHA, "eq8")
+    with pytest.raises(ValueError, match="youngs_modulus must be positive"):
+        Section(0.0, 1.0, 1.0)

@@ -1,0 +1,164 @@
+"""The Snakemake workflow on temporary copies of the project: real runs, dry runs, reruns, bad input."""
+
+import hashlib
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from conftest import PROJECT
+
+pytestmark = pytest.mark.workflow
+
+COPIED = ["Snakefile", "config", "workflow", "lib", "reports", "profiles"]
+OUTPUTS = ["results/stiffness/stiffness.nc", "results/reports/stiffness.html", "results/reports/index.html"]
+
+
+def _env(root: Path) -> dict[str, str]:
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    env["PYTHONPATH"] = str(root / "lib")  # the copy's lib, not the installed one
+    return env
+
+
+def snakemake(root: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+    proc = subprocess.run(
+        [sys.executable, "-m", "snakemake", *args], cwd=root, env=_env(root), capture_output=True, text=True, timeout=600
+    )
+    if check and proc.returncode != 0:
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}")
+    return proc
+
+
+def planned_jobs(root: Path) -> dict[str, int]:
+    """Rules a dry run would execute, with counts (from Snakemake's job-stats table)."""
+    out = snakemake(root, "-n").stdout
+    if "Nothing to be done" in out:
+        return {}
+    stats = out[out.index("Job stats:") :]
+    jobs = {}
+    for line in stats.splitlines()[3:]:
+        m = re.match(r"^(\S+)\s+(\d+)$", line.strip())
+        if not m or m.group(1) == "total":
+            if jobs:
+                break
+            continue
+        jobs[m.group(1)] = int(m.group(2))
+    return jobs
+
+
+def copy_project(dest: Path) -> Path:
+    dest.mkdir(parents=True, exist_ok=True)
+    for name in COPIED:
+        src = PROJECT / name
+        if src.is_dir():
+            shutil.copytree(src, dest / name, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+        else:
+            shutil.copy2(src, dest / name)
+    return dest
+
+
+@pytest.fixture(scope="module")
+def built(tmp_path_factory) -> Path:
+    """A copy of the project on which bare `snakemake` (profiles/default) has run once."""
+    root = copy_project(tmp_path_factory.mktemp("built"))
+    assert set(planned_jobs(root)) == {"all", "stiffness", "stiffness_compare", "report", "index"}
+    snakemake(root)
+    return root
+
+
+@pytest.fixture()
+def clone(built, tmp_path) -> Path:
+    """An independent copy of the built project (results and .snakemake metadata included)."""
+    dest = tmp_path / "clone"
+    shutil.copytree(built, dest, symlinks=True)
+    return dest
+
+
+def test_real_run_builds_every_output(built):
+    for rel in OUTPUTS:
+        assert (built / rel).stat().st_size > 0, rel
+    html = (built / "results/reports/stiffness.html").read_text()
+    assert "data:image/png;base64" in html  # figures embedded
+    assert "Traceback" not in html
+    index = (built / "results/reports/index.html").read_text()
+    assert "stiffness.html" in index and "not yet built" in index
+
+
+def test_second_run_has_nothing_to_do(built):
+    assert planned_jobs(built) == {}
+
+
+def test_forced_rerun_writes_identical_bytes(clone):
+    path = clone / "results/stiffness/stiffness.nc"
+    before = hashlib.sha256(path.read_bytes()).hexdigest()
+    proc = snakemake(clone, "results/stiffness/stiffness.nc", "--forcerun", "stiffness")
+    assert "1 of 1 steps" in proc.stdout + proc.stderr
+    assert hashlib.sha256(path.read_bytes()).hexdigest() == before
+
+
+def test_changing_a_stiffness_parameter_reruns_the_stiffness_rules_only(clone):
+    cfg_path = clone / "config/config.yaml"
+    text = cfg_path.read_text()
+    assert "fine_step_deg: 1.0" in text
+    cfg_path.write_text(text.replace("fine_step_deg: 1.0", "fine_step_deg: 0.5"))
+    assert planned_jobs(clone) == {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
+
+
+def _touch_module(root: Path, module: str) -> None:
+    path = root / "lib/linkwork" / module
+    path.write_text(path.read_text() + "\n# edited\n")
+
+
+def test_editing_stiffness_module_reruns_the_rules_that_use_it(clone):
+    _touch_module(clone, "stiffness.py")
+    jobs = planned_jobs(clone)
+    assert jobs.get("stiffness") == 1
+    assert set(jobs) == {"all", "stiffness", "stiffness_compare", "report", "index"}
+
+
+def test_editing_compare_module_does_not_rerun_the_computation(clone):
+    _touch_module(clone, "compare.py")
+    jobs = planned_jobs(clone)
+    assert "stiffness" not in jobs
+    assert jobs.get("stiffness_compare") == 1
+
+
+def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
+    root = copy_project(tmp_path / "bad")
+    cfg_path = root / "config/config.yaml"
+    cfg_path.write_text(edit(cfg_path.read_text()))
+    proc = snakemake(root, "--cores", "1", check=False)
+    assert proc.returncode != 0
+    assert not (root / "results").exists(), "a job ran despite the bad config"
+    return proc
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "fragments"),
+    [
+        ("crank_m: 0.015", "crank_m: 0.0", ["stiffness.linkage.crank_m", "0.0"]),
+        ("crank_m: 0.015", "crank_m: -0.015", ["stiffness.linkage.crank_m", "-0.015"]),
+        ("crank_m: 0.015", "crank_m: 0.2", ["stiffness.linkage", "crank_m=0.2", "cannot be assembled"]),
+        ("assembly_tol: 1.0e-9", "assembly_tol: 1e-9", ["stiffness.numerics.assembly_tol", "'1e-9'", "string"]),
+        ("    branch: 1 ", "    branch: 1\n    brnach: 1 ", ["stiffness.linkage.brnach", "unknown key"]),
+    ],
+    ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key"],
+)
+def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
+    proc = _bad_config(tmp_path, lambda text: text.replace(old, new, 1))
+    message = proc.stdout + proc.stderr
+    for fragment in fragments:
+        assert fragment in message, message
+
+
+def test_dry_run_of_a_fresh_copy_plans_every_rule(tmp_path):
+    root = copy_project(tmp_path / "fresh")
+    jobs = planned_jobs(root)
+    assert jobs == {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
+    assert yaml.safe_load((root / "profiles/default/profile.yaml").read_text())["cores"] == "all"
