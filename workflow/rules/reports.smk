@@ -1,12 +1,16 @@
 # Reports: jupytext percent scripts executed and rendered to self-contained HTML.
 import json
 
+# Per paper: the files its report reads (passed to it by name) and the lib modules it imports.
 REPORT_INPUTS = {
     "stiffness": {
         "result": "results/stiffness/stiffness.nc",
         "comparison": "results/stiffness/comparison.csv",
         "published": "config/published/stiffness.yaml",
     },
+}
+REPORT_CODE = {
+    "stiffness": lib("from_config", "stiffness", "kinematics"),
 }
 
 
@@ -15,6 +19,7 @@ def report_inputs(wildcards):
         "notebook": f"reports/{wildcards.paper}.py",
         "renderer": "workflow/scripts/render_report.py",
         "style": "reports/_common.py",
+        "code": REPORT_CODE[wildcards.paper],
         **REPORT_INPUTS[wildcards.paper],
     }
 
@@ -36,6 +41,7 @@ rule index:
         notebook="reports/index.py",
         renderer="workflow/scripts/render_report.py",
         style="reports/_common.py",
+        code=lib("compare"),
         comparisons=expand("results/{paper}/comparison.csv", paper=BUILT_PAPERS),
         reports=expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
     output:
