@@ -19,11 +19,15 @@ with open(Path(workflow.basedir) / "config" / "schema.yaml") as fh:
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/stiffness.smk"
+include: "workflow/rules/beatup.smk"
 include: "workflow/rules/reports.smk"
 
 
 rule all:
     input:
         "results/stiffness/stiffness.nc",
+        "results/beatup/sixbar.nc",
+        "results/beatup/window.nc",
+        "results/beatup/accuracy.nc",
         expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
         "results/reports/index.html",

@@ -40,14 +40,15 @@ for paper in papers:
         rows.append((paper, titles.get(paper, ""), None, None, None, "not yet built", ""))
         continue
     cmp = pd.read_csv(path)
+    cmp["model"] = cmp["model"].astype("string").fillna("")  # papers with a single model leave it empty
     ref = reference.get(paper, cmp.model.iloc[0] if len(cmp) else "")
-    counts = verdict_counts(cmp[cmp.model.fillna("") == ref])
+    counts = verdict_counts(cmp[cmp.model == ref])
     others = []
-    for model, group in cmp.groupby(cmp.model.fillna("")):
+    for model, group in cmp.groupby("model"):
         if model != ref:
             c = verdict_counts(group)
             others.append(f"{model}: {c['matches']} matched, {c['deviates']} deviating, {c['not reproducible']} n/r")
-    link = f'<a href="{paper}.html">{paper} report</a> (reference form: {ref})'
+    link = f'<a href="{paper}.html">{paper} report</a>' + (f" (reference form: {ref})" if ref else "")
     rows.append((paper, titles.get(paper, ""), counts["matches"], counts["deviates"], counts["not reproducible"], link, "; ".join(others)))
 df = pd.DataFrame(rows, columns=["paper", "title", "matched", "deviating", "not reproducible", "report", "other model forms"])
 for col in ("matched", "deviating", "not reproducible"):

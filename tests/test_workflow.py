@@ -16,7 +16,27 @@ from conftest import PROJECT
 pytestmark = pytest.mark.workflow
 
 COPIED = ["Snakefile", "config", "workflow", "lib", "reports", "profiles"]
-OUTPUTS = ["results/stiffness/stiffness.nc", "results/reports/stiffness.html", "results/reports/index.html"]
+OUTPUTS = [
+    "results/stiffness/stiffness.nc",
+    "results/reports/stiffness.html",
+    "results/beatup/sixbar.nc",
+    "results/beatup/window.nc",
+    "results/reports/beatup.html",
+    "results/reports/index.html",
+]
+ALL_JOBS = {
+    "all": 1,
+    "stiffness": 1,
+    "stiffness_compare": 1,
+    "beatup_sixbar": 1,
+    "beatup_window": 1,
+    "beatup_accuracy": 1,
+    "beatup_compare": 1,
+    "report": 2,
+    "index": 1,
+}
+STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
+BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 1, "index": 1}
 
 
 def _env(root: Path) -> dict[str, str]:
@@ -67,7 +87,7 @@ def copy_project(dest: Path) -> Path:
 def built(tmp_path_factory) -> Path:
     """A copy of the project on which bare `snakemake` (profiles/default) has run once."""
     root = copy_project(tmp_path_factory.mktemp("built"))
-    assert set(planned_jobs(root)) == {"all", "stiffness", "stiffness_compare", "report", "index"}
+    assert planned_jobs(root) == ALL_JOBS
     snakemake(root)
     return root
 
@@ -83,11 +103,14 @@ def clone(built, tmp_path) -> Path:
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel
-    html = (built / "results/reports/stiffness.html").read_text()
-    assert "data:image/png;base64" in html  # figures embedded
-    assert "Traceback" not in html
+    for paper in ("stiffness", "beatup"):
+        html = (built / f"results/reports/{paper}.html").read_text()
+        assert "data:image/png;base64" in html  # figures embedded
+        assert "Traceback" not in html
+        assert 'vnd.jupyter.stderr" tabindex' not in html  # no warnings or errors printed
     index = (built / "results/reports/index.html").read_text()
-    assert "stiffness.html" in index and "not yet built" in index
+    assert "stiffness.html" in index and "beatup.html" in index and "not yet built" in index
+    assert 'vnd.jupyter.stderr" tabindex' not in index
 
 
 def test_second_run_has_nothing_to_do(built):
@@ -107,7 +130,15 @@ def test_changing_a_stiffness_parameter_reruns_the_stiffness_rules_only(clone):
     text = cfg_path.read_text()
     assert "fine_step_deg: 1.0" in text
     cfg_path.write_text(text.replace("fine_step_deg: 1.0", "fine_step_deg: 0.5"))
-    assert planned_jobs(clone) == {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
+    assert planned_jobs(clone) == STIFFNESS_JOBS
+
+
+def test_changing_a_beatup_parameter_reruns_the_beatup_rules_only(clone):
+    cfg_path = clone / "config/config.yaml"
+    text = cfg_path.read_text()
+    assert "scaled_crank_m: 0.062" in text
+    cfg_path.write_text(text.replace("scaled_crank_m: 0.062", "scaled_crank_m: 0.060"))
+    assert planned_jobs(clone) == BEATUP_JOBS
 
 
 def _touch_module(root: Path, module: str) -> None:
@@ -117,9 +148,18 @@ def _touch_module(root: Path, module: str) -> None:
 
 def test_editing_stiffness_module_reruns_the_rules_that_use_it(clone):
     _touch_module(clone, "stiffness.py")
+    assert planned_jobs(clone) == STIFFNESS_JOBS
+
+
+def test_editing_beatup_module_reruns_only_beatup_rules(clone):
+    _touch_module(clone, "beatup.py")
+    assert planned_jobs(clone) == BEATUP_JOBS
+
+
+def test_editing_the_shared_kinematics_reruns_both_papers(clone):
+    _touch_module(clone, "kinematics.py")
     jobs = planned_jobs(clone)
-    assert jobs.get("stiffness") == 1
-    assert set(jobs) == {"all", "stiffness", "stiffness_compare", "report", "index"}
+    assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["report"] == 2
 
 
 def test_editing_compare_module_does_not_rerun_the_computation(clone):
@@ -147,8 +187,12 @@ def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
         ("crank_m: 0.015", "crank_m: 0.2", ["stiffness.linkage", "crank_m=0.2", "cannot be assembled"]),
         ("assembly_tol: 1.0e-9", "assembly_tol: 1e-9", ["stiffness.numerics.assembly_tol", "'1e-9'", "string"]),
         ("    branch: 1 ", "    branch: 1\n    brnach: 1 ", ["stiffness.linkage.brnach", "unknown key"]),
+        ("l5_m: 0.500", "l5_m: 0.200", ["beatup.sixbar.l1_m", "cannot be assembled", "crank angle"]),
+        ("branch_sley: -1", "branch_sley: 0", ["beatup.sixbar.branch_sley", "0"]),
+        ("value: 0.100, status: assumed", "value: 0.200, status: assumed", ["beatup.fourbar.weft_clearance_m", "0.2", "stroke"]),
     ],
-    ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key"],
+    ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key",
+         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke"],
 )
 def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
     proc = _bad_config(tmp_path, lambda text: text.replace(old, new, 1))
@@ -159,6 +203,5 @@ def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
 
 def test_dry_run_of_a_fresh_copy_plans_every_rule(tmp_path):
     root = copy_project(tmp_path / "fresh")
-    jobs = planned_jobs(root)
-    assert jobs == {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
+    assert planned_jobs(root) == ALL_JOBS
     assert yaml.safe_load((root / "profiles/default/profile.yaml").read_text())["cores"] == "all"

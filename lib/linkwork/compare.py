@@ -14,8 +14,12 @@ dict) holds
 
 A measure is ``{variable, reduce, dim}`` with ``reduce`` one of ``max``,
 ``min``, ``mean``, ``argmax``, ``argmin`` (the coordinate value of the extreme),
-``range`` (max - min) or ``at`` (with ``at: {coord: value}``); an optional
-``scale`` converts the result's unit to the published unit (for example 180/pi).
+``range`` (max - min), ``value`` (a scalar variable) or ``at`` (with
+``at: {coord: value}``); an optional ``scale`` converts the result's unit to the
+published unit.  A ``measure: null`` marks a number the paper does not give
+enough to reproduce (verdict "not reproducible"; say why in ``note``).
+A table column is a variable name, or ``{variable, unit, tolerance}`` when the
+columns differ in unit or precision.
 
 Published numbers are read here and nowhere else in the library; they never
 enter a computation.
@@ -52,6 +56,8 @@ def evaluate_measure(ds: xr.Dataset, measure: Mapping[str, Any]) -> float:
 
     Returns NaN when the variable or coordinate is missing (not reproducible).
     """
+    if measure is None:  # the paper does not give what reproducing this number needs
+        return math.nan
     name = measure["variable"]
     if name not in ds:
         return math.nan
@@ -63,6 +69,8 @@ def evaluate_measure(ds: xr.Dataset, measure: Mapping[str, Any]) -> float:
             value = float(da.sel(measure["at"]))
         except KeyError:
             return math.nan
+    elif reduce == "value":
+        value = float(da)
     elif reduce in ("max", "min", "mean"):
         value = float(getattr(da, reduce)(dim))
     elif reduce == "range":
@@ -103,20 +111,21 @@ def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
         for row in table["rows"]:
             key_value = row[0]
             for col_name, value in zip(names, row[1:], strict=True):
-                variable = table["columns"][col_name]
+                column = table["columns"][col_name]
+                if isinstance(column, str):  # a variable name; unit and tolerance shared by the table
+                    column = {"variable": column}
                 entries.append(
                     {
                         "id": f"{table['id']}.{col_name}@{key_value:g}",
                         "quantity": f"{col_name} at {key} = {key_value:g}",
                         "value": value,
-                        "unit": table["unit"],
+                        "unit": column.get("unit", table.get("unit")),
                         "where": table["where"],
-                        "tolerance": table["tolerance"],
+                        "tolerance": column.get("tolerance", table.get("tolerance")),
                         "measure": {
-                            "variable": variable,
+                            "variable": column["variable"],
                             "reduce": "at",
                             "at": {table["coordinate"]: key_value},
-                            **({"scale": table["scale"]} if "scale" in table else {}),
                         },
                     }
                 )

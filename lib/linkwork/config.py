@@ -77,9 +77,47 @@ def check_stiffness(section: Mapping[str, Any], key: str = "stiffness") -> None:
             raise ConfigError(f"config key {key}.linkage ({values}): {exc}") from None
 
 
+def _grid_divides_turn(section: Mapping[str, Any], key: str, grid_key: str) -> None:
+    step = section["grids"][grid_key]
+    n = 360.0 / step
+    if abs(n - round(n)) > 1e-9:
+        raise ConfigError(f"config key {key}.grids.{grid_key}: value {step!r} does not divide 360 deg")
+
+
+def check_beatup(section: Mapping[str, Any], key: str = "beatup") -> None:
+    """Both six-bars (printed and scaled crank) and every swept four-bar must turn fully; S_w < stroke."""
+    for grid_key in ("paper_step_deg", "fine_step_deg"):
+        _grid_divides_turn(section, key, grid_key)
+    from .beatup import sley_motion
+
+    turn = np.radians(from_config.angle_grid_deg(section["grids"]["fine_step_deg"]))
+    sixbar = section["sixbar"]
+    for crank_key, crank in (("sixbar.l1_m", sixbar["l1_m"]), ("comparison.scaled_crank_m", section["comparison"]["scaled_crank_m"])):
+        try:
+            sley_motion(from_config.six_bar(sixbar, crank_m=crank), turn)
+        except ValueError as exc:
+            raise ConfigError(f"config key {key}.{crank_key} (value {crank!r}) with {key}.sixbar: six-bar {exc}") from None
+    fourbar = section["fourbar"]
+    for ratio in [from_config.labelled(fourbar["arm_to_crank"]), *section["sweep"]["arm_to_crank"]]:
+        try:
+            from_config.four_bar_beatup(fourbar, arm_to_crank=ratio).sword_angle(turn)
+        except ValueError as exc:
+            raise ConfigError(f"config key {key}.fourbar (arm_to_crank={ratio!r}): {exc}") from None
+    stroke = section["comparison"]["stroke_m"]
+    sw = from_config.labelled(fourbar["weft_clearance_m"])
+    if sw >= stroke:
+        raise ConfigError(f"config key {key}.fourbar.weft_clearance_m: value {sw!r} is not smaller than the stroke {key}.comparison.stroke_m = {stroke!r}")
+    sweep = section["sweep"]["weft_clearance_m"]
+    if not sweep["start"] < sweep["stop"] < stroke:
+        raise ConfigError(
+            f"config key {key}.sweep.weft_clearance_m: value {dict(sweep)!r} needs start < stop < stroke ({stroke!r} m)"
+        )
+
+
 #: Physical checks per paper section; a paper adds its own here.
 PHYSICAL_CHECKS: dict[str, Callable[[Mapping[str, Any], str], None]] = {
     "stiffness": check_stiffness,
+    "beatup": check_beatup,
 }
 
 

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .beatup import FourBarBeatup, SixBar
 from .kinematics import DEFAULT_ASSEMBLY_TOL, FourBar
 from .stiffness import Section
 
@@ -47,3 +48,34 @@ def angle_grid_deg(step_deg: float) -> NDArray[np.float64]:
     """Crank angles 0, step, ... < 360 (deg); the step must divide 360."""
     n = int(round(360.0 / step_deg))
     return np.arange(n) * (360.0 / n)
+
+
+def six_bar(section: Mapping[str, Any], crank_m: float | None = None) -> SixBar:
+    """SixBar from a ``beatup.sixbar`` section (lengths in m, angles in deg); optionally another crank (m)."""
+    lengths = [float(section[f"l{i}_m"]) for i in range(1, 8)]
+    if crank_m is not None:
+        lengths[0] = float(crank_m)
+    return SixBar(
+        *lengths,
+        theta4=float(np.radians(section["theta4_deg"])),
+        theta7=float(np.radians(section["theta7_deg"])),
+        branch_rocker=int(section["branch_rocker"]),
+        branch_sley=int(section["branch_sley"]),
+    )
+
+
+def labelled(entry: Mapping[str, Any]) -> float:
+    """The value of a labelled config entry ``{value, status, reason}``."""
+    return float(entry["value"])
+
+
+def four_bar_beatup(section: Mapping[str, Any], arm_to_crank: float | None = None) -> FourBarBeatup:
+    """FourBarBeatup from a ``beatup.fourbar`` section of labelled entries; optionally another L/R."""
+    ratio = labelled(section["arm_to_crank"]) if arm_to_crank is None else float(arm_to_crank)
+    crank = labelled(section["crank_m"])
+    return FourBarBeatup(
+        crank=crank,
+        arm=ratio * crank,
+        sword_radius=labelled(section["sword_radius_m"]),
+        offset=labelled(section["offset_m"]),
+    )

@@ -165,6 +165,130 @@ def dyad_rates(
     return omega_p, omega_q, alpha_p, alpha_q
 
 
+@dataclass(frozen=True)
+class Dyad:
+    """An RRR dyad adding joint ``name`` between two already known points.
+
+    ``length_p`` and ``length_q`` are the link lengths (m) from points ``p`` and
+    ``q`` to the new joint; ``branch`` is the sign of ``(q - p) x (name - p)``.
+    """
+
+    name: str
+    p: str
+    q: str
+    length_p: float
+    length_q: float
+    branch: int
+
+
+@dataclass(frozen=True)
+class Chain:
+    """A single-degree-of-freedom planar linkage built as a crank plus a chain of dyads.
+
+    Attributes
+    ----------
+    ground : mapping of point name -> (x, y) in m
+        Fixed pivots.
+    crank_pivot, crank_tip : str
+        The crank turns about ``crank_pivot`` (a ground point); its tip is a new point.
+    crank_length : float, m
+    dyads : tuple of Dyad
+        Solved in order; each joins two points known by then.
+    assembly_tol : float
+        Relative slack on the triangle inequality (see dyad_position).
+    """
+
+    ground: dict[str, tuple[float, float]]
+    crank_pivot: str
+    crank_tip: str
+    crank_length: float
+    dyads: tuple[Dyad, ...]
+    assembly_tol: float = DEFAULT_ASSEMBLY_TOL
+
+    def describe(self) -> str:
+        parts = [f"crank {self.crank_pivot}{self.crank_tip}={self.crank_length:g} m"]
+        parts += [f"{d.p}{d.name}={d.length_p:g} m, {d.q}{d.name}={d.length_q:g} m" for d in self.dyads]
+        return "; ".join(parts)
+
+
+@dataclass(frozen=True)
+class PointMotion:
+    """Position (m) and its first and second crank-angle derivatives (m/rad, m/rad^2)."""
+
+    pos: FloatArray
+    vel: FloatArray
+    acc: FloatArray
+
+
+@dataclass(frozen=True)
+class LinkMotion:
+    """Direction of a link (rad) and its first and second crank-angle derivatives."""
+
+    angle: FloatArray
+    rate: FloatArray
+    accel: FloatArray
+
+
+@dataclass(frozen=True)
+class ChainMotion:
+    """Every point and link of a chain over the crank angles.
+
+    Links are keyed ``"P-R"`` for the direction P->R; a dyad adds ``"p-name"``
+    and ``"q-name"``, the crank adds ``"pivot-tip"``.  ``singular`` marks crank
+    angles at which some dyad is stretched or folded (rates there are NaN).
+    """
+
+    crank_angle: FloatArray
+    points: dict[str, PointMotion]
+    links: dict[str, LinkMotion]
+    singular: NDArray[np.bool_]
+
+
+def solve_chain(chain: Chain, crank_angle: ArrayLike) -> ChainMotion:
+    """Positions, rates and accelerations of every point and link of a chain.
+
+    Raises
+    ------
+    ValueError
+        If a dyad cannot be assembled at some crank angle; the message names the
+        dyad's lengths, the chain and the first such crank angle (in degrees).
+    """
+    alpha = np.asarray(crank_angle, dtype=float)
+    shape = alpha.shape + (2,)
+    zero = np.zeros(shape)
+    points: dict[str, PointMotion] = {
+        name: PointMotion(np.broadcast_to(np.asarray(xy, dtype=float), shape), zero, zero)
+        for name, xy in chain.ground.items()
+    }
+    e = np.stack([np.cos(alpha), np.sin(alpha)], axis=-1)
+    pivot = points[chain.crank_pivot].pos
+    tip = pivot + chain.crank_length * e
+    points[chain.crank_tip] = PointMotion(tip, chain.crank_length * _perp(e), -chain.crank_length * e)
+    ones, zeros = np.ones_like(alpha), np.zeros_like(alpha)
+    links = {f"{chain.crank_pivot}-{chain.crank_tip}": LinkMotion(alpha, ones, zeros)}
+    singular = np.zeros(alpha.shape, dtype=bool)
+    for d in chain.dyads:
+        p, q = points[d.p], points[d.q]
+        sol, failed = dyad_position(p.pos, q.pos, d.length_p, d.length_q, d.branch, chain.assembly_tol)
+        if np.any(failed):
+            bad = np.atleast_1d(alpha)[np.atleast_1d(failed)]
+            raise ValueError(
+                f"dyad {d.p}{d.name}{d.q} cannot be assembled ({d.p}{d.name}={d.length_p:g} m, "
+                f"{d.q}{d.name}={d.length_q:g} m; chain: {chain.describe()}) at crank angle "
+                f"{np.degrees(bad[0]):.6g} deg ({bad.size} of {np.size(alpha)} angles fail)"
+            )
+        wp, wq, ap, aq = dyad_rates(d.length_p, d.length_q, sol.angle_p, sol.angle_q, p.vel, q.vel, p.acc, q.acc)
+        wp, wq, ap, aq = (np.where(sol.singular, np.nan, x) for x in (wp, wq, ap, aq))
+        ep = np.stack([np.cos(sol.angle_p), np.sin(sol.angle_p)], axis=-1)
+        vel = p.vel + d.length_p * wp[..., None] * _perp(ep)
+        acc = p.acc + d.length_p * (ap[..., None] * _perp(ep) - (wp**2)[..., None] * ep)
+        points[d.name] = PointMotion(sol.point, vel, acc)
+        links[f"{d.p}-{d.name}"] = LinkMotion(sol.angle_p, wp, ap)
+        links[f"{d.q}-{d.name}"] = LinkMotion(sol.angle_q, wq, aq)
+        singular = singular | sol.singular
+    return ChainMotion(alpha, points, links, singular)
+
+
 GrashofClass = Literal["grashof", "change-point", "non-grashof"]
 
 
@@ -237,12 +361,17 @@ class FourBarMotion:
     singular: NDArray[np.bool_]  #: coupler and rocker collinear (rates undefined)
 
 
-def crank_point(linkage: FourBar, crank_angle: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Position, first and second crank-angle derivatives of A (m)."""
-    alpha = np.asarray(crank_angle, dtype=float)
-    e = np.stack([np.cos(alpha), np.sin(alpha)], axis=-1)
-    a = linkage.crank * e
-    return a, linkage.crank * _perp(e), -a
+def four_bar_chain(linkage: FourBar) -> Chain:
+    """The four-bar as a chain: crank O->A, then the dyad A-B-O'."""
+    o2 = linkage.rocker_pivot
+    return Chain(
+        ground={"O": (0.0, 0.0), "O'": (float(o2[0]), float(o2[1]))},
+        crank_pivot="O",
+        crank_tip="A",
+        crank_length=linkage.crank,
+        dyads=(Dyad("B", "A", "O'", linkage.coupler, linkage.rocker, linkage.branch),),
+        assembly_tol=linkage.assembly_tol,
+    )
 
 
 def four_bar(linkage: FourBar, crank_angle: ArrayLike) -> FourBarMotion:
@@ -254,27 +383,30 @@ def four_bar(linkage: FourBar, crank_angle: ArrayLike) -> FourBarMotion:
         If the linkage cannot be assembled at some crank angle; the message
         names the lengths and the first such angle (in degrees).
     """
-    alpha = np.asarray(crank_angle, dtype=float)
-    a, va, aa = crank_point(linkage, alpha)
-    o2 = np.broadcast_to(linkage.rocker_pivot, a.shape)
-    sol, failed = dyad_position(a, o2, linkage.coupler, linkage.rocker, linkage.branch, linkage.assembly_tol)
-    if np.any(failed):
-        bad = np.atleast_1d(alpha)[np.atleast_1d(failed)]
+    try:
+        m = solve_chain(four_bar_chain(linkage), crank_angle)
+    except ValueError as exc:
         l1, l2, l3, l4 = linkage.lengths
         raise ValueError(
-            "four-bar cannot be assembled: crank={:g} m, coupler={:g} m, rocker={:g} m, ground={:g} m "
-            "at crank angle {:.6g} deg ({} of {} angles fail)".format(
-                l1, l2, l3, l4, np.degrees(bad[0]), bad.size, np.size(alpha)
-            )
-        )
-    zero = np.zeros_like(a)
-    w2, w3, e2, e3 = dyad_rates(linkage.coupler, linkage.rocker, sol.angle_p, sol.angle_q, va, zero, aa, zero)
-    singular = sol.singular
-    nan = np.nan
-    w2, w3, e2, e3 = (np.where(singular, nan, x) for x in (w2, w3, e2, e3))
+            f"four-bar cannot be assembled: crank={l1:g} m, coupler={l2:g} m, rocker={l3:g} m, ground={l4:g} m "
+            + str(exc)[str(exc).index("at crank angle") :]
+        ) from None
+    coupler, rocker = m.links["A-B"], m.links["O'-B"]
     # angle between B->A and B->O' equals the angle between A->B and O'->B
-    mu = np.abs(np.angle(np.exp(1j * (sol.angle_q - sol.angle_p))))
-    return FourBarMotion(alpha, a, sol.point, sol.angle_p, sol.angle_q, w2, w3, e2, e3, mu, singular)
+    mu = np.abs(np.angle(np.exp(1j * (rocker.angle - coupler.angle))))
+    return FourBarMotion(
+        m.crank_angle,
+        m.points["A"].pos,
+        m.points["B"].pos,
+        coupler.angle,
+        rocker.angle,
+        coupler.rate,
+        rocker.rate,
+        coupler.accel,
+        rocker.accel,
+        mu,
+        m.singular,
+    )
 
 
 def loop_closure_residual(linkage: FourBar, motion: FourBarMotion) -> FloatArray:

@@ -8,9 +8,18 @@ REPORT_INPUTS = {
         "comparison": "results/stiffness/comparison.csv",
         "published": "config/published/stiffness.yaml",
     },
+    "beatup": {
+        "result": "results/beatup/sixbar.nc",
+        "window": "results/beatup/window.nc",
+        "accuracy": "results/beatup/accuracy.nc",
+        "timings": "results/beatup/accuracy_timings.json",
+        "comparison": "results/beatup/comparison.csv",
+        "published": "config/published/beatup.yaml",
+    },
 }
 REPORT_CODE = {
     "stiffness": lib("from_config", "stiffness", "kinematics"),
+    "beatup": lib("beatup", "beatup_dataset", "kinematics"),
 }
 
 
@@ -31,9 +40,10 @@ rule report:
         "results/reports/{paper}.html",
     wildcard_constraints:
         paper="|".join(BUILT_PAPERS),
+    params:
+        inputs=lambda wildcards, input: " ".join(f"--input {k}={input[k]}" for k in REPORT_INPUTS[wildcards.paper]),
     shell:
-        "python {input.renderer} {input.notebook} {output} "
-        + " ".join(f"--input {k}={{input.{k}}}" for k in ["result", "comparison", "published"])
+        "python {input.renderer} {input.notebook} {output} {params.inputs}"
 
 
 rule index:
@@ -48,7 +58,7 @@ rule index:
         "results/reports/index.html",
     params:
         papers=json.dumps(config["papers"]),
-        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"]}),
+        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": ""}),
         comparison_args=lambda wildcards, input: " ".join(
             f"--input comparison_{paper}={path}" for paper, path in zip(BUILT_PAPERS, input.comparisons)
         ),

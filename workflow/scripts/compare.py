@@ -1,4 +1,4 @@
-"""Rule <paper>_compare: result netCDF + published numbers -> comparison table (CSV), one block per model form."""
+"""Rule <paper>_compare: result netCDF file(s) + published numbers -> comparison table (CSV), one block per model form."""
 
 import pandas as pd
 import xarray as xr
@@ -10,8 +10,12 @@ from linkwork.compare import compare
 section = snakemake.params.section  # noqa: F821
 with open(snakemake.input.published) as fh:  # noqa: F821
     published = yaml.safe_load(fh)
-with xr.open_dataset(snakemake.input.result) as ds:  # noqa: F821
-    ds = ds.load()
+paths = snakemake.input.results if "results" in snakemake.input.keys() else [snakemake.input.result]  # noqa: F821
+datasets = []
+for path in paths:
+    with xr.open_dataset(path) as ds:
+        datasets.append(ds.load())
+ds = xr.merge(datasets, combine_attrs="drop")
 forms = section.get("forms", [""])
 table = pd.concat([compare(published, ds.sel(form=f) if f else ds, model=f) for f in forms], ignore_index=True)
 results.write_text(table.to_csv(index=False, float_format="%.10g"), snakemake.output[0])  # noqa: F821

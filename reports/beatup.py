@@ -1,0 +1,361 @@
+# ---
+# jupyter:
+#   jupytext:
+#     formats: py:percent
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+# ---
+
+# %% [markdown]
+# # Six-link beating-up mechanism (GN721) vs four-link (1511M): reproduction report
+#
+# **Paper.** Gao Weidong, "The kinematic analysis of the six-link beating-up mechanism" (received 3 August 1983).
+# The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a double rocker CDEF.
+# The paper solves both loops with complex vectors (tangent half-angle closed forms, eqs. 5 and 11), tabulates the
+# rocker angle θ3 and the sley-sword angle θ6 with their derivatives (Table 1), and compares the weft window with that
+# of the 1511M four-bar at equal reed stroke.
+#
+# **What we do.** We solve the six-bar as a chain of dyads with the shared solver (`linkwork.kinematics.solve_chain`),
+# using vector loop closure with explicit branches and analytic rates. We check it against the paper's own closed
+# forms and against finite differences. For every cell of Table 1 that differs beyond rounding we give the evidence
+# of which side is wrong. For the weft-window comparison the paper gives neither the 1511M dimensions nor S_w, so we
+# show how the windows depend on them.
+
+# %%
+import json
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import xarray as xr
+import yaml
+from _common import md, report_context, table
+
+from linkwork.beatup_dataset import table1_evidence
+
+inputs, _ = report_context(
+    {
+        "result": "results/beatup/sixbar.nc",
+        "window": "results/beatup/window.nc",
+        "accuracy": "results/beatup/accuracy.nc",
+        "timings": "results/beatup/accuracy_timings.json",
+        "comparison": "results/beatup/comparison.csv",
+        "published": "config/published/beatup.yaml",
+    }
+)
+ds = xr.open_dataset(inputs["result"]).load()
+win = xr.open_dataset(inputs["window"]).load()
+acc = xr.open_dataset(inputs["accuracy"]).load()
+timings = json.loads(inputs["timings"].read_text())
+cmp = pd.read_csv(inputs["comparison"])
+published = yaml.safe_load(inputs["published"].read_text())
+section = json.loads(ds.attrs["config_json"])
+pub = {q["id"]: q for q in published["quantities"]}
+t1 = cmp[cmp["id"].str.startswith("table1")]
+head = cmp[~cmp["id"].str.startswith("table1")]
+f = lambda name: float(ds[name])  # noqa: E731
+
+# Table 1 cell classes (evidence) ---------------------------------------------------------------
+spec = published["tables"][0]
+rows = np.array(spec["rows"], dtype=float)
+printed = {}
+tolerance = {}
+for j, name in enumerate(spec["column_names"]):
+    col = spec["columns"][name]
+    printed[col["variable"]] = rows[:, j + 1]
+    tolerance[col["variable"]] = col["tolerance"]["abs"]
+evidence = pd.DataFrame(table1_evidence(ds, printed, tolerance, section["grids"]["paper_step_deg"]))
+class_counts = evidence["class"].value_counts()
+
+# %% [markdown]
+# ## Summary
+
+# %%
+n_match = int((t1.verdict == "matches").sum())
+md(
+    f"""
+* **Table 1:** {n_match} of {len(t1)} printed numbers match within half a unit of the last digit. Of the others,
+  {int(class_counts.get('parameter rounding', 0))} are explained by the rounding of the printed parameters
+  (l4, l7, θ4, θ7 are printed to 0.01). {int(class_counts.get('marginal', 0))} are marginal (beyond rounding, but below
+  what the check below resolves). **{int(class_counts.get('printed cell inconsistent', 0))} printed cells are
+  inconsistent with the paper's own neighbouring cells**, and {int(class_counts.get('inconclusive', 0))} are
+  inconclusive because a neighbour used in the check is itself wrong. {int(class_counts.get('beyond parameter rounding', 0))}
+  θ6 angles lie beyond parameter rounding: the printed θ6 column runs {np.mean(printed['theta6'] - ds.theta6.values):+.4f}°
+  above ours on average (section 2).
+* **Headline numbers:** front dead centre {f('front_dead_centre'):.2f}° (printed 156.21°), total swing
+  {f('swing'):.2f}° (printed 15.92°). **The 167.28° from front to back dead centre holds for the crank turning towards
+  decreasing θ1** ({f('span_reverse'):.2f}°). Turning the way Table 1 is tabulated (increasing θ1) it is
+  {f('span_forward'):.2f}°. The velocity peaks near 80° and 300° after the front dead centre, and the acceleration
+  largest at the front, hold in that same reverse sense.
+* **Equations:** (4), (7) and (13) do not follow from (3) and (10). The corrected forms are given in section 4, and Table 1
+  follows them (the printed (7) and (13) would change θ3'' by up to
+  {np.abs(ds.theta3_accel_eqs_printed - ds.theta3_accel).max().item():.3f} and θ6'' by up to
+  {np.abs(ds.theta6_accel_eqs_printed - ds.theta6_accel).max().item():.3f}).
+* **Weft window:** the 168° vs 147° comparison cannot be reproduced from the paper, which gives neither S_w nor the
+  1511M dimensions. Section 5 shows which S_w and L/R values make the published numbers true.
+"""
+)
+
+# %% [markdown]
+# ## 1. Parameters
+
+# %%
+sb = section["sixbar"]
+par = pd.DataFrame(
+    [(f"l{i}", sb[f"l{i}_m"] * 1e3, "mm") for i in range(1, 8)]
+    + [("θ4", sb["theta4_deg"], "deg"), ("θ7", sb["theta7_deg"], "deg"),
+       ("branch of dyad B-C-D", sb["branch_rocker"], "θ3 = 42.45° at θ1 = 0"), ("branch of dyad C-E-F", sb["branch_sley"], "θ6 = 65.44° at θ1 = 0")],
+    columns=["parameter", "value", "note"],
+)
+par["value"] = par["value"].map(lambda v: f"{v:g}")
+table(par)
+md(
+    "Derivatives are per unit crank angle, θ' in rad/rad and θ'' in rad/rad². This is the only reading under which "
+    "Table 1 reproduces. Its headers say θ1' and θ1'', but θ1'' = 0 for a uniformly turning crank, so θ1'² must be meant."
+)
+
+# %% [markdown]
+# ## 2. Table 1: all 144 numbers, cell by cell
+#
+# Verdict: *matches* if |printed − ours| ≤ half a unit of the printed last digit. For the other cells the class says
+# why:
+#
+# * **parameter rounding**: within the tolerance plus the worst-case effect of rounding l4, l7, θ4 and θ7 to their
+#   printed 0.01 (a linear bound from central differences);
+# * **printed cell inconsistent**: the printed derivative disagrees with ours, whereas the paper's own *neighbouring*
+#   cells agree with ours. We take the central difference, at the 15° step, of the printed column the derivative comes
+#   from (θ for θ', θ' for θ''). We then set it beside the same difference of our values. Both agree within the
+#   rounding of the printed column, while the printed cell is off by more than that. So the paper's own table
+#   contradicts the cell. Our analytic derivative also agrees with fine finite differences to 1e-8 (section 6);
+# * **inconclusive**: a neighbour used in that check is itself one of the wrong cells;
+# * **marginal**: beyond the rounding, but smaller than what the 15° check can resolve.
+
+# %%
+labels = {"theta3": "θ3 (deg)", "theta3_rate": "θ3'", "theta3_accel": "θ3''", "theta6": "θ6 (deg)", "theta6_rate": "θ6'", "theta6_accel": "θ6''"}
+ev = evidence.copy()
+ev["quantity"] = ev["column"].map(labels)
+ev["verdict"] = np.where(ev["class"] == "within rounding", "matches", "deviates")
+show = ev[["theta1", "quantity", "printed", "ours", "deviation", "tolerance", "rounding_bound", "verdict", "class", "printed_column_fd", "our_coarse_fd"]]
+show = show.sort_values(["theta1", "quantity"], key=lambda s: s if s.name == "theta1" else s.map(list(labels.values()).index))
+table(
+    show.rename(columns={"theta1": "θ1 (deg)", "rounding_bound": "parameter-rounding bound", "printed_column_fd": "15° difference of printed column", "our_coarse_fd": "same, of ours"}),
+    {"printed": "{:.4f}", "ours": "{:.5f}", "deviation": "{:+.5f}", "tolerance": "{:.0e}", "parameter-rounding bound": "{:.1e}",
+     "15° difference of printed column": "{:.4f}", "same, of ours": "{:.4f}", "θ1 (deg)": "{:.0f}"},
+    caption="Table 1, every cell; the last two columns are filled where the evidence check was applied",
+)
+cell180 = evidence[(evidence.column == "theta3_rate") & (evidence.theta1 == 180)].iloc[0]
+md(
+    "The θ1 = 180° row carries the largest errors: printed θ3' = −0.1495 where ours is "
+    f"{float(ds.theta3_rate.sel(crank_angle=180)):.4f}, and the paper's own θ3 column, differenced, gives "
+    f"{cell180.printed_column_fd:.4f} beside ours "
+    f"{float(ds.theta3_rate_coarse_fd.sel(crank_angle=180)):.4f}. The printed θ6'' at 240° (0.0790 against our "
+    f"{float(ds.theta6_accel.sel(crank_angle=240)):.4f}) is the other large error."
+)
+
+# %% [markdown]
+# ## 3. Headline numbers
+
+# %%
+table(
+    head[["quantity", "where", "published", "reproduced", "unit", "deviation", "tolerance", "verdict"]],
+    {"published": "{:.2f}", "reproduced": "{:.2f}", "deviation": "{:+.2f}", "tolerance": "{:.3g}"},
+)
+md(
+    f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "
+    f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. In the sense of increasing θ1 the velocity peaks "
+    f"fall at {f('rate_peak_neg_forward'):.1f}° and {f('rate_peak_pos_forward'):.1f}° from the front dead centre, not "
+    f"near 80° and 300°. In the reverse sense they fall at {f('rate_peak_neg_reverse'):.1f}° and "
+    f"{f('rate_peak_pos_reverse'):.1f}°. The largest |θ6''| ({f('theta6_accel_abs_max'):.4f} rad/rad²) lies "
+    f"{f('accel_peak_reverse'):.1f}° from the front dead centre."
+)
+
+# %% [markdown]
+# ### Fig. 3 regenerated: sley motion from the front dead centre
+#
+# The crank angle is measured from the front dead centre in the reverse sense (the sense of the paper's claims).
+
+# %%
+front = f("front_dead_centre")
+phi = np.mod(front - ds.crank_angle_fine.values, 360.0)
+order = np.argsort(phi)
+fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True, constrained_layout=True)
+for ax, var, ylabel in (
+    (axes[0], "theta6", "sley angle θ6 (deg)"),
+    (axes[1], "theta6_rate", "θ6' (rad/rad)"),
+    (axes[2], "theta6_accel", "θ6'' (rad/rad²)"),
+):
+    sense = -1 if var == "theta6_rate" else 1  # a rate changes sign with the sense of rotation
+    ax.plot(phi[order], sense * ds[var + "_fine"].values[order], "C0", label="ours")
+    p_phi = np.mod(front - ds.crank_angle.values, 360.0)
+    ax.plot(p_phi, sense * printed[var], "kx", ms=5, label="Table 1 (printed)")
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3)
+for x in (80, 300):
+    axes[1].axvline(x, color="C3", ls=":", lw=1)
+axes[1].text(82, axes[1].get_ylim()[1] * 0.8, "'near 80° and 300°'", color="C3", fontsize=8)
+axes[2].set_xlabel("crank angle from the front dead centre (deg, crank turning towards decreasing θ1)")
+axes[2].set_xticks(range(0, 361, 30))
+axes[0].legend(fontsize=8)
+plt.show()
+
+# %% [markdown]
+# ## 4. Which printed equations do not follow from (3) and (10)
+#
+# Differentiating the loop equations (3) and (10) ourselves, with θ1' = 1 and θ1'' = 0:
+#
+# | eq. | printed | corrected |
+# |---|---|---|
+# | (3) | … − 2l₁l₄cos(θ1 − θ4) = 2l₁l₃cos(θ1 − θ3) | … − 2l₁l₄cos(θ1 − θ4) − 2l₁l₃cos(θ1 − θ3) (line-break garble of the extraction or the print) |
+# | (4) | A₁ sin θ1 + B₁ cos θ1 = C₁ | A₁ sin **θ3** + B₁ cos **θ3** = C₁ (θ3 is the unknown; (5) solves for it) |
+# | (7) | numerator (l₄/l₃)θ1''cos(θ1−θ4) − (l₄/l₁)θ1''cos(θ3−θ4) + … | (l₄/l₃)**θ1'²**cos(θ1−θ4) − (l₄/l₁)**θ3'²**cos(θ3−θ4) + (θ1'−θ3')²cos(θ1−θ3) |
+# | text before (12) | "θ7 = 0" | θ7' = 0 (θ7 = 195.08°) |
+# | (13) | … + (l₇/l₆)θ3'cos(θ3−θ7) − (l₇/l₃)θ3'cos(θ6−θ7) … | … + (l₇/l₆)**θ3'²**cos(θ3−θ7) − (l₇/l₃)**θ6'²**cos(θ6−θ7) … |
+# | Table 1 headers | θ3''(θ1''), θ6''(θ1'') | units of θ1'² |
+#
+# Eqs. (5), (6), (11) and (12) are correct as printed. Below are the paper's closed forms, corrected and as printed,
+# against our chain solver on the Table 1 grid.
+
+# %%
+rows_eq = []
+for name in ("theta3", "theta3_rate", "theta3_accel", "theta6", "theta6_rate", "theta6_accel"):
+    rows_eq.append((labels[name], "corrected (5)-(7), (11)-(13)", float(np.abs(ds[name + "_eqs"] - ds[name]).max())))
+for name in ("theta3_accel", "theta6_accel"):
+    rows_eq.append((labels[name], "as printed (7), (13)", float(np.abs(ds[name + "_eqs_printed"] - ds[name]).max())))
+    rows_eq.append((labels[name], "as printed vs Table 1", float(np.abs(ds[name + "_eqs_printed"].values - printed[name]).max())))
+    rows_eq.append((labels[name], "corrected vs Table 1", float(np.abs(ds[name + "_eqs"].values - printed[name]).max())))
+table(pd.DataFrame(rows_eq, columns=["quantity", "closed form", "max |difference| from ours (or Table 1)"]), {"max |difference| from ours (or Table 1)": "{:.2e}"})
+ratio = min(
+    float(np.abs(ds[n + "_eqs_printed"].values - printed[n]).max() / np.abs(ds[n + "_eqs"].values - printed[n]).max())
+    for n in ("theta3_accel", "theta6_accel")
+)
+md(
+    "The corrected closed forms agree with the chain solver to rounding error. Table 1 follows the corrected forms: "
+    f"the printed ones miss it by at least {ratio:.0f} times more than the corrected ones do."
+)
+
+# %% [markdown]
+# ## 5. Six-bar vs four-bar weft window
+#
+# As in the paper, the six-bar's crank is scaled from 55 to 62 mm. We solve for the cloth-fell radius on the sword that
+# gives a horizontal reed stroke of 153.5 mm. The four-bar is a parametric 1511M-type mechanism: crank R, connecting arm
+# L, pin radius r on the sword, and a pivot offset, with the sword vertical at the front dead centre. Its cloth-fell
+# radius is solved for the same stroke. The weft window is the crank angle during which the reed is more than S_w behind
+# its foremost position.
+
+# %%
+fb = section["fourbar"]
+table(
+    pd.DataFrame(
+        [(k, v["value"], v["status"], v["reason"]) for k, v in fb.items()]
+        + [("scaled six-bar crank (m)", section["comparison"]["scaled_crank_m"], "sourced", "paper, Sec. 3"),
+           ("reed stroke S (m)", section["comparison"]["stroke_m"], "sourced", "paper, Sec. 3 (1511M value)")],
+        columns=["value", "number", "status", "reason"],
+    )
+)
+md(
+    f"Solved cloth-fell radii: six-bar {float(win.reed_radius_sixbar):.1f} mm (scaled swing {float(win.swing_sixbar_scaled):.2f}°), "
+    f"four-bar {float(win.reed_radius_fourbar):.1f} mm. At the assumed S_w = {fb['weft_clearance_m']['value'] * 1e3:.0f} mm "
+    f"the windows are {float(win.window_sixbar):.1f}° (six-bar) and {float(win.window_fourbar):.1f}° (four-bar, "
+    f"L/R = {fb['arm_to_crank']['value']:g}): a difference of {float(win.window_difference):.1f}°, against the printed 168°, "
+    "147° and 21°. These values rest on the assumptions above, so they are not verdicts."
+)
+
+# %%
+sw = fb["weft_clearance_m"]["value"] * 1e3
+fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
+x = win.angle_from_front.values
+ax.plot(x, win.reed_sixbar, "C0-", label="six-bar (crank 62 mm)")
+ax.plot(x, win.reed_fourbar, "C1--", label=f"four-bar, L/R = {fb['arm_to_crank']['value']:g} (assumed)")
+ax.axhline(sw, color="k", lw=1)
+ax.text(2, sw + 2, f"S_w = {sw:.0f} mm (assumed)", fontsize=8)
+for name, colour in (("reed_sixbar", "C0"), ("reed_fourbar", "C1")):
+    above = win[name].values > sw
+    ax.fill_between(x, 0, win[name].values, where=above, color=colour, alpha=0.12)
+ax.set_xlabel("crank angle from the front dead centre (deg)")
+ax.set_ylabel("reed distance from its front position S (mm)")
+ax.set_title("Fig. 4 regenerated: reed displacement at cloth-fell height, equal stroke 153.5 mm")
+ax.set_xticks(range(0, 361, 30))
+ax.grid(alpha=0.3)
+ax.legend(fontsize=8)
+plt.show()
+
+# %% [markdown]
+# ### What the published 168°, 147° and 21° constrain
+#
+# The left panel shows the window against S_w for the six-bar and for four-bars of several L/R. The dotted lines mark
+# the printed 168° and 147°. The right panel takes, for each S_w, the six-bar window minus the four-bar window,
+# against L/R.
+
+# %%
+sw_grid = win.weft_clearance.values
+w6 = win.window_sixbar_sweep.values
+w4 = win.window_fourbar_sweep.values
+ratios = win.arm_to_crank.values
+# the S_w at which the six-bar window equals the printed 168 deg (read from our curve, for comparison only)
+sw168 = float(np.interp(pub["window_sixbar"]["value"], w6[::-1], sw_grid[::-1]))
+w4_at = np.array([np.interp(sw168, sw_grid, w4[i]) for i in range(ratios.size)])
+fig, axes = plt.subplots(1, 2, figsize=(12, 4.3), constrained_layout=True)
+axes[0].plot(sw_grid, w6, "k-", lw=2, label="six-bar")
+for i, r in enumerate(ratios):
+    axes[0].plot(sw_grid, w4[i], lw=1, label=f"four-bar L/R = {r:g}")
+for val in (pub["window_sixbar"]["value"], pub["window_fourbar"]["value"]):
+    axes[0].axhline(val, color="C3", ls=":", lw=1)
+axes[0].axvline(sw168, color="C3", ls="--", lw=1)
+axes[0].set_xlabel("S_w (mm)")
+axes[0].set_ylabel("weft window (deg of crank)")
+axes[0].legend(fontsize=7, ncol=2)
+axes[0].grid(alpha=0.3)
+for j in range(0, sw_grid.size, max(1, sw_grid.size // 6)):
+    axes[1].plot(ratios, w6[j] - w4[:, j], "o-", ms=3, label=f"S_w = {sw_grid[j]:.0f} mm")
+axes[1].axhline(pub["window_difference"]["value"], color="C3", ls=":", lw=1)
+axes[1].set_xlabel("four-bar L/R")
+axes[1].set_ylabel("six-bar window − four-bar window (deg)")
+axes[1].legend(fontsize=7)
+axes[1].grid(alpha=0.3)
+plt.show()
+ok = ratios[np.abs(w4_at - pub["window_fourbar"]["value"]) <= 3]
+md(
+    f"Our six-bar reaches the printed 168° at S_w ≈ {sw168:.1f} mm. At that S_w our four-bar family gives windows from "
+    f"{w4_at.min():.1f}° to {w4_at.max():.1f}° over L/R = {ratios.min():g}–{ratios.max():g}. "
+    + (f"A window of 147 ± 3° needs L/R in {ok.min():g}–{ok.max():g}." if ok.size else "No swept L/R gives 147 ± 3°.")
+    + " So the published comparison is consistent with a 1511M-type four-bar only within that range. We make no "
+    "claim beyond this, because the 1511M dimensions are not in the paper."
+)
+
+# %% [markdown]
+# ## 6. Accuracy vs cost: analytic derivatives vs finite differences
+
+# %%
+steps = acc.fd_step.values
+fig, axes = plt.subplots(1, 2, figsize=(12, 4), constrained_layout=True)
+for k, name in enumerate(acc.derivative.values):
+    axes[0].loglog(steps, acc.error.values[k], "o-", label=name)
+axes[0].axvline(section["numerics"]["fd_step_deg"], color="k", ls=":", lw=1, label="step used for the Table 1 checks")
+axes[0].set_xlabel("central-difference step (deg of crank)")
+axes[0].set_ylabel("max |FD − analytic| over a turn")
+axes[0].legend(fontsize=8)
+axes[0].grid(alpha=0.3, which="both")
+fd_times = np.array([timings["fd_s"][f"{s:g}"] for s in steps])
+for k, name in enumerate(acc.derivative.values):
+    axes[1].loglog(fd_times * 1e3, acc.error.values[k], "o", label=f"{name} by FD")
+axes[1].axvline(timings["analytic_s"] * 1e3, color="k", ls="--", lw=1, label="analytic (error: rounding only)")
+axes[1].set_xlabel(f"time for {timings['points']} crank angles (ms; {timings['method']})")
+axes[1].set_ylabel("max error")
+axes[1].legend(fontsize=8)
+axes[1].grid(alpha=0.3, which="both")
+plt.show()
+best = acc.error.min("fd_step")
+md(
+    f"Central differences reach at best {float(best.sel(derivative='theta6_rate')):.1e} for θ6' and "
+    f"{float(best.sel(derivative='theta6_accel')):.1e} for θ6''. Truncation error falls as h² until round-off takes "
+    f"over: below about 0.01° for θ6'' and 0.001° for θ6'. Each FD evaluation costs about "
+    f"{np.median(fd_times) / timings['analytic_s']:.1f}× the analytic solve (three position solves), and the analytic "
+    "rates are exact to rounding. The pipeline therefore uses analytic rates and keeps FD only as a check."
+)
+
+# %% [markdown]
+# ## Provenance
+
+# %%
+md("\n".join(f"* **{k}**: `{ds.attrs[k]}`" for k in ("paper_id", "source", "linkwork_version", "git_commit", "config_sha256", "fd_step_deg") if k in ds.attrs))
