@@ -125,20 +125,17 @@ def test_forced_rerun_writes_identical_bytes(clone):
     assert hashlib.sha256(path.read_bytes()).hexdigest() == before
 
 
-def test_changing_a_stiffness_parameter_reruns_the_stiffness_rules_only(clone):
+@pytest.mark.parametrize(
+    ("old", "new", "expected"),
+    [("fine_step_deg: 1.0", "fine_step_deg: 0.5", STIFFNESS_JOBS), ("scaled_crank_m: 0.062", "scaled_crank_m: 0.060", BEATUP_JOBS)],
+    ids=["stiffness", "beatup"],
+)
+def test_changing_a_parameter_reruns_only_that_papers_rules(clone, old, new, expected):
     cfg_path = clone / "config/config.yaml"
     text = cfg_path.read_text()
-    assert "fine_step_deg: 1.0" in text
-    cfg_path.write_text(text.replace("fine_step_deg: 1.0", "fine_step_deg: 0.5"))
-    assert planned_jobs(clone) == STIFFNESS_JOBS
-
-
-def test_changing_a_beatup_parameter_reruns_the_beatup_rules_only(clone):
-    cfg_path = clone / "config/config.yaml"
-    text = cfg_path.read_text()
-    assert "scaled_crank_m: 0.062" in text
-    cfg_path.write_text(text.replace("scaled_crank_m: 0.062", "scaled_crank_m: 0.060"))
-    assert planned_jobs(clone) == BEATUP_JOBS
+    assert old in text
+    cfg_path.write_text(text.replace(old, new, 1))
+    assert planned_jobs(clone) == expected
 
 
 def _touch_module(root: Path, module: str) -> None:

@@ -122,44 +122,62 @@ def _half_angle_solution(a, b, c, sign):
     return np.mod(2.0 * np.arctan2(a + sign * root, b + c), TWO_PI)
 
 
+def _loop_closed_form(inp, out, coupler, frame, frame_angle, t_in, w_in, e_in, sign, squares):
+    """One four-bar loop of the paper, input link -> output link (eqs. 4-7 and 10-13 have this shape).
+
+    Solves A sin(t) + B cos(t) = C for the output angle (eqs. 5, 11), then its rate (6, 12) and
+    acceleration (7, 13).  ``squares(w_in, w_out, e_in)`` returns the factors standing where
+    the derivation has w_in^2 and w_out^2; that is where the printed equations differ.
+    """
+    a = np.sin(t_in) - frame / inp * np.sin(frame_angle)
+    b = np.cos(t_in) - frame / inp * np.cos(frame_angle)
+    c = (frame**2 + out**2 + inp**2 - coupler**2) / (2 * inp * out) - frame / out * np.cos(t_in - frame_angle)
+    t_out = _half_angle_solution(a, b, c, sign)
+    den = frame / inp * np.sin(t_out - frame_angle) + np.sin(t_in - t_out)
+    w_out = w_in * (frame / out * np.sin(t_in - frame_angle) + np.sin(t_in - t_out)) / den
+    q_in, q_out = squares(w_in, w_out, e_in)
+    num = (
+        frame / out * e_in * np.sin(t_in - frame_angle)
+        + frame / out * q_in * np.cos(t_in - frame_angle)
+        - frame / inp * q_out * np.cos(t_out - frame_angle)
+        + e_in * np.sin(t_in - t_out)
+        + (w_in - w_out) ** 2 * np.cos(t_in - t_out)
+    )
+    return t_out, w_out, num / den
+
+
+def _derived_squares(w_in, w_out, e_in):
+    return w_in**2, w_out**2
+
+
+def _eq7_printed(w_in, w_out, e_in):
+    return e_in, e_in  # eq. (7) prints theta1'' in both places
+
+
+def _eq13_printed(w_in, w_out, e_in):
+    return w_in, w_in  # eq. (13) prints theta3' in both places
+
+
 def paper_closed_form(
     mechanism: SixBar, theta1: ArrayLike, sign3: int, sign6: int, printed: bool = False
 ) -> SleyMotion:
-    """The paper's eqs. (5)-(7) and (11)-(13) for a crank turning uniformly (theta1' = 1).
+    """The paper's eqs. (5)-(7) and (11)-(13) for a crank turning uniformly (theta1' = 1, theta1'' = 0).
 
     ``printed=True`` uses eqs. (7) and (13) as printed, which put theta1'' (zero)
     where theta1'^2 and theta3'^2 belong in (7), and theta3' where theta3'^2 and
     theta6'^2 belong in (13).  ``printed=False`` uses the forms derived by
-    differentiating eqs. (3) and (10) twice.  sign3, sign6: the +- of eqs. (5), (11).
+    differentiating eqs. (3) and (10) twice; eq. (4) is read with theta3 as the
+    unknown, as (5) requires.  sign3, sign6: the +- of eqs. (5), (11).
     """
     m = mechanism
     t1 = np.asarray(theta1, dtype=float)
-    t4, t7 = m.theta4, m.theta7
-    w1, a1_ = 1.0, 0.0  # theta1' = 1 (derivatives per crank angle), theta1'' = 0
-    # eq. (5) with (4) corrected to A1 sin(theta3) + B1 cos(theta3) = C1
-    a1 = np.sin(t1) - m.l4 / m.l1 * np.sin(t4)
-    b1 = np.cos(t1) - m.l4 / m.l1 * np.cos(t4)
-    c1 = (m.l4**2 + m.l3**2 + m.l1**2 - m.l2**2) / (2 * m.l1 * m.l3) - m.l4 / m.l3 * np.cos(t1 - t4)
-    t3 = _half_angle_solution(a1, b1, c1, sign3)
-    den3 = m.l4 / m.l1 * np.sin(t3 - t4) + np.sin(t1 - t3)
-    w3 = w1 * (m.l4 / m.l3 * np.sin(t1 - t4) + np.sin(t1 - t3)) / den3  # eq. (6)
-    if printed:
-        num3 = m.l4 / m.l3 * a1_ * np.cos(t1 - t4) - m.l4 / m.l1 * a1_ * np.cos(t3 - t4)
-    else:
-        num3 = m.l4 / m.l3 * w1**2 * np.cos(t1 - t4) - m.l4 / m.l1 * w3**2 * np.cos(t3 - t4)
-    e3 = (num3 + (w1 - w3) ** 2 * np.cos(t1 - t3)) / den3  # eq. (7)
-    # eq. (11)
-    a2 = np.sin(t3) - m.l7 / m.l3 * np.sin(t7)
-    b2 = np.cos(t3) - m.l7 / m.l3 * np.cos(t7)
-    c2 = (m.l7**2 + m.l6**2 + m.l3**2 - m.l5**2) / (2 * m.l3 * m.l6) - m.l7 / m.l6 * np.cos(t3 - t7)
-    t6 = _half_angle_solution(a2, b2, c2, sign6)
-    den6 = m.l7 / m.l3 * np.sin(t6 - t7) + np.sin(t3 - t6)
-    w6 = w3 * (m.l7 / m.l6 * np.sin(t3 - t7) + np.sin(t3 - t6)) / den6  # eq. (12)
-    if printed:
-        num6 = m.l7 / m.l6 * e3 * np.sin(t3 - t7) + m.l7 / m.l6 * w3 * np.cos(t3 - t7) - m.l7 / m.l3 * w3 * np.cos(t6 - t7)
-    else:
-        num6 = m.l7 / m.l6 * e3 * np.sin(t3 - t7) + m.l7 / m.l6 * w3**2 * np.cos(t3 - t7) - m.l7 / m.l3 * w6**2 * np.cos(t6 - t7)
-    e6 = (num6 + e3 * np.sin(t3 - t6) + (w3 - w6) ** 2 * np.cos(t3 - t6)) / den6  # eq. (13)
+    ones, zeros = np.ones_like(t1), np.zeros_like(t1)
+    t3, w3, e3 = _loop_closed_form(
+        m.l1, m.l3, m.l2, m.l4, m.theta4, t1, ones, zeros, sign3, _eq7_printed if printed else _derived_squares
+    )
+    t6, w6, e6 = _loop_closed_form(
+        m.l3, m.l6, m.l5, m.l7, m.theta7, t3, w3, e3, sign6, _eq13_printed if printed else _derived_squares
+    )
     return SleyMotion(t1, t3, w3, e3, t6, w6, e6)
 
 
