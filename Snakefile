@@ -20,6 +20,7 @@ with open(Path(workflow.basedir) / "config" / "schema.yaml") as fh:
 include: "workflow/rules/common.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/beatup.smk"
+include: "workflow/rules/heald.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -29,5 +30,7 @@ rule all:
         "results/beatup/sixbar.nc",
         "results/beatup/window.nc",
         "results/beatup/accuracy.nc",
+        "results/heald/chain.nc",
+        "results/heald/accuracy.nc",
         expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
         "results/reports/index.html",

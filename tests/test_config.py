@@ -58,3 +58,15 @@ def test_grid_step_must_divide_a_turn(config, schema):
     c = copy.deepcopy(config)
     c["stiffness"]["grids"]["fine_step_deg"] = 7.0
     _expect(c, schema, "stiffness.grids.fine_step_deg", "7.0")
+
+
+def test_heald_parameters_are_checked(config, schema):
+    c = copy.deepcopy(config)
+    c["heald"]["parameters"]["k_O"]["value"] = -2.0e4
+    _expect(c, schema, "heald.parameters.k_O.value", "-20000.0")
+    c = copy.deepcopy(config)
+    c["heald"]["parameters"]["eta8"]["value"] = 0.0
+    _expect(c, schema, "heald.parameters.eta8.value", "lever ratio")
+    c = copy.deepcopy(config)
+    c["heald"]["parameters"]["M_P"]["status"] = "guessed"
+    _expect(c, schema, "heald.parameters.M_P.status", "guessed")

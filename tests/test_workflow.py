@@ -22,6 +22,8 @@ OUTPUTS = [
     "results/beatup/sixbar.nc",
     "results/beatup/window.nc",
     "results/reports/beatup.html",
+    "results/heald/chain.nc",
+    "results/reports/heald.html",
     "results/reports/index.html",
 ]
 ALL_JOBS = {
@@ -32,11 +34,15 @@ ALL_JOBS = {
     "beatup_window": 1,
     "beatup_accuracy": 1,
     "beatup_compare": 1,
-    "report": 2,
+    "heald_chain": 1,
+    "heald_accuracy": 1,
+    "heald_compare": 1,
+    "report": 3,
     "index": 1,
 }
 STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
 BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 1, "index": 1}
+HEALD_JOBS = {"all": 1, "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "report": 1, "index": 1}
 
 
 def _env(root: Path) -> dict[str, str]:
@@ -103,13 +109,13 @@ def clone(built, tmp_path) -> Path:
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel
-    for paper in ("stiffness", "beatup"):
+    for paper in ("stiffness", "beatup", "heald"):
         html = (built / f"results/reports/{paper}.html").read_text()
         assert "data:image/png;base64" in html  # figures embedded
         assert "Traceback" not in html
         assert 'vnd.jupyter.stderr" tabindex' not in html  # no warnings or errors printed
     index = (built / "results/reports/index.html").read_text()
-    assert "stiffness.html" in index and "beatup.html" in index and "not yet built" in index
+    assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "heald")) and "not yet built" in index
     assert 'vnd.jupyter.stderr" tabindex' not in index
 
 
@@ -127,8 +133,12 @@ def test_forced_rerun_writes_identical_bytes(clone):
 
 @pytest.mark.parametrize(
     ("old", "new", "expected"),
-    [("fine_step_deg: 1.0", "fine_step_deg: 0.5", STIFFNESS_JOBS), ("scaled_crank_m: 0.062", "scaled_crank_m: 0.060", BEATUP_JOBS)],
-    ids=["stiffness", "beatup"],
+    [
+        ("fine_step_deg: 1.0", "fine_step_deg: 0.5", STIFFNESS_JOBS),
+        ("scaled_crank_m: 0.062", "scaled_crank_m: 0.060", BEATUP_JOBS),
+        ("M_P: {value: 8.0", "M_P: {value: 9.0", HEALD_JOBS),
+    ],
+    ids=["stiffness", "beatup", "heald"],
 )
 def test_changing_a_parameter_reruns_only_that_papers_rules(clone, old, new, expected):
     cfg_path = clone / "config/config.yaml"
@@ -157,6 +167,7 @@ def test_editing_the_shared_kinematics_reruns_both_papers(clone):
     _touch_module(clone, "kinematics.py")
     jobs = planned_jobs(clone)
     assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["report"] == 2
+    assert "heald_chain" not in jobs  # the chain solver does not use the kinematics
 
 
 def test_editing_compare_module_does_not_rerun_the_computation(clone):
@@ -187,9 +198,11 @@ def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
         ("l5_m: 0.500", "l5_m: 0.200", ["beatup.sixbar.l1_m", "cannot be assembled", "crank angle"]),
         ("branch_sley: -1", "branch_sley: 0", ["beatup.sixbar.branch_sley", "0"]),
         ("value: 0.100, status: assumed", "value: 0.200, status: assumed", ["beatup.fourbar.weft_clearance_m", "0.2", "stroke"]),
+        ("M_P: {value: 8.0", "M_P: {value: -8.0", ["heald.parameters.M_P.value", "-8.0"]),
+        ("eta7: {value: 2.0", "eta7: {value: 0.0", ["heald.parameters.eta7.value", "0.0", "lever ratio"]),
     ],
     ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key",
-         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke"],
+         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke", "negative-mass", "lever-ratio-zero"],
 )
 def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
     proc = _bad_config(tmp_path, lambda text: text.replace(old, new, 1))

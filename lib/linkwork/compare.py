@@ -12,6 +12,7 @@ dict) holds
     column selects), ``columns`` (published column -> result variable),
     ``rows``, a shared ``unit``, ``where`` and ``tolerance``.
 
+An entry may carry ``relation: ge`` or ``le`` for a one-sided claim ("at least").
 A measure is ``{variable, reduce, dim}`` with ``reduce`` one of ``max``,
 ``min``, ``mean``, ``argmax``, ``argmin`` (the coordinate value of the extreme),
 ``range`` (max - min), ``value`` (a scalar variable) or ``at`` (with
@@ -91,15 +92,26 @@ def tolerance_of(entry: Mapping[str, Any]) -> float:
     return float(tol["rel"]) * abs(float(entry["value"]))
 
 
-def verdict(published: float, reproduced: float, tolerance: float) -> str:
+def verdict(published: float, reproduced: float, tolerance: float, relation: str = "eq") -> str:
     """'matches' within the tolerance, 'deviates' beyond it, 'not reproducible' if NaN.
 
+    relation 'eq' (default) is |reproduced - published| <= tolerance; 'ge' and 'le'
+    judge a one-sided claim ("at least", "at most") with the tolerance as slack.
     A hair of floating-point slack (1e-9 of the tolerance) keeps a deviation of
     exactly the tolerance on the matching side.
     """
     if not np.isfinite(reproduced):
         return "not reproducible"
-    return "matches" if abs(reproduced - published) <= tolerance * (1 + 1e-9) else "deviates"
+    slack = tolerance * (1 + 1e-9)
+    if relation == "ge":
+        ok = reproduced >= published - slack
+    elif relation == "le":
+        ok = reproduced <= published + slack
+    elif relation == "eq":
+        ok = abs(reproduced - published) <= slack
+    else:
+        raise ValueError(f"unknown relation {relation!r}")
+    return "matches" if ok else "deviates"
 
 
 def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
@@ -152,7 +164,7 @@ def compare(published: Mapping[str, Any], ds: xr.Dataset, model: str = "") -> pd
                 "deviation": deviation,
                 "relative_deviation": deviation / value if value != 0 else math.nan,
                 "tolerance": tol,
-                "verdict": verdict(value, reproduced, tol),
+                "verdict": verdict(value, reproduced, tol, entry.get("relation", "eq")),
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)

@@ -114,10 +114,39 @@ def check_beatup(section: Mapping[str, Any], key: str = "beatup") -> None:
         )
 
 
+HEALD_NONNEGATIVE = ("c_O", "c_joint", "clearance_E", "clearance_F")
+
+
+def check_heald(section: Mapping[str, Any], key: str = "heald") -> None:
+    """Masses and stiffnesses positive, damping and clearance >= 0, lever ratios non-zero; the chains must build."""
+    from .heald import build
+    from .heald_dataset import parameters
+
+    for name, entry in section["parameters"].items():
+        value = entry["value"]
+        if name.startswith("eta"):
+            if value == 0:
+                raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r}: a lever ratio cannot be 0")
+        elif name in HEALD_NONNEGATIVE:
+            if value < 0:
+                raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be >= 0")
+        elif value <= 0:
+            raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be > 0 (a mass, stiffness or reaction)")
+    speeds = section["speeds"]
+    if speeds["min_rpm"] >= speeds["max_rpm"]:
+        raise ConfigError(f"config key {key}.speeds: min_rpm {speeds['min_rpm']!r} must be below max_rpm {speeds['max_rpm']!r}")
+    for model in section["models"]:
+        try:
+            build(model, parameters(section), "elastic")
+        except ValueError as exc:
+            raise ConfigError(f"config key {key}.parameters (model {model}): {exc}") from None
+
+
 #: Physical checks per paper section; a paper adds its own here.
 PHYSICAL_CHECKS: dict[str, Callable[[Mapping[str, Any], str], None]] = {
     "stiffness": check_stiffness,
     "beatup": check_beatup,
+    "heald": check_heald,
 }
 
 

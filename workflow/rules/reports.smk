@@ -16,10 +16,18 @@ REPORT_INPUTS = {
         "comparison": "results/beatup/comparison.csv",
         "published": "config/published/beatup.yaml",
     },
+    "heald": {
+        "result": "results/heald/chain.nc",
+        "accuracy": "results/heald/accuracy.nc",
+        "timings": "results/heald/accuracy_timings.json",
+        "comparison": "results/heald/comparison.csv",
+        "published": "config/published/heald.yaml",
+    },
 }
 REPORT_CODE = {
     "stiffness": lib("from_config", "stiffness", "kinematics"),
     "beatup": lib("beatup", "beatup_dataset", "kinematics"),
+    "heald": lib("chains", "heald", "heald_dataset"),
 }
 
 
@@ -58,7 +66,7 @@ rule index:
         "results/reports/index.html",
     params:
         papers=json.dumps(config["papers"]),
-        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": ""}),
+        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": "", "heald": "A"}),
         comparison_args=lambda wildcards, input: " ".join(
             f"--input comparison_{paper}={path}" for paper, path in zip(BUILT_PAPERS, input.comparisons)
         ),

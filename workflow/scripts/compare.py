@@ -16,7 +16,9 @@ for path in paths:
     with xr.open_dataset(path) as ds:
         datasets.append(ds.load())
 ds = xr.merge(datasets, combine_attrs="drop")
-forms = section.get("forms", [""])
-table = pd.concat([compare(published, ds.sel(form=f) if f else ds, model=f) for f in forms], ignore_index=True)
+# one comparison block per model variant: the stiffness paper's forms, the heald paper's models
+dim = next((d for d in ("form", "model") if d in ds.dims), None)
+variants = [str(v) for v in ds[dim].values] if dim else [""]
+table = pd.concat([compare(published, ds.sel({dim: v}) if dim else ds, model=v) for v in variants], ignore_index=True)
 results.write_text(table.to_csv(index=False, float_format="%.10g"), snakemake.output[0])  # noqa: F821
 print(table.groupby("model")["verdict"].value_counts().to_string(), flush=True)

@@ -1,0 +1,178 @@
+"""Mechanical chains: four routes agree, eq. (2) for model B, hard cases, bad input."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.signal import freqresp
+
+from conftest import load_yaml
+from linkwork.chains import (
+    GROUND,
+    Element,
+    Lever,
+    Network,
+    Parallel,
+    Series,
+    resonances,
+    series_parallel_mobility,
+    solve_matrices,
+    solve_network,
+    state_space,
+    vulfson_stiffness,
+)
+from linkwork.heald import build, eq2_mobility, joint_stiffness, model_a, model_b, model_b_tree
+from linkwork.heald_dataset import parameters
+
+P = parameters(load_yaml("config/config.yaml")["heald"])
+W = np.linspace(1.0, 400.0, 997)
+
+
+def _rel(a, b):
+    """Normwise relative difference max|a - b| / max|b| (element-wise ratios blow up at antiresonances)."""
+    return np.max(np.abs(a - b)) / np.max(np.abs(b))
+
+
+@pytest.mark.parametrize("model", ["A", "B"])
+@pytest.mark.parametrize("variant", ["ideal", "elastic"])
+def test_network_and_matrix_routes_agree(model, variant):
+    net = build(model, P, variant)
+    r = solve_network(net, W, 1j * W * 1e-4)
+    q, v = solve_matrices(net, W, 1j * W * 1e-4)
+    assert _rel(q, r.input_force) < 1e-9
+    assert np.max(np.abs(v - r.velocity)) < 1e-9 * np.max(np.abs(r.velocity))
+
+
+def test_series_parallel_and_eq2_match_the_network_for_model_b():
+    undamped = {**P, "c_joint": 0.0, "c_O": 0.0}
+    net = model_b(undamped)
+    k_net = 1.0 / solve_network(net, W, 1.0).input_force
+    k_tree = series_parallel_mobility(model_b_tree(undamped), W)
+    k_eq2, zeros, poles = eq2_mobility(undamped, W)
+    assert _rel(k_tree, k_net) < 1e-9
+    assert _rel(k_eq2, k_net) < 1e-9
+    # interlacing of velocity resonances (zeros of K) and force resonances (poles)
+    assert zeros[0] < poles[0] < zeros[1] < poles[1] < zeros[2]
+    vel, force = resonances(net)
+    assert np.allclose(np.sort(vel), zeros, rtol=1e-9) and np.allclose(np.sort(force), poles, rtol=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore:Badly conditioned filter coefficients")  # scipy's internal ss -> zpk step
+@pytest.mark.parametrize("model", ["A", "B"])
+def test_state_space_route(model):
+    """Force-driven versions of both models: scipy.signal's frequency response equals the network's."""
+    p = {**P, "c_joint": 5.0}
+    net = build(model, p, "elastic")
+    if model == "B":  # the driven node needs mass for a state-space model
+        net = Network(net.nodes, (*net.elements, Element("drive_mass", "mass", "D", GROUND, 0.5)), net.levers, "D", "force")
+    else:
+        net = Network(net.nodes, net.elements, net.levers, "D", "force")
+    _, h = freqresp(state_space(net).to_zpk(), W)
+    r = solve_network(net, W, 1.0)
+    assert _rel(h, r.input_velocity) < 1e-9
+
+
+@st.composite
+def random_chains(draw):
+    """Random series chains with side masses: node i -- spring/damper -- node i+1, mass on every node."""
+    n = draw(st.integers(2, 6))
+    nodes = tuple(f"n{i}" for i in range(n))
+    els = []
+    for i in range(n - 1):
+        els.append(Element(f"k{i}", "spring", nodes[i], nodes[i + 1], draw(st.floats(1e3, 1e7))))
+        els.append(Element(f"c{i}", "damper", nodes[i], nodes[i + 1], draw(st.floats(0.1, 50.0))))
+    for i in range(n):
+        els.append(Element(f"m{i}", "mass", nodes[i], GROUND, draw(st.floats(0.1, 10.0))))
+    els.append(Element("anchor", "spring", nodes[-1], GROUND, draw(st.floats(1e3, 1e6))))
+    return Network(nodes, tuple(els), (), "n0", draw(st.sampled_from(["velocity", "force"])))
+
+
+@settings(max_examples=40, deadline=None)
+@given(random_chains())
+def test_routes_agree_on_random_chains(net):
+    """1e-8 here: random chains reach damping ratios of 0.005 next to stiffness ratios of 1e4, where the
+    condition number near a resonance is about 1e8 (the paper's mechanisms above meet 1e-9)."""
+    r = solve_network(net, W, 1.0)
+    q, v = solve_matrices(net, W, 1.0)
+    if net.drive == "velocity":
+        assert _rel(q, r.input_force) < 1e-8
+    else:
+        assert _rel(q, r.input_velocity) < 1e-8
+
+
+def test_series_parallel_reduction_with_a_lever():
+    k, m, eta = 2e5, 3.0, 2.5
+    tree = Series((Element("k", "spring", "a", "b", k), Parallel((Element("m", "mass", "b", GROUND, m),))))
+    net = Network(("a", "b", "c"), (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)), (Lever("l", "b", "c", eta),), "a")
+    from linkwork.chains import Through
+
+    tree = Series((Element("k", "spring", "a", "b", k), Through(eta, Element("m", "mass", "b", GROUND, m))))
+    assert _rel(series_parallel_mobility(tree, W), 1 / solve_network(net, W, 1.0).input_force) < 1e-9
+
+
+def test_model_a_force_ratio_is_the_joint_stiffness_ratio():
+    _, q_e, q_f = (solve_network(model_a(P), W, 1j * W * 1e-4).element_force[k] for k in ("joint_E", "joint_E", "joint_F"))
+    ratio = np.abs(q_e) / np.abs(q_f)
+    assert np.allclose(ratio, joint_stiffness(P, "E", "elastic") / joint_stiffness(P, "F", "elastic"), rtol=1e-9)
+
+
+# --- hard cases ----------------------------------------------------------------------------------
+
+
+@pytest.mark.hard
+def test_exactly_at_a_resonance():
+    undamped = {**P, "c_joint": 0.0, "c_O": 0.0}
+    vel, _ = resonances(model_b(undamped))
+    r = solve_network(model_b(undamped), np.array([vel[0], 1.01 * vel[0]]), 1.0)
+    assert r.singular.tolist() == [True, False]  # flagged, no exception, no garbage
+    assert np.isnan(r.input_force[0]) and np.isfinite(r.input_force[1])
+    damped = solve_network(model_b(P), np.array([vel[0]]), 1.0)  # c_O > 0: finite
+    assert not damped.singular[0] and np.isfinite(damped.input_force[0])
+
+
+@pytest.mark.hard
+def test_zero_clearance_recovers_the_ideal_joint():
+    tiny = {**P, "clearance_E": 1e-15, "clearance_F": 1e-15}
+    for model in ("A", "B"):
+        a = solve_network(build(model, tiny, "elastic"), W, 1.0).element_force["joint_E"]
+        b = solve_network(build(model, P, "ideal"), W, 1.0).element_force["joint_E"]
+        assert _rel(a, b) < 1e-6
+    # and a very stiff pin approaches the rigid joint (a lever of ratio 1): the difference is the
+    # physical (w / w_n)^2 = w^2 m / k, about 3e-5 here, not round-off
+    stiff = Network(("D", "e"), (Element("j", "spring", "D", "e", 1e10), Element("m", "mass", "e", GROUND, 2.0)), (), "D")
+    rigid = Network(("D", "e"), (Element("m", "mass", "e", GROUND, 2.0),), (Lever("j", "D", "e", 1.0),), "D")
+    diff = _rel(solve_network(stiff, W, 1.0).input_force, solve_network(rigid, W, 1.0).input_force)
+    assert diff < 1.1 * W.max() ** 2 * 2.0 / 1e10
+
+
+@pytest.mark.hard
+def test_vulfson_limits_without_division_errors():
+    with np.errstate(all="raise"):
+        assert vulfson_stiffness(0.0, 1e-4, 5e7) == 0.0
+        assert vulfson_stiffness(0.0, 0.0, 5e7) == 5e7
+        assert vulfson_stiffness(300.0, 0.0, 5e7) == 5e7
+        assert np.all(np.isfinite(vulfson_stiffness(np.array([0.0, 1e-9, 1.0]), np.array([0.0, 1e-4, 1e-4]), 5e7)))
+    # large clearance: k_tau -> |R| / Delta
+    assert np.isclose(vulfson_stiffness(10.0, 1.0, 5e7), 10.0, rtol=1e-6)
+
+
+@pytest.mark.hard
+def test_low_frequency_limit():
+    w = np.array([1e-6, 1e-3])
+    r = solve_network(model_a(P), w, 1j * w * 1e-4)
+    # quasi-static: the joints carry the warp's static load through the levers, in series with their compliance
+    k_joints = joint_stiffness(P, "E", "elastic") + joint_stiffness(P, "F", "elastic")
+    k_warp = P["eta7"] ** 2 * P["k_O"]  # (eta7 = eta8) the warp seen at E and F
+    total = np.abs(r.element_force["joint_E"] + r.element_force["joint_F"])
+    assert np.allclose(total, k_warp * 1e-4 / (1 + k_warp / k_joints), rtol=1e-6)
+    with pytest.raises(ValueError, match="> 0"):
+        solve_network(model_a(P), np.array([0.0]))
+
+
+def test_bad_networks_are_rejected():
+    with pytest.raises(ValueError, match="element m: mass must be >= 0"):
+        Network(("a",), (Element("m", "mass", "a", GROUND, -1.0),), (), "a")
+    with pytest.raises(ValueError, match="lever l: ratio must be non-zero"):
+        Network(("a", "b"), (Element("m", "mass", "a", GROUND, 1.0),), (Lever("l", "a", "b", 0.0),), "a")
+    with pytest.raises(ValueError, match="undeclared node 'z'"):
+        Network(("a",), (Element("k", "spring", "a", "z", 1.0),), (), "a")

@@ -1,0 +1,37 @@
+# Paper "heald": mechanical chains of a heald motion, joint forces with clearance.
+
+
+rule heald_chain:
+    input:
+        code=lib("chains", "heald", "heald_dataset", "results"),
+    output:
+        "results/heald/chain.nc",
+    params:
+        section=config["heald"],
+    script:
+        "../scripts/heald_chain.py"
+
+
+rule heald_accuracy:
+    input:
+        code=lib("chains", "heald", "heald_dataset", "results"),
+    output:
+        result="results/heald/accuracy.nc",
+        timings="results/heald/accuracy_timings.json",
+    params:
+        section=config["heald"],
+    script:
+        "../scripts/heald_accuracy.py"
+
+
+rule heald_compare:
+    input:
+        results=["results/heald/chain.nc"],
+        published="config/published/heald.yaml",
+        code=lib("compare", "results"),
+    output:
+        "results/heald/comparison.csv",
+    params:
+        section=config["heald"],
+    script:
+        "../scripts/compare.py"
