@@ -30,9 +30,10 @@ rule beatup_accuracy:
         result="results/beatup/accuracy.nc",
         timings="results/beatup/accuracy_timings.json",
     params:
+        paper="beatup",
         section=config["beatup"],
     script:
-        "../scripts/beatup_accuracy.py"
+        "../scripts/accuracy.py"
 
 
 rule beatup_compare:

@@ -19,9 +19,10 @@ rule heald_accuracy:
         result="results/heald/accuracy.nc",
         timings="results/heald/accuracy_timings.json",
     params:
+        paper="heald",
         section=config["heald"],
     script:
-        "../scripts/heald_accuracy.py"
+        "../scripts/accuracy.py"
 
 
 rule heald_compare:
