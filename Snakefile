@@ -21,6 +21,7 @@ include: "workflow/rules/common.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/beatup.smk"
 include: "workflow/rules/heald.smk"
+include: "workflow/rules/transplanter.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -32,5 +33,8 @@ rule all:
         "results/beatup/accuracy.nc",
         "results/heald/chain.nc",
         "results/heald/accuracy.nc",
+        "results/transplanter/ked.nc",
+        "results/transplanter/optim.nc",
+        "results/transplanter/accuracy.nc",
         expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
         "results/reports/index.html",

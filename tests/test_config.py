@@ -70,3 +70,15 @@ def test_heald_parameters_are_checked(config, schema):
     c = copy.deepcopy(config)
     c["heald"]["parameters"]["M_P"]["status"] = "guessed"
     _expect(c, schema, "heald.parameters.M_P.status", "guessed")
+
+
+def test_transplanter_bad_input(config, schema):
+    c = copy.deepcopy(config)
+    c["transplanter"]["initial_diameters_m"][1] = -0.008
+    _expect(c, schema, "transplanter.initial_diameters_m.1", "-0.008")
+    c = copy.deepcopy(config)
+    c["transplanter"]["material"]["name"] = "unobtainium"
+    _expect(c, schema, "transplanter.material.name", "'unobtainium'", "LF6")
+    c = copy.deepcopy(config)
+    c["transplanter"]["geometry"]["arm_angle_deg"] = 0.0  # the arm along the coupler, through the pin C
+    _expect(c, schema, "transplanter.geometry.arm_angle_deg", "0.0", "pivot C")

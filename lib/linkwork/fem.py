@@ -8,6 +8,7 @@ units throughout.
 from __future__ import annotations
 
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -70,3 +71,194 @@ def solve_static(stiffness: FloatArray, load: FloatArray, fixed: Sequence[int]) 
     u = np.zeros(len(load))
     u[free] = np.linalg.solve(stiffness[np.ix_(free, free)], load[free])
     return u
+
+
+# --- element matrices in local coordinates -------------------------------------------------------
+
+
+def _gauss(n: int) -> tuple[FloatArray, FloatArray]:
+    """Gauss-Legendre points and weights on [0, 1]."""
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+def quintic_hermite(xi: FloatArray, length: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Quintic Hermite shape functions for (v, v', v'') at both ends, and their x-derivatives.
+
+    xi in [0, 1]; returns N, dN/dx, d2N/dx2 with shape (len(xi), 6), ordered
+    (v1, v1', v1'', v2, v2', v2'').  Slopes and curvatures are per unit length.
+    """
+    x = np.asarray(xi, dtype=float)[:, None]
+    L = length
+    # on [0, 1]: value, first and second derivative polynomials (coefficients from the Hermite conditions)
+    h = np.hstack(
+        [
+            1 - 10 * x**3 + 15 * x**4 - 6 * x**5,
+            (x - 6 * x**3 + 8 * x**4 - 3 * x**5) * L,
+            (0.5 * x**2 - 1.5 * x**3 + 1.5 * x**4 - 0.5 * x**5) * L**2,
+            10 * x**3 - 15 * x**4 + 6 * x**5,
+            (-4 * x**3 + 7 * x**4 - 3 * x**5) * L,
+            (0.5 * x**3 - x**4 + 0.5 * x**5) * L**2,
+        ]
+    )
+    dh = np.hstack(
+        [
+            -30 * x**2 + 60 * x**3 - 30 * x**4,
+            (1 - 18 * x**2 + 32 * x**3 - 15 * x**4) * L,
+            (x - 4.5 * x**2 + 6 * x**3 - 2.5 * x**4) * L**2,
+            30 * x**2 - 60 * x**3 + 30 * x**4,
+            (-12 * x**2 + 28 * x**3 - 15 * x**4) * L,
+            (1.5 * x**2 - 4 * x**3 + 2.5 * x**4) * L**2,
+        ]
+    ) / L
+    d2h = np.hstack(
+        [
+            -60 * x + 180 * x**2 - 120 * x**3,
+            (-36 * x + 96 * x**2 - 60 * x**3) * L,
+            (1 - 9 * x + 18 * x**2 - 10 * x**3) * L**2,
+            60 * x - 180 * x**2 + 120 * x**3,
+            (-24 * x + 84 * x**2 - 60 * x**3) * L,
+            (3 * x - 12 * x**2 + 10 * x**3) * L**2,
+        ]
+    ) / L**2
+    return h, dh, d2h
+
+
+def cubic_hermite(xi: FloatArray, length: float) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Cubic Hermite shape functions for (v, v') at both ends and x-derivatives, shape (len(xi), 4)."""
+    x = np.asarray(xi, dtype=float)[:, None]
+    L = length
+    h = np.hstack([1 - 3 * x**2 + 2 * x**3, (x - 2 * x**2 + x**3) * L, 3 * x**2 - 2 * x**3, (-(x**2) + x**3) * L])
+    dh = np.hstack([-6 * x + 6 * x**2, (1 - 4 * x + 3 * x**2) * L, 6 * x - 6 * x**2, (-2 * x + 3 * x**2) * L]) / L
+    d2h = np.hstack([-6 + 12 * x, (-4 + 6 * x) * L, 6 - 12 * x, (-2 + 6 * x) * L]) / L**2
+    return h, dh, d2h
+
+
+#: local dof layouts: which local dofs are axial (u) and which transverse (v family), per element kind
+LAYOUTS = {
+    "frame6": {"axial": (0, 3), "transverse": (1, 2, 4, 5), "size": 6, "per_end": 3},
+    "quintic8": {"axial": (0, 4), "transverse": (1, 2, 3, 5, 6, 7), "size": 8, "per_end": 4},
+}
+
+
+def local_matrices(kind: str, youngs_modulus: float, area: float, second_moment: float, density: float, length: float,
+                   gauss_points: int = 8) -> tuple[FloatArray, FloatArray]:
+    """(K, M) of a beam element in local coordinates, by Gauss quadrature of the shape functions.
+
+    kind 'frame6': (u1, v1, v1', u2, v2, v2'), linear axial and cubic transverse (the standard frame);
+    kind 'quintic8': (u1, v1, v1', v1'', u2, v2, v2', v2''), linear axial and quintic transverse.
+    Consistent mass (rho A, no rotary inertia).  SI units.
+    """
+    lay = LAYOUTS[kind]
+    xi, w = _gauss(gauss_points)
+    shapes = cubic_hermite if kind == "frame6" else quintic_hermite
+    h, _, d2h = shapes(xi, length)
+    lin = np.stack([1 - xi, xi], axis=1)
+    dlin = np.array([-1.0, 1.0]) / length
+    n = lay["size"]
+    k, m = np.zeros((n, n)), np.zeros((n, n))
+    ax, tr = np.array(lay["axial"]), np.array(lay["transverse"])
+    k[np.ix_(ax, ax)] = youngs_modulus * area * length * np.outer(dlin, dlin)
+    m[np.ix_(ax, ax)] = density * area * length * (lin.T * w) @ lin
+    k[np.ix_(tr, tr)] = youngs_modulus * second_moment * length * (d2h.T * w) @ d2h
+    m[np.ix_(tr, tr)] = density * area * length * (h.T * w) @ h
+    return k, m
+
+
+def local_to_global(kind: str, angle: FloatArray) -> FloatArray:
+    """Transformation T (local = T global) for elements at direction ``angle`` (rad), shape (..., n, n).
+
+    Translations rotate; slopes and curvatures of a planar element are the same in both frames.
+    """
+    lay = LAYOUTS[kind]
+    a = np.asarray(angle, dtype=float)
+    c, s = np.cos(a), np.sin(a)
+    t = np.zeros(a.shape + (lay["size"], lay["size"]))
+    for end in range(2):
+        o = end * lay["per_end"]
+        t[..., o, o], t[..., o, o + 1] = c, s
+        t[..., o + 1, o], t[..., o + 1, o + 1] = -s, c
+        for extra in range(2, lay["per_end"]):
+            t[..., o + extra, o + extra] = 1.0
+    return t
+
+
+def element_strain_extremes(kind: str, length: float, half_depth: float, local_u: FloatArray, points: int = 9) -> FloatArray:
+    """max over the element of |h v''| + |u'| (the strain of eq. (8) divided by E), for local dof vectors (..., n)."""
+    lay = LAYOUTS[kind]
+    xi = np.linspace(0.0, 1.0, points)
+    shapes = cubic_hermite if kind == "frame6" else quintic_hermite
+    _, _, d2h = shapes(xi, length)
+    v = local_u[..., list(lay["transverse"])]
+    curvature = np.einsum("pk,...k->...p", d2h, v)
+    axial = (local_u[..., lay["axial"][1]] - local_u[..., lay["axial"][0]]) / length
+    return (half_depth * np.abs(curvature) + np.abs(axial)[..., None]).max(axis=-1)
+
+
+# --- meshes of beams whose joints share some dofs ------------------------------------------------
+
+
+@dataclass(frozen=True)
+class BeamMesh:
+    """Beam elements on numbered nodes, with per-end keys for the dofs beyond the translations.
+
+    kind: 'frame6' (extra dof per end: slope) or 'quintic8' (slope and curvature).
+    elements: (node_i, node_j) pairs.  extra_keys[e][end]: one key per extra dof of that end
+    (slope[, curvature]); ends with equal keys share the dof, None fixes it at zero.
+    fixed_nodes: nodes whose translations are held at zero.
+    """
+
+    kind: str
+    n_nodes: int
+    elements: tuple[tuple[int, int], ...]
+    extra_keys: tuple[tuple[tuple, tuple], ...]
+    fixed_nodes: frozenset = frozenset()
+
+    def dof_indices(self) -> tuple[int, NDArray[np.int64]]:
+        """(number of free dofs, element-to-global index array with -1 for fixed dofs)."""
+        index: dict = {}
+        for node in range(self.n_nodes):
+            if node not in self.fixed_nodes:
+                index[("x", node)] = len(index)
+                index[("y", node)] = len(index)
+        for ends in self.extra_keys:
+            for keys in ends:
+                for key in keys:
+                    if key is not None and ("extra", key) not in index:
+                        index[("extra", key)] = len(index)
+        per_end = LAYOUTS[self.kind]["per_end"]
+        table = np.full((len(self.elements), 2 * per_end), -1, dtype=np.int64)
+        for e, ((i, j), ends) in enumerate(zip(self.elements, self.extra_keys, strict=True)):
+            for end, (node, keys) in enumerate(((i, ends[0]), (j, ends[1]))):
+                o = end * per_end
+                table[e, o] = index.get(("x", node), -1)
+                table[e, o + 1] = index.get(("y", node), -1)
+                for k, key in enumerate(keys):
+                    table[e, o + 2 + k] = index[("extra", key)] if key is not None else -1
+        return len(index), table
+
+
+def assemble(mesh: BeamMesh, element_matrices: list[FloatArray], angles: FloatArray) -> FloatArray:
+    """Global matrices over configurations: sum of T^T m T scattered by the dof table.
+
+    element_matrices: one local matrix per element; angles: (n_config, n_elements) element directions.
+    Returns (n_config, n_dof, n_dof).
+    """
+    n_dof, table = mesh.dof_indices()
+    angles = np.atleast_2d(angles)
+    out = np.zeros((angles.shape[0], n_dof, n_dof))
+    for e, m_loc in enumerate(element_matrices):
+        t = local_to_global(mesh.kind, angles[:, e])
+        m_glob = np.einsum("cki,kl,clj->cij", t, m_loc, t)
+        idx = table[e]
+        keep = np.flatnonzero(idx >= 0)
+        gi = idx[keep]
+        out[:, gi[:, None], gi[None, :]] += m_glob[:, keep[:, None], keep[None, :]]
+    return out
+
+
+def gather(mesh: BeamMesh, u: FloatArray) -> FloatArray:
+    """Element dof vectors (global frame) from global solutions u (n_config, n_dof): (n_config, n_el, size)."""
+    _, table = mesh.dof_indices()
+    padded = np.concatenate([u, np.zeros(u.shape[:-1] + (1,))], axis=-1)
+    return padded[..., np.where(table >= 0, table, u.shape[-1])]

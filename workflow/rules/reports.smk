@@ -23,11 +23,21 @@ REPORT_INPUTS = {
         "comparison": "results/heald/comparison.csv",
         "published": "config/published/heald.yaml",
     },
+    "transplanter": {
+        "result": "results/transplanter/ked.nc",
+        "optim": "results/transplanter/optim.nc",
+        "at_published": "results/transplanter/at_published.nc",
+        "accuracy": "results/transplanter/accuracy.nc",
+        "timings": "results/transplanter/accuracy_timings.json",
+        "comparison": "results/transplanter/comparison.csv",
+        "published": "config/published/transplanter.yaml",
+    },
 }
 REPORT_CODE = {
     "stiffness": lib("from_config", "stiffness", "kinematics"),
     "beatup": lib("beatup", "beatup_dataset", "kinematics"),
     "heald": lib("chains", "heald", "heald_dataset"),
+    "transplanter": lib("transplanter"),
 }
 
 
@@ -66,7 +76,7 @@ rule index:
         "results/reports/index.html",
     params:
         papers=json.dumps(config["papers"]),
-        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": "", "heald": "A"}),
+        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": "", "heald": "A", "transplanter": ""}),
         comparison_args=lambda wildcards, input: " ".join(
             f"--input comparison_{paper}={path}" for paper, path in zip(BUILT_PAPERS, input.comparisons)
         ),

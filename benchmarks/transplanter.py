@@ -1,0 +1,69 @@
+"""Benchmark of the transplanter KED and optimisation (issue: one KED pass over 360 crank positions <= 2 s,
+the optimisation <= 60 s).
+
+Run: python benchmarks/transplanter.py [--repeats N]
+
+Method: wall clock (time.perf_counter); the KED pass (quasi-static, the paper's 35-coordinate mesh,
+360 crank angles) is the median of N repeats after a warm-up; the dynamic pass (Newmark, the
+configured revolutions) likewise; the optimisation (SUMT + SLSQP, as the rule runs it) once.
+Figures go to results/benchmarks/transplanter.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+PROJECT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(PROJECT / "lib"))
+from linkwork.transplanter import ked  # noqa: E402
+from linkwork.transplanter_dataset import discretisation, material, mechanism, optim_dataset  # noqa: E402
+
+TARGETS = {"ked_quasi_static_360_s": 2.0, "optimisation_s": 60.0}
+
+
+def median_time(fn, repeats: int) -> float:
+    fn()
+    samples = []
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        fn()
+        samples.append(time.perf_counter() - t0)
+    return statistics.median(samples)
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--repeats", type=int, default=5)
+    args = parser.parse_args()
+    section = yaml.safe_load((PROJECT / "config" / "config.yaml").read_text())["transplanter"]
+    mech, mat, disc = mechanism(section), material(section), discretisation(section)
+    theta = np.radians(np.arange(0.0, 360.0, 1.0))
+    d = np.array(section["initial_diameters_m"])
+    figures = {
+        "ked_quasi_static_360_s": median_time(lambda: ked(mech, disc, d, mat, theta), args.repeats),
+        "ked_dynamic_360_s": median_time(
+            lambda: ked(mech, disc, d, mat, theta, "dynamic", revolutions=section["fe"]["revolutions"]), args.repeats
+        ),
+    }
+    t0 = time.perf_counter()
+    optim_dataset(section)
+    figures["optimisation_s"] = time.perf_counter() - t0
+    for key, value in figures.items():
+        print(f"{key}: {value:.3f} s", flush=True)
+    out = PROJECT / "results" / "benchmarks" / "transplanter.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps({**figures, "targets": TARGETS}, indent=2))
+    if any(figures[k] > v for k, v in TARGETS.items()):
+        sys.exit("a transplanter benchmark missed its target")
+
+
+if __name__ == "__main__":
+    main()

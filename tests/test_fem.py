@@ -1,0 +1,81 @@
+"""Beam elements against closed forms (cantilever), with fitted convergence rates."""
+
+import numpy as np
+import pytest
+from scipy.linalg import eigh
+
+from linkwork.fem import BeamMesh, assemble, local_matrices, solve_static
+
+E, RHO, L = 70e9, 2640.0, 0.25
+D = 0.008
+A, I = np.pi * D**2 / 4, np.pi * D**4 / 64
+BETA_L = np.array([1.8751040687, 4.6940911330, 7.8547574382])  # cantilever eigenvalues
+
+
+def cantilever(kind: str, n: int):
+    """A cantilever along x of n elements, clamped at node 0; returns (K, M) and the tip dof indices."""
+    per_end_extra = 1 if kind == "frame6" else 2
+    elements = tuple((i, i + 1) for i in range(n))
+    def keys(node):
+        if node == 0:  # clamped: slope held; the curvature (root moment) stays free
+            return (None, "k0")[:per_end_extra]
+        return tuple(f"{q}{node}" for q in ("s", "k")[:per_end_extra])
+    mesh = BeamMesh(kind, n + 1, elements, tuple((keys(i), keys(i + 1)) for i in range(n)), frozenset({0}))
+    k_e, m_e = local_matrices(kind, E, A, I, RHO, L / n)
+    angles = np.zeros((1, n))
+    k = assemble(mesh, [k_e] * n, angles)[0]
+    m = assemble(mesh, [m_e] * n, angles)[0]
+    n_dof, table = mesh.dof_indices()
+    tip = table[-1][mesh_per_end(kind) : mesh_per_end(kind) + 2]
+    return k, m, tip, table
+
+
+def mesh_per_end(kind):
+    return 3 if kind == "frame6" else 4
+
+
+@pytest.mark.parametrize("kind", ["frame6", "quintic8"])
+def test_static_tip_deflection_is_exact(kind):
+    for n in (1, 3):
+        k, m, tip, table = cantilever(kind, n)
+        f = np.zeros(k.shape[0])
+        f[tip[1]] = -10.0  # tip load P, transverse
+        u = np.linalg.solve(k, f)
+        assert np.isclose(u[tip[1]], -10.0 * L**3 / (3 * E * I), rtol=1e-10)
+        f = np.zeros(k.shape[0])
+        f[tip[0]] = 10.0  # axial
+        assert np.isclose(np.linalg.solve(k, f)[tip[0]], 10.0 * L / (E * A), rtol=1e-10)
+
+
+@pytest.mark.parametrize(("kind", "low", "high"), [("frame6", 3.6, 4.4), ("quintic8", 7.0, 9.5)])
+def test_natural_frequencies_converge_at_the_expected_rate(kind, low, high):
+    """Frequency error ~ h^(2(p-1)): about 4 for cubic, 8 for quintic Hermite elements."""
+    exact = BETA_L**2 * np.sqrt(E * I / (RHO * A * L**4))
+    meshes = [2, 3, 4, 6] if kind == "frame6" else [1, 2, 3]
+    errors = []
+    for n in meshes:
+        k, m, _, _ = cantilever(kind, n)
+        lam = eigh(k, m, eigvals_only=True)
+        w = np.sqrt(lam[lam > 1.0])  # bending modes (axial modes are far higher)
+        errors.append(abs(w[0] - exact[0]) / exact[0])
+    rate = -np.polyfit(np.log(meshes), np.log(errors), 1)[0]
+    assert low < rate < high, (rate, errors)
+    k, m, _, _ = cantilever(kind, 8)
+    w = np.sqrt(eigh(k, m, eigvals_only=True))
+    bending = np.sort(w)[:3]
+    assert np.allclose(bending, exact, rtol=2e-3)
+
+
+def test_frame_element_matches_the_closed_form_matrix():
+    from linkwork.fem import frame_element_stiffness
+
+    k_loc, _ = local_matrices("frame6", E, A, I, RHO, L)
+    assert np.allclose(k_loc, frame_element_stiffness(E, A, I, (0.0, 0.0), (L, 0.0)), rtol=1e-12, atol=1e-9)
+
+
+def test_static_solve_with_fixed_dofs():
+    k, _, tip, _ = cantilever("frame6", 2)
+    f = np.zeros(k.shape[0])
+    f[tip[1]] = 1.0
+    u = solve_static(k, f, [])
+    assert np.isclose(u[tip[1]], L**3 / (3 * E * I))
