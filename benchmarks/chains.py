@@ -12,9 +12,7 @@ from __future__ import annotations
 
 import argparse
 import json
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -22,6 +20,7 @@ import numpy as np
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.chains import GROUND, Element, Network, solve_matrices, solve_network  # noqa: E402
+from linkwork.timing import median_time  # noqa: E402
 
 TARGET_S = 0.5
 
@@ -34,15 +33,6 @@ def chain20() -> Network:
         els.append(Element(f"m{i}", "mass", nodes[i + 1], GROUND, 1.0 + i))
     return Network(nodes, tuple(els), (), "n0", "velocity")
 
-
-def median_time(fn, repeats: int) -> float:
-    fn()
-    samples = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples)
 
 
 def main() -> None:

@@ -15,11 +15,9 @@ import argparse
 import json
 import os
 import shutil
-import statistics
 import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
 import numpy as np
@@ -27,18 +25,13 @@ import numpy as np
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.kinematics import FourBar, four_bar  # noqa: E402
+from linkwork.timing import median_time  # noqa: E402
 
 TARGETS = {"kinematics_1e6_s": 0.5, "stiffness_job_s": 10.0, "report_render_s": 30.0}
 
 
 def timed(fn, repeats: int) -> dict[str, float]:
-    fn()  # warm-up
-    samples = []
-    for _ in range(repeats):
-        start = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - start)
-    return {"median": statistics.median(samples), "min": min(samples), "max": max(samples), "repeats": repeats}
+    return {"median": median_time(fn, repeats), "repeats": repeats}
 
 
 def main() -> None:

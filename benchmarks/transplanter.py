@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import statistics
 import sys
 import time
 from pathlib import Path
@@ -23,20 +22,12 @@ import yaml
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
+from linkwork.timing import median_time  # noqa: E402
 from linkwork.transplanter import ked  # noqa: E402
 from linkwork.transplanter_dataset import discretisation, material, mechanism, optim_dataset  # noqa: E402
 
 TARGETS = {"ked_quasi_static_360_s": 2.0, "optimisation_s": 60.0}
 
-
-def median_time(fn, repeats: int) -> float:
-    fn()
-    samples = []
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        fn()
-        samples.append(time.perf_counter() - t0)
-    return statistics.median(samples)
 
 
 def main() -> None:

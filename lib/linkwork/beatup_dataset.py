@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping
 from typing import Any
 
@@ -10,6 +9,7 @@ import numpy as np
 import xarray as xr
 
 from . import from_config
+from .timing import median_time
 from .beatup import (
     coarse_central_difference,
     dead_centres,
@@ -207,23 +207,14 @@ def accuracy_dataset(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, 
     steps = np.radians(np.asarray(acc["fd_steps_deg"], dtype=float))
     exact = sley_motion(mech, theta1)
 
-    def median_time(fn) -> float:
-        fn()
-        samples = []
-        for _ in range(acc["repeats"]):
-            start = time.perf_counter()
-            fn()
-            samples.append(time.perf_counter() - start)
-        return float(np.median(samples))
-
     errors = np.empty((2, steps.size))
     fd_times = np.empty(steps.size)
     for j, h in enumerate(steps):
         _, _, r6, a6 = _fd_rates(mech, theta1, h)
         errors[0, j] = np.abs(r6 - exact.theta6_rate).max()
         errors[1, j] = np.abs(a6 - exact.theta6_accel).max()
-        fd_times[j] = median_time(lambda h=h: _fd_rates(mech, theta1, h))
-    analytic_time = median_time(lambda: sley_motion(mech, theta1))
+        fd_times[j] = median_time(lambda h=h: _fd_rates(mech, theta1, h), acc["repeats"])
+    analytic_time = median_time(lambda: sley_motion(mech, theta1), acc["repeats"])
     ds = xr.Dataset(
         {
             "error": xr.DataArray(errors, dims=("derivative", "fd_step"), attrs={"units": "rad rad-1 (rate), rad rad-2 (accel)", "long_name": "max |central difference - analytic| over the grid"}),

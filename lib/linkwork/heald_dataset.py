@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping
 from typing import Any
 
@@ -11,7 +10,8 @@ import xarray as xr
 from scipy.optimize import minimize_scalar
 
 from .chains import resonances, solve_network
-from .heald import JOINTS, MODELS, build, eq2_mobility, joint_stiffness
+from .heald import JOINTS, build, eq2_mobility, joint_stiffness
+from .timing import median_time
 
 RPM = 2 * np.pi / 60.0  # rad/s per min^-1
 
@@ -170,13 +170,7 @@ def accuracy_dataset(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, 
     errors, times = [], []
     for n in acc["points"]:
         errors.append(abs(peak_on(n) - ref) / ref)
-        peak_on(n)
-        samples = []
-        for _ in range(acc["repeats"]):
-            t0 = time.perf_counter()
-            peak_on(n)
-            samples.append(time.perf_counter() - t0)
-        times.append(float(np.median(samples)))
+        times.append(median_time(lambda n=n: peak_on(n), acc["repeats"]))
     ds = xr.Dataset(
         {
             "peak_error": xr.DataArray(np.array(errors), dims="grid_points", attrs={"units": "1", "long_name": f"relative error of the peak |{acc['quantity']}| on a uniform grid"}),

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import time
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
@@ -12,6 +11,7 @@ import xarray as xr
 
 from .from_config import angle_grid_deg
 from .optimize import PenaltyProblem, gradient, slsqp, sumt
+from .timing import median_time
 from .transplanter import MEMBERS, Material, Transplanter, discretise, ked, signed_extreme
 
 RPM = 2 * np.pi / 60.0
@@ -276,12 +276,7 @@ def accuracy_dataset(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, 
             tip_err[i, j] = abs(np.abs(r.tip[:, 1]).max() - ref_tip) / ref_tip
             stress_err[i, j] = abs(r.stress.max() - ref_stress) / ref_stress
             dofs[i, j] = disc.mesh.dof_indices()[0]
-            samples = []
-            for _ in range(acc["repeats"]):
-                t0 = time.perf_counter()
-                _solve(section, d, "quasi-static", theta, disc=disc)
-                samples.append(time.perf_counter() - t0)
-            times[f"{kind}x{level}"] = float(np.median(samples))
+            times[f"{kind}x{level}"] = median_time(lambda disc=disc: _solve(section, d, "quasi-static", theta, disc=disc), acc["repeats"], warmup=False)
     # mode superposition (the paper's route to K^-1 F): modes kept vs error, on the base mesh
     from .transplanter import ked_modal
 
@@ -293,9 +288,9 @@ def accuracy_dataset(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, 
         tip, stress = ked_modal(mechanism(section), disc, d, material(section), np.radians(theta), n, section["fe"]["gravity_m_s2"])
         modal_tip.append(abs(np.abs(tip[:, 1]).max() - np.abs(full.tip[:, 1]).max()) / np.abs(full.tip[:, 1]).max())
         modal_stress.append(abs(stress.max() - full.stress.max()) / full.stress.max())
-        t0 = time.perf_counter()
-        ked_modal(mechanism(section), disc, d, material(section), np.radians(theta), n, section["fe"]["gravity_m_s2"])
-        modal_time[str(n)] = time.perf_counter() - t0
+        modal_time[str(n)] = median_time(
+            lambda n=n: ked_modal(mechanism(section), disc, d, material(section), np.radians(theta), n, section["fe"]["gravity_m_s2"]), 1, warmup=False
+        )
     ds = xr.Dataset(
         {
             "tip_error": (("element", "refinement"), tip_err, {"units": "1", "long_name": "relative error of the peak |Uy| vs a fine quintic reference"}),

@@ -3,7 +3,7 @@
 
 rule beatup_sixbar:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "from_config", "results"),
+        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
     output:
         "results/beatup/sixbar.nc",
     params:
@@ -14,7 +14,7 @@ rule beatup_sixbar:
 
 rule beatup_window:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "from_config", "results"),
+        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
     output:
         "results/beatup/window.nc",
     params:
@@ -25,7 +25,7 @@ rule beatup_window:
 
 rule beatup_accuracy:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "from_config", "results"),
+        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
     output:
         result="results/beatup/accuracy.nc",
         timings="results/beatup/accuracy_timings.json",

@@ -3,7 +3,7 @@
 
 rule heald_chain:
     input:
-        code=lib("chains", "heald", "heald_dataset", "results"),
+        code=lib("chains", "heald", "heald_dataset", "timing", "results"),
     output:
         "results/heald/chain.nc",
     params:
@@ -14,7 +14,7 @@ rule heald_chain:
 
 rule heald_accuracy:
     input:
-        code=lib("chains", "heald", "heald_dataset", "results"),
+        code=lib("chains", "heald", "heald_dataset", "timing", "results"),
     output:
         result="results/heald/accuracy.nc",
         timings="results/heald/accuracy_timings.json",

@@ -1,6 +1,6 @@
 # Paper "transplanter": kineto-elastodynamics and penalty-function section optimisation.
 
-TRANSPLANTER_CODE = lib("kinematics", "fem", "transplanter", "optimize", "transplanter_dataset", "from_config", "results")
+TRANSPLANTER_CODE = lib("kinematics", "fem", "transplanter", "optimize", "transplanter_dataset", "from_config", "results", "timing")
 
 
 rule transplanter_optim:
