@@ -22,6 +22,7 @@ include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/beatup.smk"
 include: "workflow/rules/heald.smk"
 include: "workflow/rules/transplanter.smk"
+include: "workflow/rules/clearance.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -36,5 +37,8 @@ rule all:
         "results/transplanter/ked.nc",
         "results/transplanter/optim.nc",
         "results/transplanter/accuracy.nc",
+        expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
+        "results/clearance/claims.nc",
+        "results/clearance/accuracy.nc",
         expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
         "results/reports/index.html",

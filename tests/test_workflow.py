@@ -27,6 +27,9 @@ OUTPUTS = [
     "results/transplanter/ked.nc",
     "results/transplanter/optim.nc",
     "results/reports/transplanter.html",
+    "results/clearance/slender/dry_both.nc",
+    "results/clearance/claims.nc",
+    "results/reports/clearance.html",
     "results/reports/index.html",
 ]
 ALL_JOBS = {
@@ -45,13 +48,20 @@ ALL_JOBS = {
     "transplanter_at_published": 1,
     "transplanter_accuracy": 1,
     "transplanter_compare": 1,
-    "report": 4,
+    "clearance_scene": 14,
+    "clearance_scene_tight": 12,
+    "clearance_claims": 1,
+    "clearance_work_precision": 1,
+    "clearance_compare": 1,
+    "report": 5,
     "index": 1,
 }
 STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
 BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 1, "index": 1}
 TRANSPLANTER_JOBS = {"all": 1, "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1,
                      "transplanter_accuracy": 1, "transplanter_compare": 1, "report": 1, "index": 1}
+CLEARANCE_JOBS = {"all": 1, "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1,
+                  "clearance_work_precision": 1, "clearance_compare": 1, "report": 1, "index": 1}
 HEALD_JOBS = {"all": 1, "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "report": 1, "index": 1}
 
 
@@ -119,13 +129,13 @@ def clone(built, tmp_path) -> Path:
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel
-    for paper in ("stiffness", "beatup", "heald", "transplanter"):
+    for paper in ("stiffness", "beatup", "heald", "transplanter", "clearance"):
         html = (built / f"results/reports/{paper}.html").read_text()
         assert "data:image/png;base64" in html  # figures embedded
         assert "Traceback" not in html
         assert 'vnd.jupyter.stderr" tabindex' not in html  # no warnings or errors printed
     index = (built / "results/reports/index.html").read_text()
-    assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "heald", "transplanter")) and "not yet built" in index
+    assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "clearance", "heald", "transplanter"))
     assert 'vnd.jupyter.stderr" tabindex' not in index
 
 
@@ -148,8 +158,9 @@ def test_forced_rerun_writes_identical_bytes(clone):
         ("scaled_crank_m: 0.062", "scaled_crank_m: 0.060", BEATUP_JOBS),
         ("M_P: {value: 8.0", "M_P: {value: 9.0", HEALD_JOBS),
         ("crank_speed_rpm: 300.0", "crank_speed_rpm: 310.0", TRANSPLANTER_JOBS),
+        ("restitution: 0.9", "restitution: 0.8", CLEARANCE_JOBS),
     ],
-    ids=["stiffness", "beatup", "heald", "transplanter"],
+    ids=["stiffness", "beatup", "heald", "transplanter", "clearance"],
 )
 def test_changing_a_parameter_reruns_only_that_papers_rules(clone, old, new, expected):
     cfg_path = clone / "config/config.yaml"
@@ -177,7 +188,8 @@ def test_editing_beatup_module_reruns_only_beatup_rules(clone):
 def test_editing_the_shared_kinematics_reruns_both_papers(clone):
     _touch_module(clone, "kinematics.py")
     jobs = planned_jobs(clone)
-    assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["transplanter_ked"] == 1 and jobs["report"] == 3
+    assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["transplanter_ked"] == 1
+    assert jobs["clearance_scene"] == 14 and jobs["report"] == 4
     assert "heald_chain" not in jobs  # the chain solver does not use the kinematics
 
 

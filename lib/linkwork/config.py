@@ -15,7 +15,7 @@ import jsonschema
 import numpy as np
 
 from . import from_config
-from .kinematics import four_bar
+from .kinematics import FourBar, four_bar
 
 _NUMBERLIKE = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 
@@ -177,12 +177,49 @@ def check_transplanter(section: Mapping[str, Any], key: str = "transplanter", pi
             )
 
 
+def check_clearance(section: Mapping[str, Any], key: str = "clearance") -> None:
+    """Positive clearance, the method each scene names is configured, viscosity where lubrication is named,
+    integrator settings complete, the linkage assembles."""
+    joints = section["joints"]
+    if joints["journal_radius_m"] >= joints["bearing_radius_m"]:
+        raise ConfigError(
+            f"config key {key}.joints.journal_radius_m: value {joints['journal_radius_m']!r} is not smaller than "
+            f"{key}.joints.bearing_radius_m = {joints['bearing_radius_m']!r} (the clearance must be > 0)"
+        )
+    for name, scene in section["scenes"].items():
+        effects = scene["effects"]
+        if "lubrication" in effects and joints.get("viscosity_Pa_s", 0.0) <= 0.0:
+            raise ConfigError(
+                f"config key {key}.scenes.{name}.effects: value {effects!r} names lubrication but "
+                f"{key}.joints.viscosity_Pa_s is {joints.get('viscosity_Pa_s', 'missing')!r}"
+            )
+        if "friction" in effects and "contact" not in effects:
+            raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r}: friction needs contact")
+        if (effects and not scene["clearance_joints"]) and set(effects) - {"gravity"}:
+            raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r} names joint effects but no clearance joint")
+    for group in ("integrators", "tight_integrators"):
+        for kind, integ in section[group].items():
+            needed = ("step_s",) if integ["method"] == "rk4" else ("rtol", "atol", "first_step_s", "max_step_s")
+            missing = [n for n in needed if n not in integ]
+            if missing:
+                raise ConfigError(f"config key {key}.{group}.{kind}: method {integ['method']!r} needs {', '.join(missing)}")
+    if section["work_precision"]["variant"] not in section["variants"]:
+        raise ConfigError(f"config key {key}.work_precision.variant: value {section['work_precision']['variant']!r} is not a variant")
+    b = section["bodies"]
+    lw = FourBar(b["crank"]["length_m"], b["coupler"]["length_m"], b["rocker"]["length_m"], section["ground_m"])
+    try:
+        four_bar(lw, np.radians(np.arange(0.0, 360.0, 1.0)))
+    except ValueError as exc:
+        raise ConfigError(f"config key {key}.bodies: {exc}") from None
+
+
 #: Physical checks per paper section; a paper adds its own here.
 PHYSICAL_CHECKS: dict[str, Callable[[Mapping[str, Any], str], None]] = {
     "stiffness": check_stiffness,
     "beatup": check_beatup,
     "heald": check_heald,
     "transplanter": check_transplanter,
+    "clearance": check_clearance,
 }
 
 

@@ -32,12 +32,21 @@ REPORT_INPUTS = {
         "comparison": "results/transplanter/comparison.csv",
         "published": "config/published/transplanter.yaml",
     },
+    "clearance": {
+        "result": "results/clearance/claims.nc",
+        "accuracy": "results/clearance/accuracy.nc",
+        "timings": "results/clearance/accuracy_timings.json",
+        "comparison": "results/clearance/comparison.csv",
+        "published": "config/published/clearance.yaml",
+        "scenes": "results/clearance/decoded/ideal.nc",
+    },
 }
 REPORT_CODE = {
     "stiffness": lib("from_config", "stiffness", "kinematics"),
     "beatup": lib("beatup", "beatup_dataset", "kinematics"),
     "heald": lib("chains", "heald", "heald_dataset"),
     "transplanter": lib("transplanter"),
+    "clearance": lib("clearance_dataset"),
 }
 
 
@@ -76,7 +85,7 @@ rule index:
         "results/reports/index.html",
     params:
         papers=json.dumps(config["papers"]),
-        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": "", "heald": "A", "transplanter": ""}),
+        reference_forms=json.dumps({"stiffness": config["stiffness"]["reference_form"], "beatup": "", "heald": "A", "transplanter": "", "clearance": "decoded"}),
         comparison_args=lambda wildcards, input: " ".join(
             f"--input comparison_{paper}={path}" for paper, path in zip(BUILT_PAPERS, input.comparisons)
         ),

@@ -16,8 +16,8 @@ for path in paths:
     with xr.open_dataset(path) as ds:
         datasets.append(ds.load())
 ds = xr.merge(datasets, combine_attrs="drop")
-# one comparison block per model variant: the stiffness paper's forms, the heald paper's models
-dim = next((d for d in ("form", "model") if d in ds.dims), None)
+# one comparison block per model variant: stiffness forms, heald models, clearance parameter variants
+dim = next((d for d in ("form", "model", "variant") if d in ds.dims), None)
 variants = [str(v) for v in ds[dim].values] if dim else [""]
 table = pd.concat([compare(published, ds.sel({dim: v}) if dim else ds, model=v) for v in variants], ignore_index=True)
 results.write_text(table.to_csv(index=False, float_format="%.10g"), snakemake.output[0])  # noqa: F821

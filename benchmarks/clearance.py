@@ -1,0 +1,122 @@
+"""Benchmark of the clearance engine against a pure-Python right-hand side in scipy's solve_ivp.
+
+Run: python benchmarks/clearance.py [--scene dry_both] [--variant slender]
+
+Method: one dry two-joint scene, settling plus two recorded cycles.  Ours: the compiled right-hand
+side and Dormand-Prince 5(4) at the pipeline tolerance.  Baseline: the *same* generated source and
+kernels executed as plain Python (numba's decorator replaced by the identity), integrated by
+scipy's RK45 solver class (what solve_ivp runs), stepped so that the impact velocity can be latched.  Wall clock,
+time.perf_counter; ours is the median of 5 runs after a warm-up (compilation excluded), the
+baseline one run.  Also reported: the time of every scene of the pipeline and the peak memory (RSS)
+of this process.  Figures go to results/benchmarks/clearance.json.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import resource
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import yaml
+
+PROJECT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(PROJECT / "lib"))
+from linkwork.clearance_dataset import integrate, output_times, parameters, scene_dataset  # noqa: E402
+from linkwork.multibody import kernels  # noqa: E402
+from linkwork.multibody.model import compile_scene, generate_source, initial_state, pack  # noqa: E402
+from linkwork.timing import median_time  # noqa: E402
+
+
+def pure_python_rhs(joints, effects, law):
+    """The scene's right-hand side with every function executed by the Python interpreter."""
+    identity = lambda *a, **k: (lambda f: f)  # noqa: E731
+    ns: dict = {"np": np, "njit": identity}
+    kernel_src = Path(kernels.__file__).read_text().replace("from numba import njit", "")
+    exec(compile(kernel_src, "kernels_py", "exec"), ns)
+    scene_src = generate_source(joints, effects, law, (1.0, 1.0, 1.0))
+    scene_src = "\n".join(line for line in scene_src.splitlines() if not line.startswith(("from numba", "from linkwork", "    friction_coefficient, film")))
+    exec(compile(scene_src, "scene_py", "exec"), ns)
+    return ns["rhs"], ns["N_DIAG"]
+
+
+def baseline_run(rhs_py, n_diag, joints, y0, params, t, setting):
+    """scipy's RK45 (the Dormand-Prince 5(4) pair of solve_ivp) stepped with the same latching as ours."""
+    from scipy.integrate import RK45
+
+    latched, counts, diag = np.zeros(len(joints)), np.zeros(4, dtype=np.int64), np.zeros(n_diag)
+    was = np.zeros(len(joints), dtype=bool)
+    fun = lambda tt, y: rhs_py(tt, y, params, latched, counts, diag)  # noqa: E731
+    solver = RK45(fun, t[0], y0, t[-1], rtol=setting["rtol"], atol=setting["atol"], max_step=setting["max_step_s"], first_step=setting["first_step_s"])
+    out = np.empty(t.size)
+    out[0] = fun(t[0], y0)[17]
+    i = 1
+    while solver.status == "running":
+        solver.step()
+        fun(solver.t, solver.y)
+        for k in range(len(joints)):  # latch the impact velocity at accepted steps, as ours does
+            now = diag[4 + 6 * k + 1] > 0.0
+            if now and not was[k]:
+                latched[k] = abs(diag[4 + 6 * k + 2])
+            was[k] = now
+        if i < t.size and t[i] <= solver.t:
+            dense = solver.dense_output()
+            while i < t.size and t[i] <= solver.t + 1e-15:
+                out[i] = fun(t[i], dense(t[i]))[17]
+                i += 1
+    return out, solver.nfev
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--scene", default="dry_both")
+    parser.add_argument("--variant", default="slender")
+    args = parser.parse_args()
+    section = yaml.safe_load((PROJECT / "config" / "config.yaml").read_text())["clearance"]
+    p = parameters(section, args.variant)
+    spec = section["scenes"][args.scene]
+    joints, effects = tuple(spec["clearance_joints"]), tuple(spec["effects"])
+    t, _ = output_times(section, p)
+    early = t <= 0.5 * 2 * np.pi / p.crank_speed  # accuracy is compared before the impact sequences diverge
+    setting = section["integrators"]["explicit"]
+    ref = integrate(p, joints, effects, t, {**setting, "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-8})[1][early, 0]
+    scale = np.abs(ref).max()
+    compile_scene(joints, effects, p.contact_law)
+    ours = integrate(p, joints, effects, t, setting)[1][:, 0]
+    ours_err = np.abs(ours[early] - ref).max() / scale
+    ours_time = median_time(lambda: integrate(p, joints, effects, t, setting), 5)
+    print(f"ours (compiled dopri5, rtol={setting['rtol']:g}): {ours_time:.3f} s; error over the first half cycle {ours_err:.2e}", flush=True)
+
+    rhs_py, n_diag = pure_python_rhs(joints, effects, p.contact_law)
+    y0, phi0 = initial_state(p)
+    params, _ = pack(p, phi0)
+    t0 = time.perf_counter()
+    base, nfev = baseline_run(rhs_py, n_diag, joints, y0, params, t, setting)
+    base_time = time.perf_counter() - t0
+    base_err = np.abs(base[early] - ref).max() / scale
+    print(f"pure Python + scipy RK45 (same rtol, atol, latching): {base_time:.1f} s, {nfev} evaluations; error {base_err:.2e}", flush=True)
+    speedup = base_time / ours_time
+    print(f"speed-up at equal accuracy: {speedup:.0f}x (target >= 20x)", flush=True)
+    baseline = {"time_s": base_time, "error": base_err, "nfev": int(nfev), "rtol": setting["rtol"]}
+    scene_times = {}
+    for variant in section["variants"]:
+        for scene in section["scenes"]:
+            t0 = time.perf_counter()
+            scene_dataset(section, variant, scene)
+            scene_times[f"{variant}/{scene}"] = time.perf_counter() - t0
+    worst = max(scene_times.values())
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(f"slowest pipeline scene: {worst:.2f} s (target <= 10 s); peak RSS of this process {peak_mb:.0f} MB (target <= 1 GB)")
+    out = PROJECT / "results" / "benchmarks" / "clearance.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps({"scene": f"{args.variant}/{args.scene}", "ours_time_s": ours_time, "ours_error": ours_err,
+                               "baseline": baseline, "speedup": speedup, "scene_times_s": scene_times, "peak_rss_mb": peak_mb}, indent=2))
+    if speedup < 20 or worst > 10 or peak_mb > 1024:
+        sys.exit("a clearance benchmark missed its target")
+
+
+if __name__ == "__main__":
+    main()

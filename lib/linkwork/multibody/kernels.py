@@ -1,0 +1,180 @@
+"""Compiled building blocks of the planar multibody engine (numba; SI units, radians).
+
+Bodies are (x, y, phi) at the centre of mass; a point of a body is given by its local
+coordinates s.  A revolute constraint between points of two bodies (or a body and the ground)
+contributes two rows to Phi, Phi_q and gamma; a force applied at a point contributes to the
+generalized force vector g.  These functions are shared by every generated scene.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True)
+def rot(phi):
+    c, s = np.cos(phi), np.sin(phi)
+    return c, s
+
+
+@njit(cache=True)
+def point(q, body, sx, sy):
+    """Global position of a body point."""
+    c, s = rot(q[3 * body + 2])
+    return q[3 * body] + c * sx - s * sy, q[3 * body + 1] + s * sx + c * sy
+
+
+@njit(cache=True)
+def point_velocity(q, qd, body, sx, sy):
+    c, s = rot(q[3 * body + 2])
+    w = qd[3 * body + 2]
+    return qd[3 * body] - w * (s * sx + c * sy), qd[3 * body + 1] + w * (c * sx - s * sy)
+
+
+@njit(cache=True)
+def revolute(q, qd, bi, six, siy, bj, sjx, sjy, gx, gy, row, phi, phiq, gamma, phidot):
+    """Rows row, row+1: point s_i of body bi coincides with point s_j of body bj (bj < 0: ground point g)."""
+    ci, si = rot(q[3 * bi + 2])
+    wi = qd[3 * bi + 2]
+    pix, piy = point(q, bi, six, siy)
+    vix, viy = point_velocity(q, qd, bi, six, siy)
+    # d(A s)/dphi = B s
+    bsx, bsy = -si * six - ci * siy, ci * six - si * siy
+    phiq[row, 3 * bi] = 1.0
+    phiq[row + 1, 3 * bi + 1] = 1.0
+    phiq[row, 3 * bi + 2] = bsx
+    phiq[row + 1, 3 * bi + 2] = bsy
+    gamma[row] = (ci * six - si * siy) * wi * wi
+    gamma[row + 1] = (si * six + ci * siy) * wi * wi
+    if bj >= 0:
+        cj, sj = rot(q[3 * bj + 2])
+        wj = qd[3 * bj + 2]
+        pjx, pjy = point(q, bj, sjx, sjy)
+        vjx, vjy = point_velocity(q, qd, bj, sjx, sjy)
+        phiq[row, 3 * bj] = -1.0
+        phiq[row + 1, 3 * bj + 1] = -1.0
+        phiq[row, 3 * bj + 2] = -(-sj * sjx - cj * sjy)
+        phiq[row + 1, 3 * bj + 2] = -(cj * sjx - sj * sjy)
+        gamma[row] -= (cj * sjx - sj * sjy) * wj * wj
+        gamma[row + 1] -= (sj * sjx + cj * sjy) * wj * wj
+    else:
+        pjx, pjy, vjx, vjy = gx, gy, 0.0, 0.0
+    phi[row] = pix - pjx
+    phi[row + 1] = piy - pjy
+    phidot[row] = vix - vjx
+    phidot[row + 1] = viy - vjy
+
+
+@njit(cache=True)
+def driver(q, qd, t, body, phi0, omega, row, phi, phiq, gamma, phidot):
+    """Row row: phi_body = phi0 + omega t (constant crank speed)."""
+    phiq[row, 3 * body + 2] = 1.0
+    gamma[row] = 0.0
+    phi[row] = q[3 * body + 2] - phi0 - omega * t
+    phidot[row] = qd[3 * body + 2] - omega
+
+
+@njit(cache=True)
+def apply_force(q, g, body, sx, sy, fx, fy):
+    """Add a force applied at a body point (local s) to the generalized forces."""
+    c, s = rot(q[3 * body + 2])
+    rx, ry = c * sx - s * sy, s * sx + c * sy
+    g[3 * body] += fx
+    g[3 * body + 1] += fy
+    g[3 * body + 2] += rx * fy - ry * fx
+
+
+@njit(cache=True)
+def clearance_state(q, qd, bj_journal, jx, jy, bb_bearing, bx, by, clearance, r_journal, r_bearing):
+    """Kinematics of a clearance joint.
+
+    Returns e (|eccentricity|, m), nx, ny (unit normal bearing -> journal centre), delta
+    (penetration e - c), delta_dot (rate of e), v_t (relative tangential slip at the contact,
+    journal minus bearing), omega_j, omega_b, gamma_dot (rate of the eccentricity direction).
+    """
+    pjx, pjy = point(q, bj_journal, jx, jy)
+    pbx, pby = point(q, bb_bearing, bx, by)
+    vjx, vjy = point_velocity(q, qd, bj_journal, jx, jy)
+    vbx, vby = point_velocity(q, qd, bb_bearing, bx, by)
+    ex, ey = pjx - pbx, pjy - pby
+    e = np.sqrt(ex * ex + ey * ey)
+    if e > 1e-300:
+        nx, ny = ex / e, ey / e
+    else:
+        nx, ny = 1.0, 0.0
+    tx, ty = -ny, nx
+    dvx, dvy = vjx - vbx, vjy - vby
+    e_dot = dvx * nx + dvy * ny
+    wj, wb = qd[3 * bj_journal + 2], qd[3 * bb_bearing + 2]
+    gamma_dot = (dvx * tx + dvy * ty) / e if e > 1e-300 else 0.0
+    v_t = dvx * tx + dvy * ty + wj * r_journal - wb * r_bearing
+    return e, nx, ny, e - clearance, e_dot, v_t, wj, wb, gamma_dot
+
+
+@njit(cache=True)
+def hertz_damping_factor(law, restitution, delta_dot, impact_velocity):
+    """1 + (damping coefficient) * delta_dot / delta_dot(-) for the three continuous contact laws.
+
+    law 0: Lankarani-Nikravesh 3(1 - ce^2)/4; 1: Hunt-Crossley 3(1 - ce)/2; 2: Flores 8(1 - ce)/(5 ce).
+    The factor is floored at 0 so that the contact never pulls.
+    """
+    if law == 0:
+        chi = 3.0 * (1.0 - restitution * restitution) / 4.0
+    elif law == 1:
+        chi = 3.0 * (1.0 - restitution) / 2.0
+    else:
+        chi = 8.0 * (1.0 - restitution) / (5.0 * restitution)
+    f = 1.0 + chi * delta_dot / impact_velocity
+    return f if f > 0.0 else 0.0
+
+
+@njit(cache=True)
+def friction_coefficient(v_t, mu, v0, v1):
+    """Ambrosio's modified Coulomb: -mu c_d sign(v_t), c_d = 0 below v0, linear to 1 at v1 (no division at v_t = 0)."""
+    a = abs(v_t)
+    if a <= v0:
+        return 0.0
+    cd = 1.0 if a >= v1 else (a - v0) / (v1 - v0)
+    return -mu * cd if v_t > 0 else mu * cd
+
+
+@njit(cache=True)
+def film_forces(eps, eps_dot, omega_sum, gamma_dot, coefficient, eps_limit):
+    """Long-bearing (Sommerfeld) squeeze and wedge forces (radial, tangential) on the journal, N.
+
+    coefficient = 12 pi mu L R^3 / c^2 (times 1/c for eps_dot given in 1/s); the eccentricity ratio
+    is capped at eps_limit, which keeps the film force continuous and bounded up to and beyond
+    eps = 1 (where the dry contact takes over), instead of the printed eq. (23)'s singularity.
+    """
+    e = eps if eps < eps_limit else eps_limit
+    f_r = -coefficient * eps_dot / (1.0 - e * e) ** 1.5
+    f_t = coefficient * e * (omega_sum - 2.0 * gamma_dot) / ((2.0 + e * e) * np.sqrt(1.0 - e * e))
+    return f_r, f_t
+
+
+@njit(cache=True)
+def solve_constrained(mass, g, phiq, gamma_b, nc):
+    """q'' and lambda from M q'' = g - Phi_q^T lambda, Phi_q q'' = gamma_b (M diagonal): Schur complement."""
+    n = g.size
+    minv_g = g / mass
+    s = np.zeros((nc, nc))
+    rhs = np.zeros(nc)
+    for a in range(nc):
+        for b in range(nc):
+            acc = 0.0
+            for k in range(n):
+                acc += phiq[a, k] * phiq[b, k] / mass[k]
+            s[a, b] = acc
+        acc = 0.0
+        for k in range(n):
+            acc += phiq[a, k] * minv_g[k]
+        rhs[a] = acc - gamma_b[a]
+    lam = np.linalg.solve(s, rhs)
+    qdd = np.empty(n)
+    for k in range(n):
+        acc = g[k]
+        for a in range(nc):
+            acc -= phiq[a, k] * lam[a]
+        qdd[k] = acc / mass[k]
+    return qdd, lam

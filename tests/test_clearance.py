@@ -1,0 +1,147 @@
+"""Clearance multibody engine: independent routes, effects that cost nothing, hard cases, bad input."""
+
+import copy
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from conftest import load_yaml
+from linkwork.clearance_dataset import integrate, parameters, scene_dataset
+from linkwork.multibody.kernels import film_forces, friction_coefficient
+from linkwork.multibody.model import generate_source, initial_state, inverse_dynamics
+
+SECTION = load_yaml("config/config.yaml")["clearance"]
+SLENDER = parameters(SECTION, "slender")
+EXPLICIT = SECTION["integrators"]["explicit"]
+STIFF = SECTION["integrators"]["stiff"]
+DRIFT_BOUND = 1e-6  # m
+
+
+def run(p, joints, effects, cycles=2.0, integ=EXPLICIT, y0=None, points=720):
+    t = np.linspace(0.0, cycles * 2 * np.pi / p.crank_speed, int(cycles * points) + 1)
+    ys, diags, steps, rejected, counts, _ = integrate(p, joints, effects, t, integ, y0=y0)
+    assert np.all(np.isfinite(diags)), "NaN or inf in the response"
+    assert diags[:, 3].max() < DRIFT_BOUND, f"constraint drift {diags[:, 3].max():.2e} m"
+    return t, ys, diags, counts
+
+
+def test_forward_integration_of_the_ideal_linkage_equals_inverse_dynamics():
+    t, ys, diags, _ = run(SLENDER, (), ("gravity",), cycles=1.0, integ={"method": "rk4", "step_s": 1e-5})
+    ideal = inverse_dynamics(SLENDER, t, gravity=True)
+    scale = np.abs(ideal["rocker_acceleration"]).max()
+    assert np.abs(diags[:, 0] - ideal["rocker_acceleration"]).max() < 1e-6 * scale
+    assert np.abs(diags[:, 1] - ideal["crank_torque"]).max() < 1e-6 * np.abs(ideal["crank_torque"]).max()
+
+
+def test_an_effect_left_out_is_never_evaluated():
+    _, _, _, dry = run(SLENDER, (1, 2), ("contact", "friction", "gravity"), cycles=0.5)
+    assert dry[2] == 0 and dry[0] > 0 and dry[1] > 0  # no lubrication evaluation in a dry scene
+    _, _, _, lub = run(SLENDER, (2,), ("lubrication", "contact"), cycles=0.5, integ=STIFF)
+    assert lub[1] == 0 and lub[3] == 0 and lub[2] > 0  # no friction, no gravity
+    src = generate_source((1,), ("contact",), "lankarani-nikravesh", (1.0, 1.0, 1.0))
+    assert "film_forces(" not in src and "friction_coefficient(" not in src.split("def rhs")[1]
+
+
+def test_scene_dataset_records_units_and_counts():
+    ds = scene_dataset({**SECTION, "numerics": {**SECTION["numerics"], "settle_cycles": 1}}, "slender", "dry_2")
+    assert ds.attrs["evaluations_lubrication"] == 0 and ds.attrs["evaluations_contact"] > 0
+    assert np.isnan(ds.penetration.sel(joint=1)).all() and np.isfinite(ds.penetration.sel(joint=2)).all()
+
+
+def test_contact_laws_are_pluggable():
+    for law in ("hunt-crossley", "flores"):
+        run(replace(SLENDER, contact_law=law), (2,), ("contact",), cycles=0.5)
+
+
+def _energy_balance(p, effects):
+    """(mechanical energy - driver work) over a run, with the journals starting centred."""
+    _, ys, diags, _ = run(p, (1, 2), effects, cycles=1.0, integ={**EXPLICIT, "rtol": 1e-9, "atol": 1e-12})
+    return diags[:, 2] - ys[:, 18]
+
+
+# --- hard cases ----------------------------------------------------------------------------------
+
+
+@pytest.mark.hard
+@pytest.mark.parametrize("clearance", [1e-6, 1e-3])
+def test_clearance_1_micron_and_1_mm(clearance):
+    p = replace(SLENDER, journal_radius=SLENDER.bearing_radius - clearance, e0=0.05 * clearance)
+    _, _, diags, _ = run(p, (1, 2), ("contact", "friction", "gravity"), cycles=1.0)
+    assert np.nanmax(diags[:, [5, 11]]) < 2 * clearance + 1e-4  # penetration stays bounded
+
+
+@pytest.mark.hard
+def test_crank_speed_times_ten():
+    run(replace(SLENDER, crank_speed=10 * SLENDER.crank_speed), (1, 2), ("contact", "friction", "gravity"), cycles=0.5)
+
+
+@pytest.mark.hard
+def test_restitution_one_does_not_create_energy():
+    """Elastic impacts (c_e = 1, no friction, no gravity): energy minus driver work must not grow."""
+    balance = _energy_balance(replace(SLENDER, restitution=1.0), ("contact",))
+    scale = np.abs(balance).max()
+    assert balance.max() - balance[0] < 1e-3 * scale
+
+
+@pytest.mark.hard
+def test_restitution_0_3_dissipates():
+    balance = _energy_balance(replace(SLENDER, restitution=0.3), ("contact",))
+    assert balance[-1] < balance[0]
+
+
+@pytest.mark.hard
+def test_lubrication_driven_to_eps_one():
+    """A film far too thin to hold the journal: eps reaches 1, the film stays bounded, contact takes over."""
+    p = replace(SLENDER, viscosity=1e-4)
+    _, _, diags, _ = run(p, (1, 2), ("lubrication", "contact"), cycles=0.5, integ=STIFF)
+    assert np.nanmax(diags[:, 4]) >= p.clearance  # e reached c
+    f_r, f_t = film_forces(0.9999999, 1.0, 10.0, 1.0, p.film_coefficient, 1.0 - p.e0 / p.clearance)
+    assert np.isfinite(f_r) and np.isfinite(f_t)
+    assert np.isfinite(film_forces(2.0, -1.0, 10.0, 1.0, p.film_coefficient, 0.95)).all()
+
+
+@pytest.mark.hard
+def test_friction_at_zero_slip():
+    assert friction_coefficient(0.0, 0.1, 1e-4, 1e-3) == 0.0
+    assert friction_coefficient(-0.0, 0.1, 0.0, 1e-3) == 0.0
+    run(replace(SLENDER, friction=0.3, v0=0.0), (2,), ("contact", "friction"), cycles=0.5)
+
+
+@pytest.mark.hard
+def test_journal_starting_in_contact():
+    """Rotate the coupler about B (its ideal joint with the rocker) until the bushing at A touches the journal."""
+    y0, _ = initial_state(SLENDER)
+    y0 = y0.copy()
+    l3 = SLENDER.lengths[1]
+    x3, y3, phi3 = y0[3:6]
+    bx, by = x3 + 0.5 * l3 * np.cos(phi3), y3 + 0.5 * l3 * np.sin(phi3)
+    dphi = 1.02 * SLENDER.clearance / l3
+    phi_new = phi3 + dphi
+    y0[3], y0[4], y0[5] = bx - 0.5 * l3 * np.cos(phi_new), by - 0.5 * l3 * np.sin(phi_new), phi_new
+    _, _, diags, _ = run(SLENDER, (1,), ("contact", "friction"), cycles=0.5, y0=y0)
+    assert diags[0, 5] > 0  # joint 1 starts in contact (penetration > 0)
+
+
+# --- bad input -----------------------------------------------------------------------------------
+
+
+def _expect(config, schema, *fragments):
+    from linkwork.config import ConfigError, validate_config
+
+    with pytest.raises(ConfigError) as info:
+        validate_config(config, schema)
+    for fragment in fragments:
+        assert fragment in str(info.value), str(info.value)
+
+
+def test_bad_clearance_input(config, schema):
+    c = copy.deepcopy(config)
+    c["clearance"]["joints"]["journal_radius_m"] = 0.010
+    _expect(c, schema, "clearance.joints.journal_radius_m", "0.01", "clearance must be > 0")
+    c = copy.deepcopy(config)
+    c["clearance"]["scenes"]["dry_1"]["effects"] = ["contact", "magnetism"]
+    _expect(c, schema, "clearance.scenes.dry_1.effects.1", "'magnetism'")
+    c = copy.deepcopy(config)
+    del c["clearance"]["joints"]["viscosity_Pa_s"]
+    _expect(c, schema, "clearance.scenes.lubricated_1.effects", "lubrication", "viscosity_Pa_s")
