@@ -126,13 +126,7 @@ def test_journal_starting_in_contact():
 # --- bad input -----------------------------------------------------------------------------------
 
 
-def _expect(config, schema, *fragments):
-    from linkwork.config import ConfigError, validate_config
-
-    with pytest.raises(ConfigError) as info:
-        validate_config(config, schema)
-    for fragment in fragments:
-        assert fragment in str(info.value), str(info.value)
+from conftest import expect_config_error as _expect  # noqa: E402
 
 
 def test_bad_clearance_input(config, schema):

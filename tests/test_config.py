@@ -2,21 +2,16 @@
 
 import copy
 
-import pytest
 import yaml
 
-from linkwork.config import ConfigError, validate_config
+from linkwork.config import validate_config
 
 
 def test_project_config_is_valid(config, schema):
     validate_config(config, schema)
 
 
-def _expect(config, schema, *fragments):
-    with pytest.raises(ConfigError) as info:
-        validate_config(config, schema)
-    for fragment in fragments:
-        assert fragment in str(info.value), str(info.value)
+from conftest import expect_config_error as _expect
 
 
 def test_zero_or_negative_length(config, schema):

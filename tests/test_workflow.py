@@ -238,3 +238,36 @@ def test_dry_run_of_a_fresh_copy_plans_every_rule(tmp_path):
     root = copy_project(tmp_path / "fresh")
     assert planned_jobs(root) == ALL_JOBS
     assert yaml.safe_load((root / "profiles/default/profile.yaml").read_text())["cores"] == "all"
+
+
+@pytest.mark.parametrize("sig", ["SIGINT", "SIGKILL"])
+def test_a_killed_run_completes_on_the_next_run(tmp_path, sig):
+    """Interrupt snakemake while a job runs; the next run finishes with valid outputs and no leftovers.
+
+    SIGINT (Ctrl-C) lets snakemake mark the job incomplete and release its lock; after SIGKILL the
+    lock stays and `snakemake --unlock` is needed first (as snakemake itself says).
+    """
+    import signal
+    import time
+
+    import xarray as xr
+
+    root = copy_project(tmp_path / "killed")
+    target = "results/reports/stiffness.html"
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "snakemake", target, "--cores", "1"],
+        cwd=root, env=_env(root), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
+    )
+    deadline = time.time() + 120
+    while not (root / "results/stiffness/comparison.csv").exists() and time.time() < deadline:
+        time.sleep(0.05)
+    os.killpg(proc.pid, getattr(signal, sig))  # snakemake and the job it runs
+    proc.wait(timeout=120)
+    assert not (root / target).exists()
+    if sig == "SIGKILL":
+        snakemake(root, "--unlock")
+    snakemake(root, target)
+    with xr.open_dataset(root / "results/stiffness/stiffness.nc") as ds:
+        assert ds.K_h.size > 0
+    assert "data:image/png;base64" in (root / target).read_text()
+    assert not list((root / "results").rglob("*.tmp"))

@@ -247,18 +247,25 @@ def _latch(diag, latched, was_in_contact):
 
 
 @njit(cache=True)
-def rk4(y0, t0, h, t_out, p, latched, counts):
-    """Fixed-step RK4; steps are shortened only to land on the output times."""
-    n_out = t_out.size
+def _start(y0, t0, n_out, p, latched, counts):
+    """Output buffers, work arrays and the first right-hand side (latching its contact state)."""
     ys = np.empty((n_out, y0.size))
     diags = np.empty((n_out, N_DIAG))
     diag = np.zeros(N_DIAG)
     scratch = np.zeros(N_DIAG)
     was = np.zeros(max(len(JOINTS), 1), dtype=np.bool_)
     y = y0.copy()
-    t = t0
-    k1 = rhs(t, y, p, latched, counts, diag)
+    k1 = rhs(t0, y, p, latched, counts, diag)
     _latch(diag, latched, was)
+    return ys, diags, diag, scratch, was, y, k1
+
+
+@njit(cache=True)
+def rk4(y0, t0, h, t_out, p, latched, counts):
+    """Fixed-step RK4; steps are shortened only to land on the output times."""
+    n_out = t_out.size
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
+    t = t0
     steps = 0
     for i in range(n_out):
         while t < t_out[i] - 1e-15:
@@ -288,16 +295,9 @@ def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max):
     b1, b3, b4, b5, b6 = 35.0 / 384, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84
     e1, e3, e4, e5, e6, e7 = 71.0 / 57600, -71.0 / 16695, 71.0 / 1920, -17253.0 / 339200, 22.0 / 525, -1.0 / 40
     n_out = t_out.size
-    ys = np.empty((n_out, y0.size))
-    diags = np.empty((n_out, N_DIAG))
-    diag = np.zeros(N_DIAG)
-    scratch = np.zeros(N_DIAG)
-    was = np.zeros(max(len(JOINTS), 1), dtype=np.bool_)
-    y = y0.copy()
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
     t = t0
     h = h0
-    k1 = rhs(t, y, p, latched, counts, diag)
-    _latch(diag, latched, was)
     accepted = 0
     rejected = 0
     for i in range(n_out):

@@ -1,0 +1,72 @@
+"""Benchmark of the whole pipeline: full reproduction time, no-op time, byte-identical reruns.
+
+Run: python benchmarks/pipeline.py [--noop-repeats N]
+
+Method, in a temporary copy of the project (results/ empty, the numba cache of this machine as is):
+1. `snakemake` from an empty results/, timed once (wall clock);
+2. a no-op `snakemake` (nothing to do), median of N runs;
+3. `snakemake --forceall` twice; the sha256 of every .nc file after each run must agree
+   (no timestamps or host names inside; timings live in side files).
+Figures go to results/benchmarks/pipeline.json.  Targets: full <= 5 min, no-op <= 5 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import os
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+PROJECT = Path(__file__).resolve().parent.parent
+TARGETS = {"full_s": 300.0, "noop_s": 5.0}
+
+
+def digests(root: Path) -> dict[str, str]:
+    return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest() for p in sorted((root / "results").rglob("*.nc"))}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--noop-repeats", type=int, default=5)
+    args = parser.parse_args()
+    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(PROJECT / "lib"))
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        for name in ("Snakefile", "config", "workflow", "lib", "reports", "profiles"):
+            src = PROJECT / name
+            (shutil.copytree if src.is_dir() else shutil.copy2)(src, root / name)
+
+        def sm(*extra):
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "snakemake", *extra], cwd=root, env=env, check=True, capture_output=True)
+            return time.perf_counter() - t0
+
+        full = sm()
+        print(f"full reproduction from an empty results/: {full:.1f} s (target {TARGETS['full_s']:.0f} s)", flush=True)
+        noop = statistics.median(sm() for _ in range(args.noop_repeats))
+        print(f"no-op snakemake: median {noop:.2f} s over {args.noop_repeats} runs (target {TARGETS['noop_s']:.0f} s)", flush=True)
+        sm("--forceall")
+        first = digests(root)
+        sm("--forceall")
+        second = digests(root)
+        differing = sorted(k for k in first if first[k] != second.get(k))
+        print(f"byte-identical reruns: {len(first) - len(differing)} of {len(first)} netCDF files identical", flush=True)
+        for name in differing:
+            print(f"  differs: {name}")
+    figures = {"full_s": full, "noop_s": noop, "netcdf_files": len(first), "differing": differing, "cpu_count": os.cpu_count()}
+    out = PROJECT / "results" / "benchmarks" / "pipeline.json"
+    out.parent.mkdir(parents=True, exist_ok=True)
+    out.write_text(json.dumps(figures, indent=2))
+    if differing or full > TARGETS["full_s"] or noop > TARGETS["noop_s"]:
+        sys.exit("a pipeline benchmark missed its target")
+
+
+if __name__ == "__main__":
+    main()
