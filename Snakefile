@@ -23,6 +23,8 @@ include: "workflow/rules/beatup.smk"
 include: "workflow/rules/heald.smk"
 include: "workflow/rules/transplanter.smk"
 include: "workflow/rules/clearance.smk"
+include: "workflow/rules/accuracy.smk"
+include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/reports.smk"
 
 
@@ -41,4 +43,9 @@ rule all:
         "results/clearance/claims.nc",
         "results/clearance/accuracy.nc",
         expand("results/reports/{paper}.html", paper=BUILT_PAPERS),
+        "results/accuracy/summary.nc",
+        "results/sweeps/clearance.nc",
+        "results/sweeps/heald.nc",
+        "results/reports/accuracy.html",
+        "results/reports/sweeps.html",
         "results/reports/index.html",

@@ -54,4 +54,8 @@ df = pd.DataFrame(rows, columns=["paper", "title", "matched", "deviating", "not 
 for col in ("matched", "deviating", "not reproducible"):
     df[col] = df[col].map(lambda v: "–" if pd.isna(v) else f"{int(v)}")
 table(df)
-md(f"{sum(r[5] != 'not yet built' for r in rows)} of {len(rows)} papers built.")
+md(
+    f"{sum(r[5] != 'not yet built' for r in rows)} of {len(rows)} papers built. What accuracy costs in time, for every "
+    'numerical method of the pipeline: <a href="accuracy.html">accuracy report</a>. Parameter sweeps: '
+    '<a href="sweeps.html">sweeps report</a>.'
+)

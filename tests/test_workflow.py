@@ -30,6 +30,8 @@ OUTPUTS = [
     "results/clearance/slender/dry_both.nc",
     "results/clearance/claims.nc",
     "results/reports/clearance.html",
+    "results/accuracy/summary.nc",
+    "results/reports/accuracy.html",
     "results/reports/index.html",
 ]
 ALL_JOBS = {
@@ -53,16 +55,21 @@ ALL_JOBS = {
     "clearance_claims": 1,
     "clearance_work_precision": 1,
     "clearance_compare": 1,
-    "report": 5,
+    "accuracy_summary": 1,
+    "sweep_point": 15,
+    "sweep_gather": 2,
+    "report": 7,
     "index": 1,
 }
-STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 1, "index": 1}
-BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 1, "index": 1}
+STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
+BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
 TRANSPLANTER_JOBS = {"all": 1, "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1,
-                     "transplanter_accuracy": 1, "transplanter_compare": 1, "report": 1, "index": 1}
+                     "transplanter_accuracy": 1, "transplanter_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
 CLEARANCE_JOBS = {"all": 1, "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1,
-                  "clearance_work_precision": 1, "clearance_compare": 1, "report": 1, "index": 1}
-HEALD_JOBS = {"all": 1, "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "report": 1, "index": 1}
+                  "clearance_work_precision": 1, "clearance_compare": 1, "report": 3, "accuracy_summary": 1,
+                  "sweep_point": 6, "sweep_gather": 1, "index": 1}
+HEALD_JOBS = {"all": 1, "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "report": 3, "accuracy_summary": 1,
+              "sweep_point": 9, "sweep_gather": 1, "index": 1}
 
 
 def _env(root: Path) -> dict[str, str]:
@@ -129,7 +136,7 @@ def clone(built, tmp_path) -> Path:
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel
-    for paper in ("stiffness", "beatup", "heald", "transplanter", "clearance"):
+    for paper in ("stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps"):
         html = (built / f"results/reports/{paper}.html").read_text()
         assert "data:image/png;base64" in html  # figures embedded
         assert "Traceback" not in html
@@ -189,7 +196,8 @@ def test_editing_the_shared_kinematics_reruns_both_papers(clone):
     _touch_module(clone, "kinematics.py")
     jobs = planned_jobs(clone)
     assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["transplanter_ked"] == 1
-    assert jobs["clearance_scene"] == 14 and jobs["report"] == 4
+    assert jobs["clearance_scene"] == 14 and jobs["report"] == 6 and jobs["accuracy_summary"] == 1
+    assert jobs["sweep_point"] == 6  # the clearance sweep uses the kinematics, the heald sweep does not
     assert "heald_chain" not in jobs  # the chain solver does not use the kinematics
 
 

@@ -213,6 +213,17 @@ def check_clearance(section: Mapping[str, Any], key: str = "clearance") -> None:
         raise ConfigError(f"config key {key}.bodies: {exc}") from None
 
 
+def check_sweeps(section: Mapping[str, Any], key: str = "sweeps", config: Mapping[str, Any] | None = None) -> None:
+    """The swept clearance scene and variant must exist."""
+    if config is None:
+        return
+    spec = section["clearance"]
+    if spec["scene"] not in config["clearance"]["scenes"]:
+        raise ConfigError(f"config key {key}.clearance.scene: value {spec['scene']!r} is not a scene of clearance.scenes")
+    if spec["variant"] not in config["clearance"]["variants"]:
+        raise ConfigError(f"config key {key}.clearance.variant: value {spec['variant']!r} is not a variant of clearance.variants")
+
+
 #: Physical checks per paper section; a paper adds its own here.
 PHYSICAL_CHECKS: dict[str, Callable[[Mapping[str, Any], str], None]] = {
     "stiffness": check_stiffness,
@@ -229,3 +240,5 @@ def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
     for key, check in PHYSICAL_CHECKS.items():
         if key in config:
             check(config[key], key)
+    if "sweeps" in config:
+        check_sweeps(config["sweeps"], "sweeps", config)

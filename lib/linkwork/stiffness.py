@@ -234,3 +234,19 @@ def equivalent_stiffness(
             members, sections, unit_moment_internal_forces(l1, l4, alpha, beta, gamma, form)
         )
     return StiffnessCurves(alpha, beta, gamma, 1.0 / x, 1.0 / phi)
+
+
+def trapezoid_displacement(
+    lengths: tuple[float, float, float], sections: tuple[Section, Section, Section], forces: tuple[MemberForces, ...], panels: int
+) -> FloatArray:
+    """The unit-load displacement by the composite trapezoid rule with ``panels`` panels per member.
+
+    The quadrature route to ``unit_load_displacement``: its error falls as panels^-2.
+    """
+    total = 0.0
+    for length, sec, f in zip(lengths, sections, forces, strict=True):
+        x = np.linspace(0.0, length, panels + 1)
+        m = np.asarray(f.m0)[..., None] + np.asarray(f.m1)[..., None] * x
+        density = np.asarray(f.axial)[..., None] ** 2 / (sec.youngs_modulus * sec.area) + m**2 / (sec.youngs_modulus * sec.second_moment)
+        total = total + np.trapezoid(density, x, axis=-1)
+    return np.asarray(total, dtype=float)

@@ -40,6 +40,14 @@ REPORT_INPUTS = {
         "published": "config/published/clearance.yaml",
         "scenes": "results/clearance/decoded/ideal.nc",
     },
+    "accuracy": {
+        "result": "results/accuracy/summary.nc",
+        "timings": "results/accuracy/timings.json",
+    },
+    "sweeps": {
+        "result": "results/sweeps/clearance.nc",
+        "heald": "results/sweeps/heald.nc",
+    },
 }
 REPORT_CODE = {
     "stiffness": lib("from_config", "stiffness", "kinematics"),
@@ -47,6 +55,8 @@ REPORT_CODE = {
     "heald": lib("chains", "heald", "heald_dataset"),
     "transplanter": lib("transplanter"),
     "clearance": lib("clearance_dataset"),
+    "accuracy": lib(),
+    "sweeps": lib(),
 }
 
 
@@ -66,7 +76,7 @@ rule report:
     output:
         "results/reports/{paper}.html",
     wildcard_constraints:
-        paper="|".join(BUILT_PAPERS),
+        paper="|".join(BUILT_PAPERS + ["accuracy", "sweeps"]),
     params:
         inputs=lambda wildcards, input: " ".join(f"--input {k}={input[k]}" for k in REPORT_INPUTS[wildcards.paper]),
     shell:
