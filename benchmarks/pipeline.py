@@ -20,11 +20,13 @@ import shutil
 import statistics
 import subprocess
 import sys
-import tempfile
 import time
 from pathlib import Path
 
 PROJECT = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _project import project_copy  # noqa: E402
+
 TARGETS = {"full_s": 300.0, "noop_s": 5.0}
 
 
@@ -37,12 +39,7 @@ def main() -> None:
     parser.add_argument("--noop-repeats", type=int, default=5)
     parser.add_argument("--full-repeats", type=int, default=3)
     args = parser.parse_args()
-    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(PROJECT / "lib"))
-    with tempfile.TemporaryDirectory() as tmp:
-        root = Path(tmp)
-        for name in ("Snakefile", "config", "workflow", "lib", "reports", "profiles"):
-            src = PROJECT / name
-            (shutil.copytree if src.is_dir() else shutil.copy2)(src, root / name)
+    with project_copy() as (root, env):
 
         def sm(*extra):
             t0 = time.perf_counter()
