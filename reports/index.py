@@ -13,9 +13,11 @@
 # Each row counts the published numbers of one paper that our re-derivation
 # **matches** (within half a unit of the last printed digit, or the tolerance given in
 # `config/published/<paper>.yaml`), that **deviate** beyond that tolerance, or that are
-# **not reproducible** from what the paper gives. Counts are for the paper's own model
-# as printed (the reference form). The other model forms, corrected where the paper is
-# in error, are summarised in the last column and explained in each report.
+# **not reproducible** from what the paper gives. Where a paper is compared under several
+# models or parameter sets (stiffness: the paper's printed model vs the statics-consistent
+# one; heald: chain models A and B; clearance: decoded vs slender-rod inertias), the counts
+# are for the reference one named in the row, and the others are summarised in the last
+# column. Each report explains them.
 
 # %%
 import pandas as pd
