@@ -28,6 +28,25 @@ def report_context(defaults: dict[str, str]) -> tuple[dict[str, Path], dict]:
     return inputs, given.get("params", {})
 
 
+def load(path: Path):
+    """Read a report input by its type: netCDF (loaded Dataset), CSV (DataFrame), YAML or JSON (dict)."""
+    path = Path(path)
+    if path.suffix == ".nc":
+        import xarray as xr
+
+        with xr.open_dataset(path) as ds:
+            return ds.load()
+    if path.suffix == ".csv":
+        return pd.read_csv(path, dtype={"model": "string"}, keep_default_na=True).assign(model=lambda d: d["model"].fillna(""))
+    if path.suffix in (".yaml", ".yml"):
+        import yaml
+
+        return yaml.safe_load(path.read_text())
+    if path.suffix == ".json":
+        return json.loads(path.read_text())
+    raise ValueError(f"no reader for {path}")
+
+
 def md(text: str) -> None:
     display(Markdown(text))
 

@@ -16,17 +16,15 @@
 # stay byte-identical. Errors are relative. An exact method is plotted at 1e-16.
 
 # %%
-import json
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 inputs, _ = report_context({"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json"})
-ds = xr.open_dataset(inputs["result"]).load()
-times = json.loads(inputs["timings"].read_text())["seconds"]
+ds = load(inputs["result"])
+times = load(inputs["timings"])["seconds"]
 df = pd.DataFrame({"method": ds.method.values, "setting": ds.setting.values, "error": ds.error.values, "pipeline": ds.pipeline.values.astype(bool)})
 df["time_s"] = [times[f"{m}/{s}"] for m, s in zip(df.method, df.setting)]
 methods = list(dict.fromkeys(df.method))

@@ -28,9 +28,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-import yaml
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 from linkwork.beatup_dataset import table1_evidence
 
@@ -44,12 +42,12 @@ inputs, _ = report_context(
         "published": "config/published/beatup.yaml",
     }
 )
-ds = xr.open_dataset(inputs["result"]).load()
-win = xr.open_dataset(inputs["window"]).load()
-acc = xr.open_dataset(inputs["accuracy"]).load()
-timings = json.loads(inputs["timings"].read_text())
-cmp = pd.read_csv(inputs["comparison"])
-published = yaml.safe_load(inputs["published"].read_text())
+ds = load(inputs["result"])
+win = load(inputs["window"])
+acc = load(inputs["accuracy"])
+timings = load(inputs["timings"])
+cmp = load(inputs["comparison"])
+published = load(inputs["published"])
 section = json.loads(ds.attrs["config_json"])
 pub = {q["id"]: q for q in published["quantities"]}
 t1 = cmp[cmp["id"].str.startswith("table1")]

@@ -34,8 +34,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 inputs, _ = report_context(
     {
@@ -47,15 +46,15 @@ inputs, _ = report_context(
         "scenes": "results/clearance/decoded/ideal.nc",
     }
 )
-claims = xr.open_dataset(inputs["result"]).load()
-wp = xr.open_dataset(inputs["accuracy"]).load()
-timings = json.loads(inputs["timings"].read_text())
-cmp = pd.read_csv(inputs["comparison"])
+claims = load(inputs["result"])
+wp = load(inputs["accuracy"])
+timings = load(inputs["timings"])
+cmp = load(inputs["comparison"])
 section = json.loads(claims.attrs["config_json"])
 root = Path(inputs["scenes"]).parent.parent
 variants = [str(v) for v in claims.variant.values]
 scenes = {
-    (v, s): xr.open_dataset(root / v / f"{s}.nc").load() for v in variants for s in section["scenes"]
+    (v, s): load(root / v / f"{s}.nc") for v in variants for s in section["scenes"]
 }
 
 # %% [markdown]

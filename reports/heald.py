@@ -41,8 +41,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 inputs, _ = report_context(
     {
@@ -53,10 +52,10 @@ inputs, _ = report_context(
         "published": "config/published/heald.yaml",
     }
 )
-ds = xr.open_dataset(inputs["result"]).load()
-acc = xr.open_dataset(inputs["accuracy"]).load()
-timings = json.loads(inputs["timings"].read_text())
-cmp = pd.read_csv(inputs["comparison"], dtype={"model": str})
+ds = load(inputs["result"])
+acc = load(inputs["accuracy"])
+timings = load(inputs["timings"])
+cmp = load(inputs["comparison"])
 section = json.loads(ds.attrs["config_json"])
 models = [str(m) for m in ds.model.values]
 many = section["claims"]["many_times"]

@@ -21,7 +21,7 @@
 
 # %%
 import pandas as pd
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 from linkwork.compare import verdict_counts
 
@@ -41,8 +41,7 @@ for paper in papers:
     if path is None or not path.exists():
         rows.append((paper, titles.get(paper, ""), None, None, None, "not yet built", ""))
         continue
-    cmp = pd.read_csv(path)
-    cmp["model"] = cmp["model"].astype("string").fillna("")  # papers with a single model leave it empty
+    cmp = load(path)  # papers with a single model leave the model column empty ("")
     ref = reference.get(paper, cmp.model.iloc[0] if len(cmp) else "")
     counts = verdict_counts(cmp[cmp.model == ref])
     others = []

@@ -38,9 +38,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-import yaml
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 from linkwork import from_config
 from linkwork.stiffness import compliance_parts, paper_angles, unit_force_internal_forces, unit_moment_internal_forces
@@ -52,9 +50,9 @@ inputs, _ = report_context(
         "published": "config/published/stiffness.yaml",
     }
 )
-ds = xr.open_dataset(inputs["result"]).load()
-cmp_all = pd.read_csv(inputs["comparison"])
-published = yaml.safe_load(inputs["published"].read_text())
+ds = load(inputs["result"])
+cmp_all = load(inputs["comparison"])
+published = load(inputs["published"])
 section = json.loads(ds.attrs["config_json"])
 forms = list(ds.form.values)
 pub = {q["id"]: q for q in published["quantities"]}

@@ -19,12 +19,11 @@ import json
 
 import matplotlib.pyplot as plt
 import numpy as np
-import xarray as xr
-from _common import md, report_context
+from _common import load, md, report_context
 
 inputs, _ = report_context({"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"})
-cl = xr.open_dataset(inputs["result"]).load()
-he = xr.open_dataset(inputs["heald"]).load()
+cl = load(inputs["result"])
+he = load(inputs["heald"])
 cfg = json.loads(cl.attrs["config_json"])
 
 # %%

@@ -31,8 +31,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-import xarray as xr
-from _common import md, report_context, table
+from _common import load, md, report_context, table
 
 from linkwork.transplanter import discretise
 
@@ -47,14 +46,14 @@ inputs, _ = report_context(
         "published": "config/published/transplanter.yaml",
     }
 )
-ked = xr.open_dataset(inputs["result"]).load()
-opt = xr.open_dataset(inputs["optim"]).load()
-pub_pt = xr.open_dataset(inputs["at_published"]).load()
-acc = xr.open_dataset(inputs["accuracy"]).load()
-timings = json.loads(inputs["timings"].read_text())
-cmp = pd.read_csv(inputs["comparison"])
+ked = load(inputs["result"])
+opt = load(inputs["optim"])
+pub_pt = load(inputs["at_published"])
+acc = load(inputs["accuracy"])
+timings = load(inputs["timings"])
+cmp = load(inputs["comparison"])
 section = json.loads(ked.attrs["config_json"])
-pub = {q["id"]: q["value"] for q in __import__("yaml").safe_load(inputs["published"].read_text())["quantities"]}
+pub = {q["id"]: q["value"] for q in load(inputs["published"])["quantities"]}
 base = pub_pt.sel(case="baseline (quasi-static)")
 
 # %% [markdown]
