@@ -28,69 +28,52 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import load, md, report_context, table
+from _common import esc, inputs, load, md, provenance, table
 
-from linkwork.beatup_dataset import table1_evidence
-
-inputs, _ = report_context(
-    {
-        "result": "results/beatup/sixbar.nc",
-        "window": "results/beatup/window.nc",
-        "accuracy": "results/beatup/accuracy.nc",
-        "timings": "results/beatup/accuracy_timings.json",
-        "comparison": "results/beatup/comparison.csv",
-        "published": "config/published/beatup.yaml",
-    }
-)
-ds = load(inputs["result"])
-win = load(inputs["window"])
-acc = load(inputs["accuracy"])
-timings = load(inputs["timings"])
-cmp = load(inputs["comparison"])
-published = load(inputs["published"])
-section = json.loads(ds.attrs["config_json"])
+files = inputs()
+ds = load(files["result"])
+win = load(files["window"])
+acc = load(files["accuracy"])
+timings = load(files["timings"])
+cmp = load(files["comparison"])
+fnd = load(files["findings"])
+published = load(files["published"])
+cfg = json.loads(ds.attrs["config_json"])
+win_cfg = json.loads(win.attrs["config_json"])
 pub = {q["id"]: q for q in published["quantities"]}
 t1 = cmp[cmp["id"].str.startswith("table1")]
 head = cmp[~cmp["id"].str.startswith("table1")]
 f = lambda name: float(ds[name])  # noqa: E731
-
-# Table 1 cell classes (evidence) ---------------------------------------------------------------
-spec = published["tables"][0]
-rows = np.array(spec["rows"], dtype=float)
-printed = {}
-tolerance = {}
-for j, name in enumerate(spec["column_names"]):
-    col = spec["columns"][name]
-    printed[col["variable"]] = rows[:, j + 1]
-    tolerance[col["variable"]] = col["tolerance"]["abs"]
-evidence = pd.DataFrame(table1_evidence(ds, printed, tolerance, section["grids"]["paper_step_deg"]))
-class_counts = evidence["class"].value_counts()
+count = dict(zip(fnd.cell_class_name.values, fnd.class_count.values.astype(int)))
+evidence = fnd[["column", "theta1", "printed", "ours", "deviation", "tolerance", "rounding_bound", "printed_column_fd", "our_coarse_fd", "cell_class"]].to_dataframe()
+evidence = evidence.rename(columns={"cell_class": "class"})
+table1_spec = next(t for t in published["tables"] if t["id"] == "table1")
+printed = {table1_spec["columns"][n]["variable"]: np.array(table1_spec["rows"], dtype=float)[:, j + 1] for j, n in enumerate(table1_spec["column_names"])}
 
 # %% [markdown]
 # ## Summary
 
 # %%
-n_match = int((t1.verdict == "matches").sum())
 md(
     f"""
-* **Table 1:** {n_match} of {len(t1)} printed numbers match within half a unit of the last digit. Of the others,
-  {int(class_counts.get('parameter rounding', 0))} are explained by the rounding of the printed parameters
-  (l4, l7, θ4, θ7 are printed to 0.01). {int(class_counts.get('marginal', 0))} are marginal (beyond rounding, but below
-  what the check below resolves). **{int(class_counts.get('printed cell inconsistent', 0))} printed cells are
-  inconsistent with the paper's own neighbouring cells**, and {int(class_counts.get('inconclusive', 0))} are
-  inconclusive because a neighbour used in the check is itself wrong. {int(class_counts.get('beyond parameter rounding', 0))}
-  θ6 angles lie beyond parameter rounding: the printed θ6 column runs {np.mean(printed['theta6'] - ds.theta6.values):+.4f}°
+* **Table 1:** {int(fnd.table1_matches)} of {int(fnd.table1_total)} printed numbers match within half a unit of the last digit. Of the others,
+  {count['parameter rounding']} are explained by the rounding of the printed parameters
+  (l4, l7, θ4, θ7 are printed to 0.01). {count['marginal']} are marginal (beyond rounding, but below
+  what the check below resolves). **{count['printed cell inconsistent']} printed cells are
+  inconsistent with the paper's own neighbouring cells**, and {count['inconclusive']} are
+  inconclusive because a neighbour used in the check is itself wrong. {count['beyond parameter rounding']}
+  θ6 angles lie beyond parameter rounding: the printed θ6 column runs {float(fnd.theta6_mean_offset):+.4f}°
   above ours on average (section 2).
-* **Headline numbers:** front dead centre {f('front_dead_centre'):.2f}° (printed 156.21°), total swing
-  {f('swing'):.2f}° (printed 15.92°). **The 167.28° from front to back dead centre holds for the crank turning towards
-  decreasing θ1** ({f('span_reverse'):.2f}°). Turning the way Table 1 is tabulated (increasing θ1) it is
-  {f('span_forward'):.2f}°. The velocity peaks near 80° and 300° after the front dead centre, and the acceleration
-  largest at the front, hold in that same reverse sense.
+* **Headline numbers:** front dead centre {f('front_dead_centre'):.2f}° (printed {pub['front_dead_centre']['value']:g}°), total swing
+  {f('swing'):.2f}° (printed {pub['swing']['value']:g}°). **The printed {pub['span_front_to_back']['value']:g}° from front to back dead
+  centre holds for the crank turning towards decreasing θ1** ({f('span_reverse'):.2f}°). Turning the way Table 1 is tabulated
+  (increasing θ1) it is {f('span_forward'):.2f}°. The velocity peaks near {pub['rate_peak_1']['value']:g}° and
+  {pub['rate_peak_2']['value']:g}° after the front dead centre, and the acceleration largest at the front, hold in that same reverse sense.
 * **Equations:** (4), (7) and (13) do not follow from (3) and (10). The corrected forms are given in section 4, and Table 1
   follows them (the printed (7) and (13) would change θ3'' by up to
-  {np.abs(ds.theta3_accel_eqs_printed - ds.theta3_accel).max().item():.3f} and θ6'' by up to
-  {np.abs(ds.theta6_accel_eqs_printed - ds.theta6_accel).max().item():.3f}).
-* **Weft window:** the 168° vs 147° comparison cannot be reproduced from the paper, which gives neither S_w nor the
+  {f('theta3_accel_eqs_printed_max_difference'):.3f} and θ6'' by up to
+  {f('theta6_accel_eqs_printed_max_difference'):.3f}).
+* **Weft window:** the {pub['window_sixbar']['value']:g}° vs {pub['window_fourbar']['value']:g}° comparison cannot be reproduced from the paper, which gives neither S_w nor the
   1511M dimensions. Section 5 shows which S_w and L/R values make the published numbers true.
 """
 )
@@ -99,7 +82,7 @@ md(
 # ## 1. Parameters
 
 # %%
-sb = section["sixbar"]
+sb = cfg["sixbar"]
 par = pd.DataFrame(
     [(f"l{i}", sb[f"l{i}_m"] * 1e3, "mm") for i in range(1, 8)]
     + [("θ4", sb["theta4_deg"], "deg"), ("θ7", sb["theta7_deg"], "deg"),
@@ -142,14 +125,10 @@ table(
      "15° difference of printed column": "{:.4f}", "same, of ours": "{:.4f}", "θ1 (deg)": "{:.0f}"},
     caption="Table 1, every cell; the last two columns are filled where the evidence check was applied",
 )
-cell180 = evidence[(evidence.column == "theta3_rate") & (evidence.theta1 == 180)].iloc[0]
-md(
-    "The θ1 = 180° row carries the largest errors: printed θ3' = −0.1495 where ours is "
-    f"{float(ds.theta3_rate.sel(crank_angle=180)):.4f}, and the paper's own θ3 column, differenced, gives "
-    f"{cell180.printed_column_fd:.4f} beside ours "
-    f"{float(ds.theta3_rate_coarse_fd.sel(crank_angle=180)):.4f}. The printed θ6'' at 240° (0.0790 against our "
-    f"{float(ds.theta6_accel.sel(crank_angle=240)):.4f}) is the other large error."
-)
+worst = evidence[evidence["class"] == "printed cell inconsistent"].assign(size=lambda d: d.deviation.abs() / d.tolerance).sort_values("size").iloc[::-1]
+lines = [f"* {labels[r.column]} at θ1 = {r.theta1:.0f}°: printed {r.printed:.4f}, ours {r.ours:.4f}; the 15° difference of the printed "
+         f"source column gives {r.printed_column_fd:.4f} beside ours {r.our_coarse_fd:.4f}" for r in worst.head(3).itertuples()]
+md("The largest printed-cell errors, each contradicted by the paper's own neighbouring cells:\n\n" + "\n".join(lines))
 
 # %% [markdown]
 # ## 3. Headline numbers
@@ -163,7 +142,7 @@ md(
     f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "
     f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. In the sense of increasing θ1 the velocity peaks "
     f"fall at {f('rate_peak_neg_forward'):.1f}° and {f('rate_peak_pos_forward'):.1f}° from the front dead centre, not "
-    f"near 80° and 300°. In the reverse sense they fall at {f('rate_peak_neg_reverse'):.1f}° and "
+    f"near {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}°. In the reverse sense they fall at {f('rate_peak_neg_reverse'):.1f}° and "
     f"{f('rate_peak_pos_reverse'):.1f}°. The largest |θ6''| ({f('theta6_accel_abs_max'):.4f} rad/rad²) lies "
     f"{f('accel_peak_reverse'):.1f}° from the front dead centre."
 )
@@ -189,9 +168,9 @@ for ax, var, ylabel in (
     ax.plot(p_phi, sense * printed[var], "kx", ms=5, label="Table 1 (printed)")
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
-for x in (80, 300):
+for x in (pub["rate_peak_1"]["value"], pub["rate_peak_2"]["value"]):
     axes[1].axvline(x, color="C3", ls=":", lw=1)
-axes[1].text(82, axes[1].get_ylim()[1] * 0.8, "'near 80° and 300°'", color="C3", fontsize=8)
+axes[1].text(pub["rate_peak_1"]["value"] + 2, axes[1].get_ylim()[1] * 0.8, "published peaks", color="C3", fontsize=8)
 axes[2].set_xlabel("crank angle from the front dead centre (deg, crank turning towards decreasing θ1)")
 axes[2].set_xticks(range(0, 361, 30))
 axes[0].legend(fontsize=8)
@@ -215,21 +194,15 @@ plt.show()
 # against our chain solver on the Table 1 grid.
 
 # %%
-rows_eq = []
-for name in ("theta3", "theta3_rate", "theta3_accel", "theta6", "theta6_rate", "theta6_accel"):
-    rows_eq.append((labels[name], "corrected (5)-(7), (11)-(13)", float(np.abs(ds[name + "_eqs"] - ds[name]).max())))
+rows_eq = [(labels[n], "corrected (5)-(7), (11)-(13) vs ours", f(f"{n}_eqs_max_difference")) for n in ("theta3", "theta3_rate", "theta3_accel", "theta6", "theta6_rate", "theta6_accel")]
 for name in ("theta3_accel", "theta6_accel"):
-    rows_eq.append((labels[name], "as printed (7), (13)", float(np.abs(ds[name + "_eqs_printed"] - ds[name]).max())))
-    rows_eq.append((labels[name], "as printed vs Table 1", float(np.abs(ds[name + "_eqs_printed"].values - printed[name]).max())))
-    rows_eq.append((labels[name], "corrected vs Table 1", float(np.abs(ds[name + "_eqs"].values - printed[name]).max())))
-table(pd.DataFrame(rows_eq, columns=["quantity", "closed form", "max |difference| from ours (or Table 1)"]), {"max |difference| from ours (or Table 1)": "{:.2e}"})
-ratio = min(
-    float(np.abs(ds[n + "_eqs_printed"].values - printed[n]).max() / np.abs(ds[n + "_eqs"].values - printed[n]).max())
-    for n in ("theta3_accel", "theta6_accel")
-)
+    rows_eq.append((labels[name], "as printed (7), (13) vs ours", f(f"{name}_eqs_printed_max_difference")))
+    rows_eq.append((labels[name], "as printed vs Table 1", float(fnd[f"{name}_printed_eqs_vs_table"])))
+    rows_eq.append((labels[name], "corrected vs Table 1", float(fnd[f"{name}_corrected_eqs_vs_table"])))
+table(pd.DataFrame(rows_eq, columns=["quantity", "closed form", "max |difference|"]), {"max |difference|": "{:.2e}"})
 md(
     "The corrected closed forms agree with the chain solver to rounding error. Table 1 follows the corrected forms: "
-    f"the printed ones miss it by at least {ratio:.0f} times more than the corrected ones do."
+    f"the printed ones miss it by at least {float(fnd.printed_eqs_worse_factor):.0f} times more than the corrected ones do."
 )
 
 # %% [markdown]
@@ -242,12 +215,12 @@ md(
 # its foremost position.
 
 # %%
-fb = section["fourbar"]
+fb = win_cfg["fourbar"]
 table(
     pd.DataFrame(
         [(k, v["value"], v["status"], v["reason"]) for k, v in fb.items()]
-        + [("scaled six-bar crank (m)", section["comparison"]["scaled_crank_m"], "sourced", "paper, Sec. 3"),
-           ("reed stroke S (m)", section["comparison"]["stroke_m"], "sourced", "paper, Sec. 3 (1511M value)")],
+        + [("scaled six-bar crank (m)", win_cfg["comparison"]["scaled_crank_m"], "sourced", "paper, Sec. 3"),
+           ("reed stroke S (m)", win_cfg["comparison"]["stroke_m"], "sourced", "paper, Sec. 3 (1511M value)")],
         columns=["value", "number", "status", "reason"],
     )
 )
@@ -255,8 +228,9 @@ md(
     f"Solved cloth-fell radii: six-bar {float(win.reed_radius_sixbar):.1f} mm (scaled swing {float(win.swing_sixbar_scaled):.2f}°), "
     f"four-bar {float(win.reed_radius_fourbar):.1f} mm. At the assumed S_w = {fb['weft_clearance_m']['value'] * 1e3:.0f} mm "
     f"the windows are {float(win.window_sixbar):.1f}° (six-bar) and {float(win.window_fourbar):.1f}° (four-bar, "
-    f"L/R = {fb['arm_to_crank']['value']:g}): a difference of {float(win.window_difference):.1f}°, against the printed 168°, "
-    "147° and 21°. These values rest on the assumptions above, so they are not verdicts."
+    f"L/R = {fb['arm_to_crank']['value']:g}): a difference of {float(win.window_difference):.1f}°, against the printed "
+    f"{pub['window_sixbar']['value']:g}°, {pub['window_fourbar']['value']:g}° and {pub['window_difference']['value']:g}°. "
+    "These values rest on the assumptions above, so they are not verdicts."
 )
 
 # %%
@@ -272,7 +246,7 @@ for name, colour in (("reed_sixbar", "C0"), ("reed_fourbar", "C1")):
     ax.fill_between(x, 0, win[name].values, where=above, color=colour, alpha=0.12)
 ax.set_xlabel("crank angle from the front dead centre (deg)")
 ax.set_ylabel("reed distance from its front position S (mm)")
-ax.set_title("Fig. 4 regenerated: reed displacement at cloth-fell height, equal stroke 153.5 mm")
+ax.set_title(f"Fig. 4 regenerated: reed displacement at cloth-fell height, equal stroke {win_cfg['comparison']['stroke_m'] * 1e3:g} mm")
 ax.set_xticks(range(0, 361, 30))
 ax.grid(alpha=0.3)
 ax.legend(fontsize=8)
@@ -290,9 +264,8 @@ sw_grid = win.weft_clearance.values
 w6 = win.window_sixbar_sweep.values
 w4 = win.window_fourbar_sweep.values
 ratios = win.arm_to_crank.values
-# the S_w at which the six-bar window equals the printed 168 deg (read from our curve, for comparison only)
-sw168 = float(np.interp(pub["window_sixbar"]["value"], w6[::-1], sw_grid[::-1]))
-w4_at = np.array([np.interp(sw168, sw_grid, w4[i]) for i in range(ratios.size)])
+sw168 = float(fnd.sw_for_printed_sixbar_window)
+w4_at = fnd.fourbar_window_at_that_sw.values
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.3), constrained_layout=True)
 axes[0].plot(sw_grid, w6, "k-", lw=2, label="six-bar")
 for i, r in enumerate(ratios):
@@ -312,14 +285,17 @@ axes[1].set_ylabel("six-bar window − four-bar window (deg)")
 axes[1].legend(fontsize=7)
 axes[1].grid(alpha=0.3)
 plt.show()
-ok = ratios[np.abs(w4_at - pub["window_fourbar"]["value"]) <= 3]
+band = float(fnd.fourbar_window_band)
+lo, hi = float(fnd.arm_to_crank_in_band_min), float(fnd.arm_to_crank_in_band_max)
 md(
-    f"Our six-bar reaches the printed 168° at S_w ≈ {sw168:.1f} mm. At that S_w our four-bar family gives windows from "
-    f"{w4_at.min():.1f}° to {w4_at.max():.1f}° over L/R = {ratios.min():g}–{ratios.max():g}. "
-    + (f"A window of 147 ± 3° needs L/R in {ok.min():g}–{ok.max():g}." if ok.size else "No swept L/R gives 147 ± 3°.")
+    f"Our six-bar reaches the printed {pub['window_sixbar']['value']:g}° at S_w ≈ {sw168:.1f} mm. At that S_w our four-bar family gives "
+    f"the windows of the table below. "
+    + (f"A window of {pub['window_fourbar']['value']:g} ± {band:g}° (the band is our reading) needs L/R in {lo:g}–{hi:g}." if np.isfinite(lo) else
+       f"No swept L/R gives {pub['window_fourbar']['value']:g} ± {band:g}°.")
     + " So the published comparison is consistent with a 1511M-type four-bar only within that range. We make no "
     "claim beyond this, because the 1511M dimensions are not in the paper."
 )
+table(pd.DataFrame({"L/R": ratios, "four-bar window at that S_w (deg)": w4_at}), {"four-bar window at that S_w (deg)": "{:.1f}", "L/R": "{:g}"})
 
 # %% [markdown]
 # ## 6. Accuracy vs cost: analytic derivatives vs finite differences
@@ -329,7 +305,7 @@ steps = acc.fd_step.values
 fig, axes = plt.subplots(1, 2, figsize=(12, 4), constrained_layout=True)
 for k, name in enumerate(acc.derivative.values):
     axes[0].loglog(steps, acc.error.values[k], "o-", label=name)
-axes[0].axvline(section["numerics"]["fd_step_deg"], color="k", ls=":", lw=1, label="step used for the Table 1 checks")
+axes[0].axvline(cfg["numerics"]["fd_step_deg"], color="k", ls=":", lw=1, label="step used for the Table 1 checks")
 axes[0].set_xlabel("central-difference step (deg of crank)")
 axes[0].set_ylabel("max |FD − analytic| over a turn")
 axes[0].legend(fontsize=8)
@@ -343,17 +319,16 @@ axes[1].set_ylabel("max error")
 axes[1].legend(fontsize=8)
 axes[1].grid(alpha=0.3, which="both")
 plt.show()
-best = acc.error.min("fd_step")
 md(
-    f"Central differences reach at best {float(best.sel(derivative='theta6_rate')):.1e} for θ6' and "
-    f"{float(best.sel(derivative='theta6_accel')):.1e} for θ6''. Truncation error falls as h² until round-off takes "
-    f"over: below about 0.01° for θ6'' and 0.001° for θ6'. Each FD evaluation costs about "
-    f"{np.median(fd_times) / timings['analytic_s']:.1f}× the analytic solve (three position solves), and the analytic "
-    "rates are exact to rounding. The pipeline therefore uses analytic rates and keeps FD only as a check."
+    f"Central differences reach at best {float(acc.best_error.sel(derivative='theta6_rate')):.1e} for θ6' and "
+    f"{float(acc.best_error.sel(derivative='theta6_accel')):.1e} for θ6''. Truncation error falls as h² until round-off takes "
+    f"over. One FD evaluation costs about {timings['fd_over_analytic_median']:.1f}× the analytic solve (median over the steps; "
+    "three position solves), and the analytic rates are exact to rounding. The pipeline therefore uses analytic rates and "
+    "keeps FD only as a check."
 )
 
 # %% [markdown]
 # ## Provenance
 
 # %%
-md("\n".join(f"* **{k}**: `{ds.attrs[k]}`" for k in ("paper_id", "source", "linkwork_version", "git_commit", "config_sha256", "fd_step_deg") if k in ds.attrs))
+provenance(ds)

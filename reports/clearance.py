@@ -29,33 +29,26 @@
 
 # %%
 import json
-from pathlib import Path
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import load, md, report_context, table
+from _common import esc, inputs, load, md, provenance, table
 
-inputs, _ = report_context(
-    {
-        "result": "results/clearance/claims.nc",
-        "accuracy": "results/clearance/accuracy.nc",
-        "timings": "results/clearance/accuracy_timings.json",
-        "comparison": "results/clearance/comparison.csv",
-        "published": "config/published/clearance.yaml",
-        "scenes": "results/clearance/decoded/ideal.nc",
-    }
-)
-claims = load(inputs["result"])
-wp = load(inputs["accuracy"])
-timings = load(inputs["timings"])
-cmp = load(inputs["comparison"])
-section = json.loads(claims.attrs["config_json"])
-root = Path(inputs["scenes"]).parent.parent
+files = inputs()
+claims = load(files["result"])
+wp = load(files["accuracy"])
+timings = load(files["timings"])
+cmp = load(files["comparison"])
 variants = [str(v) for v in claims.variant.values]
-scenes = {
-    (v, s): load(root / v / f"{s}.nc") for v in variants for s in section["scenes"]
-}
+scenes = {}
+for path in files["scenes"]:
+    ds = load(path)
+    scenes[(ds.attrs["variant"], ds.attrs["scene"])] = ds
+claims_cfg = json.loads(claims.attrs["config_json"])
+dry_cfg = json.loads(scenes[(variants[0], "dry_both")].attrs["config_json"])
+lub_cfg = json.loads(scenes[(variants[0], "lubricated_both")].attrs["config_json"])
+summary = claims[[v for v in claims.data_vars if v.startswith("summary_")]]
 
 # %% [markdown]
 # ## Summary: each claim per parameter variant
@@ -72,24 +65,12 @@ md(
 )
 
 # %%
-rows = []
-for v in variants:
-    for measure in ("rms_deviation", "peak_deviation"):
-        for qi, q in enumerate(claims.quantity.values):
-            x = claims[measure].sel(variant=v, quantity=q)
-            for tol in claims.tolerance_set.values:
-                for c in claims.cycle.values:
-                    vals = x.sel(tolerance_set=tol, cycle=c).values
-                    rows.append((v, measure.split("_")[0], q, tol, int(c), *vals))
-det = pd.DataFrame(rows, columns=["variant", "measure", "quantity", "tolerance", "cycle", *claims.scene.values])
-order_ok = []
-for _, r in det.iterrows():
-    if r.quantity == "rocker_acceleration":
-        order_ok.append(bool(r.dry_2 > r.dry_1 and r.dry_both > max(r.dry_1, r.dry_2)))
-    else:
-        order_ok.append(bool(r.dry_1 > r.dry_2 and r.dry_both > max(r.dry_1, r.dry_2)))
-det["order as claimed"] = np.where(order_ok, "matches", "deviates")
-det["lubricated / dry (max)"] = [max(r.lubricated_1 / r.dry_1, r.lubricated_2 / r.dry_2, r.lubricated_both / r.dry_both) for _, r in det.iterrows()]
+dev = pd.concat([claims[m].to_dataframe().reset_index().assign(measure=m.split("_")[0]) .pivot_table(
+    index=["variant", "measure", "quantity", "tolerance_set", "cycle"], columns="scene", values=m).reset_index() for m in ("rms_deviation", "peak_deviation")])
+checks = claims[["order_as_claimed", "lubricated_over_dry_max"]].to_dataframe().reset_index()
+det = dev.merge(checks, on=["variant", "measure", "quantity", "tolerance_set", "cycle"])
+det["order as claimed"] = np.where(det.pop("order_as_claimed") == 1, "matches", "deviates")
+det = det.rename(columns={"lubricated_over_dry_max": "lubricated / dry (max)", "tolerance_set": "tolerance"})
 fmt = {s: "{:.3g}" for s in claims.scene.values} | {"lubricated / dry (max)": "{:.3f}"}
 table(det, fmt, caption="Deviation from the ideal curve (rad/s² for the acceleration, N·m for the torque), per cycle and tolerance")
 
@@ -97,18 +78,21 @@ table(det, fmt, caption="Deviation from the ideal curve (rad/s² for the acceler
 # ## 1. Model, parameters and the defects of the printed model
 
 # %%
-b, j, a = section["bodies"], section["joints"], section["assumed"]
-rows = [(f"{k} (L, m, J)", f"{v['length_m']:.4g} m, {v['mass_kg']:g} kg, {v['inertia_kg_m2']:g} kg·m²", "decoded") for k, v in b.items()]
-rows += [("ground", f"{section['ground_m']} m", "decoded"), ("crank speed", f"{section['crank_speed_rad_s']:.4g} rad/s", "decoded (20π)"),
+b, j = dry_cfg["bodies"], dry_cfg["joints"]
+rows = [(f"{k} (L, m)", f"{v['length_m']:.4g} m, {v['mass_kg']:g} kg", "decoded") for k, v in b.items()]
+rows += [(f"{k} J (decoded variant)", f"{v['inertia_kg_m2']:g} kg·m²", "decoded") for k, v in b.items() if "inertia_kg_m2" in v]
+rows += [("ground", f"{dry_cfg['ground_m']} m", "decoded"), ("crank speed", f"{dry_cfg['crank_speed_rad_s']:.4g} rad/s", "decoded (20π)"),
          ("journal / bearing radius", f"{j['journal_radius_m'] * 1e3:g} / {j['bearing_radius_m'] * 1e3:g} mm", "decoded"),
          ("E, ν", f"{j['youngs_modulus_Pa'] / 1e9:g} GPa, {j['poisson']}", "decoded"),
          ("restitution, friction", f"{j['restitution']}, {j['friction']}", "decoded"),
-         ("viscosity", f"{j['viscosity_Pa_s']} Pa·s", "decoded"), ("contact law", j["contact_law"], "paper")]
-rows += [(k, f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in a.items()]
+         ("viscosity", f"{lub_cfg['joints']['viscosity_Pa_s']} Pa·s", "decoded"), ("contact law", j["contact_law"], "paper")]
+assumed = {**dry_cfg.get("assumed", {}), **lub_cfg.get("assumed", {})}
+rows += [(k, f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in assumed.items()]
 rows += [("centres of mass", "mid-link", "assumed"), ("gravity", "on (the scenes name it)", "assumed: the paper's 'no-load' means no external load"),
          ("start", "crank and coupler extended (rocker dead point), journals centred", "paper / assumed")]
 table(pd.DataFrame(rows, columns=["parameter", "value", "source"]))
-ideal = scenes[(variants[0], "ideal")]
+run = {str(r): i for i, r in enumerate(claims.run.values)}
+first = summary.isel(variant=0)
 md(
     f"""
 **Resolved defects of the printed model:**
@@ -120,13 +104,13 @@ md(
 * *Wedge term (eq. 22).* The text speaks of "the relative angular velocity", but both journal and bearing rotate, so we
   use ω_journal + ω_bearing − 2γ̇ in the fixed frame.
 * *Transition (eq. 23).* As printed it is infinite at e = c and undefined beyond. We cap the film force at
-  ε_lim = 1 − e0/c = {1 - a['e0_m']['value'] / j['journal_radius_m'] * 0 - a['e0_m']['value'] / (j['bearing_radius_m'] - j['journal_radius_m']):.3f}, which keeps it continuous
+  ε_lim = 1 − e0/c = {float(first.summary_film_cap.sel(run='lubricated_both')):.3f}, which keeps it continuous
   and bounded. The dry contact, named in the lubricated scenes too, takes over past e = c.
 * *"Pure squeeze film"* (text) against the printed wedge term (eq. 22): we keep both the squeeze and the wedge term.
 
-Hertz stiffness of eq. (9): K = {scenes[(variants[0], 'dry_1')].attrs['hertz_stiffness']:.3g} N/m^1.5. The
-ideal joint forces reach {float(ideal.ideal_joint_force_A.max()):.3g} N at A and {float(ideal.ideal_joint_force_B.max()):.3g} N at B
-(decoded inertias): at such forces the Hertz penetration exceeds the 0.05 mm clearance (section 4).
+Hertz stiffness of eq. (9): K = {float(first.summary_hertz_stiffness.sel(run='dry_1')):.3g} N/m^1.5. The
+ideal joint forces reach {float(first.summary_ideal_force_A.sel(run='ideal')):.3g} N at A and {float(first.summary_ideal_force_B.sel(run='ideal')):.3g} N at B
+({esc(variants[0])} inertias): at such forces the Hertz penetration exceeds the clearance (section 4).
 """
 )
 
@@ -147,7 +131,7 @@ for v in variants:
             ax.set_title(f"{v}: {var.replace('_', ' ')}, {jt}")
             ax.set_ylabel(f"{var.replace('_', ' ')} ({unit})")
             ax.grid(alpha=0.3)
-        axes[1, col].set_xlabel("crank angle over two steady cycles (deg)")
+        axes[1, col].set_xlabel("crank angle over the recorded cycles (deg)")
     axes[0, 0].legend(fontsize=8)
     plt.show()
 
@@ -155,22 +139,19 @@ for v in variants:
 # ## 3. Settling, drift and cost per scene
 
 # %%
-rows = []
-for (v, s), ds in scenes.items():
-    if s == "ideal":
-        continue
-    ch = ds.cycle_change.values
-    rows.append((v, s, ds.attrs["integrator"], int(ds.attrs["steps"]), f"{ch[0]:.2f} → {ch[-1]:.3f}", float(ds.constraint_drift.max()),
-                 int(ds.attrs["evaluations_contact"]), int(ds.attrs["evaluations_friction"]), int(ds.attrs["evaluations_lubrication"])))
-table(
-    pd.DataFrame(rows, columns=["variant", "scene", "integrator", "steps", "cycle-to-cycle change (first → last)", "max drift |Φ| (m)",
-                                "contact evaluations", "friction evaluations", "lubrication evaluations"]),
-    {"max drift |Φ| (m)": "{:.1e}"},
-)
+runs = summary.to_dataframe().reset_index()
+per_run = runs[runs.joint == runs.joint.min()].copy()
+per_run = per_run[per_run.run != "ideal"]
+per_run["cycle-to-cycle change (first → last)"] = [f"{a:.2f} → {b:.3f}" for a, b in zip(per_run.summary_first_change, per_run.summary_last_change)]
+show = per_run[["variant", "run", "summary_integrator", "summary_steps", "cycle-to-cycle change (first → last)", "summary_max_drift",
+                "summary_n_contact", "summary_n_friction", "summary_n_lubrication"]]
+show.columns = ["variant", "scene", "integrator", "steps", "cycle-to-cycle change (first → last)", "max drift |Φ| (m)", "contact evaluations",
+                "friction evaluations", "lubrication evaluations"]
+table(show, {"max drift |Φ| (m)": "{:.1e}", "steps": "{:.0f}", "contact evaluations": "{:.0f}", "friction evaluations": "{:.0f}", "lubrication evaluations": "{:.0f}"})
 md(
-    f"The first {section['numerics']['settle_cycles']} cycles are discarded. The cycle-to-cycle change of the rocker "
+    f"The first {dry_cfg['numerics']['settle_cycles']} cycles are discarded. The cycle-to-cycle change of the rocker "
     "acceleration falls from the start-up transient to the level of the persistent impact-to-impact variation of the dry "
-    "scenes, which never becomes exactly periodic. The two recorded cycles therefore show that variation, and the claims "
+    "scenes, which never becomes exactly periodic. The recorded cycles therefore show that variation, and the claims "
     "are judged on each cycle separately. The evaluation counters show that an effect a scene does not name is never "
     "evaluated: the lubrication count is zero in every dry scene, and friction is zero in every lubricated one."
 )
@@ -179,27 +160,19 @@ md(
 # ## 4. Joint forces and penetration against the clearance
 
 # %%
-rows = []
-c = section["joints"]["bearing_radius_m"] - section["joints"]["journal_radius_m"]
-for (v, s), ds in scenes.items():
-    if s == "ideal":
-        rows.append((v, s, np.nan, np.nan, float(ds.ideal_joint_force_A.max()), float(ds.ideal_joint_force_B.max())))
-        continue
-    for jn in (1, 2):
-        pen = ds.penetration.sel(joint=jn)
-        if np.isfinite(pen).any():
-            rows.append((v, f"{s} (joint {jn})", float(pen.max()) / c, float(ds.eccentricity.sel(joint=jn).max()) / c,
-                         float(ds.contact_force.sel(joint=jn).max()), float(np.abs(ds.film_radial_force.sel(joint=jn)).max())))
-table(
-    pd.DataFrame(rows, columns=["variant", "scene", "max penetration / c", "max eccentricity / c", "max dry contact force or joint-A force (N)",
-                                "max film force or joint-B force (N)"]),
-    {"max penetration / c": "{:.2f}", "max eccentricity / c": "{:.2f}", "max dry contact force or joint-A force (N)": "{:.3g}",
-     "max film force or joint-B force (N)": "{:.3g}"},
-)
+joints = runs[runs.summary_max_eccentricity_ratio.notna()][["variant", "run", "joint", "summary_max_penetration_ratio", "summary_max_eccentricity_ratio",
+                                                          "summary_max_contact_force", "summary_max_film_force"]]
+joints.columns = ["variant", "scene", "joint", "max (|e| − c)/c (> 0: penetration, < 0: gap)", "max eccentricity / c", "max dry contact force (N)", "max film force (N)"]
+table(joints, {"max (|e| − c)/c (> 0: penetration, < 0: gap)": "{:.2f}", "max eccentricity / c": "{:.2f}", "max dry contact force (N)": "{:.3g}", "max film force (N)": "{:.3g}"})
+ideal_forces = per_run[["variant"]].drop_duplicates().assign(
+    A=[float(summary.summary_ideal_force_A.sel(variant=v, run="ideal")) for v in per_run.variant.drop_duplicates()],
+    B=[float(summary.summary_ideal_force_B.sel(variant=v, run="ideal")) for v in per_run.variant.drop_duplicates()])
+ideal_forces.columns = ["variant", "largest ideal reaction at joint 1 (N)", "largest ideal reaction at joint 2 (N)"]
+table(ideal_forces, {c: "{:.3g}" for c in ideal_forces.columns if c != "variant"})
 md(
-    "With the decoded inertias the dry penetration exceeds the 0.05 mm clearance itself, so the Hertz law is well outside "
+    "With the decoded inertias the dry penetration exceeds the clearance itself, so the Hertz law is well outside "
     "its range: the decoded parameter set is not physically consistent. The slender-rod variant keeps the penetration "
-    "below the clearance, and its lubricated joints never touch (eccentricity below c)."
+    "below the clearance, and its lubricated journals never touch (eccentricity below c)."
 )
 
 # %% [markdown]
@@ -216,9 +189,8 @@ for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
         ax.loglog(t[ok], err[ok], "o-", label=method)
         for ti, ei, lab in zip(t[ok], err[ok], wp.setting.values[sel][ok]):
             ax.annotate(lab.split()[1], (ti, ei), fontsize=6)
-    pipeline = section["integrators"]["stiff" if "lubricated" in scene else "explicit"]
-    label = f"{pipeline['method']} rtol={pipeline['rtol']:.0e}"
-    if label in list(wp.setting.values):
+    chosen = [str(s_).rsplit(" (", 1)[0] for s_, flag in zip(wp.wp_setting.values, wp.wp_pipeline.values) if flag and str(s_).endswith(f"({scene})")]
+    for label in chosen:
         i = list(wp.setting.values).index(label)
         ax.plot(timings["runs"][f"{scene}/{label}"], float(wp.error.sel(scene=scene).values[i]), "k*", ms=14, label="pipeline setting")
     ax.set_title(f"{scene} ({wp.attrs['variant']}, {wp.attrs['horizon_cycles']} cycle)")
@@ -229,16 +201,10 @@ for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
 plt.show()
 lines = []
 for scene in wp.scene.values:
-    e = wp.error.sel(scene=scene)
-    best = {}
-    for i, lab in enumerate(wp.setting.values):
-        if np.isfinite(e.values[i]):
-            t_i = timings["runs"][f"{scene}/{lab}"]
-            m = lab.split()[0]
-            best.setdefault(m, []).append((t_i, float(e.values[i]), lab))
-    parts = [f"{m}: {min(v, key=lambda x: x[1])[1]:.1e} at best ({min(v, key=lambda x: x[1])[2]}, {min(v, key=lambda x: x[1])[0]:.2f} s)" for m, v in best.items()]
-    pw = wp.pointwise_error.sel(scene=scene)
-    lines.append(f"* **{scene}**: " + "; ".join(parts) + f". Pointwise error {np.nanmin(pw):.1e}–{np.nanmax(pw):.1e}.")
+    parts = [f"{m}: {float(wp.best_error.sel(scene=scene, wp_method_name=m)):.1e} at best ({wp.best_setting.sel(scene=scene, wp_method_name=m).item()}, "
+             f"{timings['best_s'][f'{scene}/{m}']:.2f} s)" for m in wp.wp_method_name.values if f"{scene}/{m}" in timings["best_s"]]
+    lines.append(f"* **{scene}**: " + "; ".join(parts) + f". Pointwise error {float(wp.pointwise_error_min.sel(scene=scene)):.1e}–"
+                 f"{float(wp.pointwise_error_max.sel(scene=scene)):.1e}.")
 md(
     f"Reference: {wp.attrs['reference']}. The pipeline settings are {wp.attrs['pipeline_settings']}.\n\n" + "\n".join(lines) + "\n\n"
     "The error shown is that of the RMS deviation from the ideal curve, the measure the claims use. The pointwise error "
@@ -252,4 +218,4 @@ md(
 # ## Provenance
 
 # %%
-md("\n".join(f"* **{k}**: `{claims.attrs[k]}`" for k in ("paper_id", "source", "linkwork_version", "git_commit", "config_sha256") if k in claims.attrs))
+provenance(claims)

@@ -41,95 +41,51 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import load, md, report_context, table
+from _common import esc, inputs, load, md, provenance, table
 
-inputs, _ = report_context(
-    {
-        "result": "results/heald/chain.nc",
-        "accuracy": "results/heald/accuracy.nc",
-        "timings": "results/heald/accuracy_timings.json",
-        "comparison": "results/heald/comparison.csv",
-        "published": "config/published/heald.yaml",
-    }
-)
-ds = load(inputs["result"])
-acc = load(inputs["accuracy"])
-timings = load(inputs["timings"])
-cmp = load(inputs["comparison"])
-section = json.loads(ds.attrs["config_json"])
+files = inputs()
+ds = load(files["result"])
+acc = load(files["accuracy"])
+timings = load(files["timings"])
+cmp = load(files["comparison"])
+fnd = load(files["findings"])
+cfg = json.loads(ds.attrs["config_json"])
 models = [str(m) for m in ds.model.values]
-many = section["claims"]["many_times"]
-limit = float(cmp[cmp.id == "limit_41_89"].published.iloc[0])
-band_top = float(ds.omega.max())
-
-
-def ranges(x, ok):
-    """Text for the sub-ranges of a sweep where a claim holds."""
-    x, ok = np.asarray(x), np.asarray(ok, dtype=bool)
-    if ok.all():
-        return f"all of {x.min():.3g}–{x.max():.3g}"
-    if not ok.any():
-        return f"none of {x.min():.3g}–{x.max():.3g}"
-    parts, start = [], None
-    for i, flag in enumerate(ok):
-        if flag and start is None:
-            start = i
-        if (not flag or i == ok.size - 1) and start is not None:
-            end = i if flag else i - 1
-            parts.append(f"{x[start]:.3g}–{x[end]:.3g}")
-            start = None
-    return ", ".join(parts)
-
+many = float(fnd.many_times)
+limit = float(fnd.limit_rad_s)
 
 # %% [markdown]
 # ## Summary: each claim, per model
 
 # %%
-support = []
-for m in models:
-    s = ds.sel(model=m)
-    support.append(
-        {
-            "model": m,
-            "claim": "force in E many times that in F",
-            "at the assumed parameters": f"|Q_E|/|Q_F| = {float(s.ratio_EF_min):.2f}–{float(s.ratio_EF_max):.2f}",
-            "holds for |R_E|/|R_F| in": ranges(ds.reaction_ratio, s.ratio_EF_min_vs_reaction_ratio >= many),
-            "holds for clearance Δ (m) in": ranges(ds.clearance, s.ratio_EF_min_vs_clearance >= many),
-        }
-    )
-    support.append(
-        {
-            "model": m,
-            "claim": "forces grow with frequency",
-            "at the assumed parameters": f"grow over {float(s.growth_fraction):.0%} of the band",
-            "holds for heald mass (kg) in": ranges(ds.heald_mass, s.growth_fraction_vs_heald_mass >= 1.0),
-            "holds for warp stiffness (N/m) in": ranges(ds.warp_stiffness, s.growth_fraction_vs_warp_stiffness >= 1.0),
-        }
-    )
-    near = lambda v: np.abs(v - limit) <= 0.1 * limit  # noqa: E731
-    support.append(
-        {
-            "model": m,
-            "claim": f"limit 400 min⁻¹ = {limit} s⁻¹ (lowest resonance within 10 %)",
-            "at the assumed parameters": f"lowest resonance {float(s.first_resonance):.2f} rad/s",
-            "holds for heald mass (kg) in": ranges(ds.heald_mass, near(s.first_resonance_vs_heald_mass)),
-            "holds for warp stiffness (N/m) in": ranges(ds.warp_stiffness, near(s.first_resonance_vs_warp_stiffness)),
-        }
-    )
-sup = pd.DataFrame(support).fillna("–")
+sweep_labels = {"reaction_ratio": "|R_E|/|R_F|", "clearance": "clearance Δ (m)", "heald_mass": "heald mass (kg)", "warp_stiffness": "warp stiffness (N/m)"}
+claim_labels = {"force_E_many_times_F": "force in E many times that in F", "forces_grow_with_frequency": "forces grow with frequency",
+                "limit_41_89": f"limit 400 min⁻¹ = {limit:g} s⁻¹ (lowest resonance within ±{float(fnd.limit_band):.2g} rad/s)"}
+at_params = {
+    "force_E_many_times_F": lambda s: f"|Q_E|/|Q_F| = {float(s.ratio_EF_min):.2f}–{float(s.ratio_EF_max):.2f}",
+    "forces_grow_with_frequency": lambda s: f"grow over {float(s.growth_fraction):.0%} of the band",
+    "limit_41_89": lambda s: f"lowest resonance {float(s.first_resonance):.2f} rad/s",
+}
 verdicts = cmp.set_index(["model", "id"])["verdict"]
-ids = ["force_E_many_times_F", "forces_grow_with_frequency", "limit_41_89"]
-sup.insert(2, "verdict at the assumed parameters", [verdicts[(m, i)] for m in models for i in ids])
-table(sup)
+rows = []
+for m in models:
+    for claim in fnd.claim.values:
+        row = {"model": m, "claim": claim_labels[claim], "verdict at the assumed parameters": verdicts[(m, claim)],
+               "at the assumed parameters": at_params[claim](ds.sel(model=m))}
+        for sweep in fnd.sweep.values:
+            text = str(fnd.holds_for.sel(model=m, claim=claim, sweep=sweep).values)
+            row[f"holds for {sweep_labels[sweep]} in"] = text or "–"
+        rows.append(row)
+table(pd.DataFrame(rows))
 md(
     f"""
-**Reading.** "Many times" is read as a ratio of at least {many:g} over the whole speed band (10–{ds.shaft_speed.max().item():.0f} min⁻¹),
-and the 41.89 s⁻¹ limit as a resonance of the model lying within 10 % of it. The verdicts hold at the assumed parameters;
-the ranges columns say where each claim would hold instead. In model A the E/F force ratio equals the ratio of the joint
+**Reading.** "Many times" is read as a ratio of at least {many:g} over the whole speed band ({cfg['speeds']['min_rpm']:g}–{cfg['speeds']['max_rpm']:g} min⁻¹),
+and the {limit:g} s⁻¹ limit as a resonance of the model lying within the band above. The verdicts hold at the assumed parameters;
+the range columns say where each claim would hold instead. In model A the E/F force ratio equals the ratio of the joint
 stiffnesses k_E/k_F, so the first claim needs Vulfson's k_τ at E to be several times that at F. That means a larger
 reaction or a smaller clearance at E. In model B the ratio follows the reduced masses of the two sides and stays near 1
 unless they differ. In model A a force resonance of the frame on the warp, reached through the bell cranks, falls at
-{float(ds.first_resonance.sel(model='A')):.1f} rad/s ({float(ds.first_resonance.sel(model='A')) / (2 * np.pi / 60):.0f} min⁻¹),
+{float(ds.first_resonance.sel(model='A')):.1f} rad/s ({float(ds.first_resonance_rpm.sel(model='A')):.0f} min⁻¹),
 close to the paper's 400 min⁻¹ limit. It also makes the joint forces dip there, so in model A "forces grow with frequency"
 fails at these parameters.
 """
@@ -139,8 +95,8 @@ fails at these parameters.
 # ## 1. Parameters (all assumed: the paper prints none)
 
 # %%
-rows = [(k, v["value"], v["status"], v["reason"]) for k, v in section["parameters"].items()]
-rows.append(("displacement amplitude at D (m)", section["excitation"]["displacement_amplitude_m"]["value"], "assumed", section["excitation"]["displacement_amplitude_m"]["reason"]))
+rows = [(k, v["value"], v["status"], v["reason"]) for k, v in cfg["parameters"].items()]
+rows.append(("displacement amplitude at D (m)", cfg["excitation"]["displacement_amplitude_m"]["value"], "assumed", cfg["excitation"]["displacement_amplitude_m"]["reason"]))
 table(pd.DataFrame(rows, columns=["parameter", "value", "status", "reason"]), {"value": "{:g}"})
 md(
     f"Joint stiffnesses from Vulfson's model: k_E = {float(ds.k_E.sel(joints='elastic')):.3g} N/m and "
@@ -159,7 +115,7 @@ for i, m in enumerate(models):
         ax = axes[i, j]
         for variant, style in (("ideal", "--"), ("elastic", "-")):
             ax.plot(speed, ds[var].sel(model=m, joints=variant), style, label=f"{var} {variant}")
-        ax.axvline(400, color="C3", ls=":", lw=1)
+        ax.axvline(float(fnd.limit_rpm), color="C3", ls=":", lw=1)
         ax.set_title(f"model {m}: {label}")
         ax.set_ylabel("force amplitude (N)")
         ax.set_yscale("log")
@@ -168,7 +124,7 @@ for i, m in enumerate(models):
 for ax in axes[-1]:
     ax.set_xlabel("main-shaft speed (min⁻¹)")
 plt.show()
-md("The dotted line marks the paper's 400 min⁻¹. Force amplitudes are for the assumed drive amplitude and scale linearly with it.")
+md(f"The dotted line marks the paper's {float(fnd.limit_rpm):.0f} min⁻¹. Force amplitudes are for the assumed drive amplitude and scale linearly with it.")
 
 # %% [markdown]
 # ## 3. Eq. (2) confirmed for model B
@@ -181,14 +137,14 @@ md("The dotted line marks the paper's 400 min⁻¹. Force amplitudes are for the
 # because the sum runs from −∞ to +∞ between its poles, so zeros and poles interlace.
 
 # %%
-num_w = ds.eq2_numerator_frequencies.values
-den_w = ds.eq2_denominator_frequencies.values
-merged = sorted([(w, "zero (velocity resonance)") for w in num_w] + [(w, "pole (force resonance)") for w in den_w])
-kinds = [k for _, k in merged]
-interlaced = all(kinds[i] != kinds[i + 1] for i in range(len(kinds) - 1)) and kinds[0].startswith("zero")
-table(pd.DataFrame(merged, columns=["frequency (rad/s)", "kind"]), {"frequency (rad/s)": "{:.2f}"})
+freqs = pd.DataFrame(
+    [(w, "zero (velocity resonance)") for w in ds.eq2_numerator_frequencies.values]
+    + [(w, "pole (force resonance)") for w in ds.eq2_denominator_frequencies.values],
+    columns=["frequency (rad/s)", "kind"],
+).sort_values("frequency (rad/s)")
+table(freqs, {"frequency (rad/s)": "{:.2f}"})
 md(
-    f"Interlacing ω09 < ω07 < ω010 < ω08 < ω011: **{'yes' if interlaced else 'no'}**. Numerator degree 6 and "
+    f"Interlacing ω09 < ω07 < ω010 < ω08 < ω011: **{'yes' if int(ds.eq2_interlaced) else 'no'}**. Numerator degree 6 and "
     f"denominator degree 5 in ω (the mobility is spring-like at high frequency and mass-like at low frequency). "
     f"Eq. (2) with these frequencies against the network solution of model B: max relative difference "
     f"{float(ds.eq2_relative_difference):.1e}. The eigen-solver's resonances of model B (undamped) are velocity "
@@ -211,7 +167,7 @@ axes[0].axhline(many, color="C3", ls=":", lw=1)
 axes[0].set_xlabel("|R_E| / |R_F|")
 axes[0].set_ylabel("min |Q_E|/|Q_F| over the band")
 for ax in axes[1:]:
-    ax.axhspan(0.9 * limit, 1.1 * limit, color="C3", alpha=0.15, label="41.89 s⁻¹ ± 10 %")
+    ax.axhspan(limit - float(fnd.limit_band), limit + float(fnd.limit_band), color="C3", alpha=0.15, label=f"{limit:g} s⁻¹ ± {float(fnd.limit_band):.2g}")
     ax.set_ylabel("lowest resonance (rad/s)")
 axes[1].set_xlabel("heald-frame mass M_P (kg)")
 axes[2].set_xlabel("warp stiffness k_O (N/m)")
@@ -246,7 +202,7 @@ pts = acc.grid_points.values
 t_grid = np.array([timings["grid_s"][str(int(n))] for n in pts])
 fig, axes = plt.subplots(1, 2, figsize=(12, 4), constrained_layout=True)
 axes[0].loglog(pts, acc.peak_error, "o-")
-axes[0].axvline(section["speeds"]["points"] * (acc.band_rad_s[1] - acc.band_rad_s[0]) / (band_top - float(ds.omega.min())), color="k", ls=":", lw=1, label="density of the pipeline's grid")
+axes[0].axvline(float(acc.pipeline_density), color="k", ls=":", lw=1, label="density of the pipeline's grid")
 axes[0].set_xlabel("points of a uniform grid over the band")
 axes[0].set_ylabel("relative error of the peak force")
 axes[0].legend(fontsize=8)
@@ -258,14 +214,13 @@ axes[1].set_ylabel("relative error of the peak force")
 for ax in axes:
     ax.grid(alpha=0.3, which="both")
 plt.show()
-good = pts[acc.peak_error.values < 1e-3]
 md(
     f"The reference is the peak of |{acc.attrs['quantity']}| (model {acc.attrs['model']}) located by bounded Brent "
     f"search in {int(acc.reference_evaluations)} force evaluations: {float(acc.reference_peak):.3f} N at "
     f"{float(acc.reference_omega):.4f} rad/s. A uniform grid approximates the peak with an error that falls roughly "
     "as (spacing)² / (peak width)², and it jumps with the alignment of grid points to the peak. Solve time grows "
     "linearly with the number of points. "
-    + (f"The peak is within 0.1 % from {int(good.min())} points over the band onwards. " if good.size else "")
+    + (f"The peak is within 0.1 % from {float(acc.points_for_0_1_percent):.0f} points over the band onwards. " if np.isfinite(float(acc.points_for_0_1_percent)) else "")
     + "When the peak force is what matters, a coarse grid plus a local Brent refinement costs far less than a fine grid."
 )
 
@@ -273,4 +228,4 @@ md(
 # ## Provenance
 
 # %%
-md("\n".join(f"* **{k}**: `{ds.attrs[k]}`" for k in ("paper_id", "source", "linkwork_version", "git_commit", "config_sha256", "displacement_amplitude_m", "frequency_points") if k in ds.attrs))
+provenance(ds)

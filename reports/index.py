@@ -21,42 +21,27 @@
 
 # %%
 import pandas as pd
-from _common import load, md, report_context, table
+from _common import inputs, load, md, table
 
-from linkwork.compare import verdict_counts
+from linkwork.papers import PAPERS
 
-inputs, params = report_context({})
-papers = params.get("papers", ["stiffness", "beatup", "clearance", "transplanter", "heald"])
-reference = params.get("reference_forms", {})
-titles = {
-    "stiffness": "Huang, Wu, Li 2022: equivalent stiffness of a coupled four-bar (energy method)",
-    "beatup": "Gao 1983: six-bar beating-up mechanism vs four-bar",
-    "clearance": "Li et al.: four-bar with clearance joints and lubrication",
-    "transplanter": "Li, Xu 2001: elastodynamic design of a crank-rocker transplanter",
-    "heald": "Grigoriev, Kheylo 2021: mechanical chains of a heald motion",
-}
+files = inputs()
 rows = []
-for paper in papers:
-    path = inputs.get(f"comparison_{paper}")
-    if path is None or not path.exists():
-        rows.append((paper, titles.get(paper, ""), None, None, None, "not yet built", ""))
-        continue
-    cmp = load(path)  # papers with a single model leave the model column empty ("")
-    ref = reference.get(paper, cmp.model.iloc[0] if len(cmp) else "")
-    counts = verdict_counts(cmp[cmp.model == ref])
-    others = []
-    for model, group in cmp.groupby("model"):
-        if model != ref:
-            c = verdict_counts(group)
-            others.append(f"{model}: {c['matches']} matched, {c['deviates']} deviating, {c['not reproducible']} n/r")
-    link = f'<a href="{paper}.html">{paper} report</a>' + (f" (reference form: {ref})" if ref else "")
-    rows.append((paper, titles.get(paper, ""), counts["matches"], counts["deviates"], counts["not reproducible"], link, "; ".join(others)))
+for paper, title in PAPERS.items():
+    findings = load(files[f"findings_{paper}"])
+    counts = findings.verdict_count
+    models = [str(m) for m in counts.count_model.values]
+    ref = findings.attrs["reference_model"]
+    c = counts.sel(count_model=ref)
+    others = "; ".join(
+        f"{m}: {int(counts.sel(count_model=m, verdict='matches'))} matched, {int(counts.sel(count_model=m, verdict='deviates'))} deviating, "
+        f"{int(counts.sel(count_model=m, verdict='not reproducible'))} n/r" for m in models if m != ref
+    )
+    link = f'<a href="{paper}.html">{paper} report</a>' + (f" (reference: {ref})" if ref else "")
+    rows.append((paper, title, int(c.sel(verdict="matches")), int(c.sel(verdict="deviates")), int(c.sel(verdict="not reproducible")), link, others))
 df = pd.DataFrame(rows, columns=["paper", "title", "matched", "deviating", "not reproducible", "report", "other model forms"])
-for col in ("matched", "deviating", "not reproducible"):
-    df[col] = df[col].map(lambda v: "–" if pd.isna(v) else f"{int(v)}")
-table(df)
+table(df, html_columns=("report",))
 md(
-    f"{sum(r[5] != 'not yet built' for r in rows)} of {len(rows)} papers built. What accuracy costs in time, for every "
-    'numerical method of the pipeline: <a href="accuracy.html">accuracy report</a>. Parameter sweeps: '
-    '<a href="sweeps.html">sweeps report</a>.'
+    'What accuracy costs in time, for every numerical method of the pipeline: <a href="accuracy.html">accuracy report</a>. '
+    'Parameter sweeps: <a href="sweeps.html">sweeps report</a>.'
 )

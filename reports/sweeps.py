@@ -19,12 +19,13 @@ import json
 
 import matplotlib.pyplot as plt
 import numpy as np
-from _common import load, md, report_context
+from _common import inputs, load, md
 
-inputs, _ = report_context({"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"})
-cl = load(inputs["result"])
-he = load(inputs["heald"])
-cfg = json.loads(cl.attrs["config_json"])
+files = inputs()
+cl = load(files["result"])
+he = load(files["heald"])
+cl_spec = json.loads(cl.attrs["config_json"])["spec"]
+he_spec = json.loads(he.attrs["config_json"])["spec"]
 
 # %%
 fig, axes = plt.subplots(2, 2, figsize=(12, 9), constrained_layout=True)
@@ -48,7 +49,7 @@ for ax, (ds, var, xdim, ydim, xs, ys, xl, yl) in zip(axes.flat, panels):
     fig.colorbar(im, ax=ax)
 plt.show()
 md(
-    f"Clearance sweep: scene `{cfg['scene']}`, variant `{cfg['variant']}`, {cfg['settle_cycles']} settling and "
-    f"{cfg['record_cycles']} recorded cycle(s) per point. Heald sweep: model {json.loads(he.attrs['config_json'])['model']}, "
+    f"Clearance sweep: scene `{cl_spec['scene']}`, variant `{cl_spec['variant']}`, {cl_spec['settle_cycles']} settling and "
+    f"{cl_spec['record_cycles']} recorded cycle(s) per point. Heald sweep: model {he_spec['model']}, "
     "elastic joints, over the configured speed band."
 )

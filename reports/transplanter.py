@@ -31,53 +31,41 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import load, md, report_context, table
+from _common import esc, inputs, load, md, provenance, table
 
-from linkwork.transplanter import discretise
-
-inputs, _ = report_context(
-    {
-        "result": "results/transplanter/ked.nc",
-        "optim": "results/transplanter/optim.nc",
-        "at_published": "results/transplanter/at_published.nc",
-        "accuracy": "results/transplanter/accuracy.nc",
-        "timings": "results/transplanter/accuracy_timings.json",
-        "comparison": "results/transplanter/comparison.csv",
-        "published": "config/published/transplanter.yaml",
-    }
-)
-ked = load(inputs["result"])
-opt = load(inputs["optim"])
-pub_pt = load(inputs["at_published"])
-acc = load(inputs["accuracy"])
-timings = load(inputs["timings"])
-cmp = load(inputs["comparison"])
-section = json.loads(ked.attrs["config_json"])
-pub = {q["id"]: q["value"] for q in load(inputs["published"])["quantities"]}
+files = inputs()
+ked = load(files["result"])
+opt = load(files["optim"])
+pub_pt = load(files["at_published"])
+acc = load(files["accuracy"])
+timings = load(files["timings"])
+cmp = load(files["comparison"])
+fnd = load(files["findings"])
+cfg = json.loads(opt.attrs["config_json"])
+pub = {q["id"]: q["value"] for q in load(files["published"])["quantities"]}
 base = pub_pt.sel(case="baseline (quasi-static)")
+material = cfg["materials"][cfg["material"]["name"]]
 
 # %% [markdown]
 # ## Summary
 
 # %%
-n_dof = discretise(tuple(section["fe"]["elements_per_member"]), "quintic8").mesh.dof_indices()[0]
 md(
     f"""
 * **The 35 coordinates reproduce** with the 8-coordinate element: 9 elements on 10 nodes (AB 1, BC 2, CD 2, BE 4),
   shared translations at the pins, the arm welded to the coupler, fixed pivots, the crank's slope held by the drive,
-  and zero curvature (moment) at the pins and at the free tip. Our mesh has **{n_dof}** coordinates.
-* **Our model at the paper's optimum** (5.79, 6.83, 5.10, 4.59 mm), quasi-static, E = {section['materials']['LF6']['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
-  tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed 3.4), Ux = {float(base.Ux) * 1e3:.2f} mm (printed −0.4),
-  distortion {float(base.distortion) * 1e3:.2f} mm (printed 3.4), maximum stress {float(base.stress_max):.2f} MPa (printed 31.09).
-  The vertical deformation, the distortion and the stress come within a few percent. Ux is 2.5 times the printed
-  value, though small either way. Section 4 shows which model choices move these numbers.
+  and zero curvature (moment) at the pins and at the free tip. Our mesh ({esc(ked.attrs['element'])}) has **{int(ked.coordinates)}** coordinates.
+* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), quasi-static, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
+  tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed {pub['Uy'] * 1e3:g}), Ux = {float(base.Ux) * 1e3:.2f} mm (printed {pub['Ux'] * 1e3:g}),
+  distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
+  Section 3 has the deviations; section 4 shows which model choices move these numbers.
 * **Our optimum is not theirs.** SUMT gives ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm, and SLSQP on the same
   objective gives ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm. With the stresses of our model, the paper's
   point is not stationary: dSS/dx = ({', '.join(f'{v:+.2f}' for v in pub_pt.gradient_SS.values)}) per mm, all positive,
   so every diameter wants to shrink. At the paper's optimum only the arm is near the allowable stress
   ({', '.join(f'{v:.1f}' for v in pub_pt.stress_members.values)} MPa for AB, BC, CD, BE).
-* **SS = 21.9665 cannot be checked.** [x_S1] and r(k) are not printed. With [x_S1] = 8 mm (assumed), our SY + SZ at
-  the paper's optimum is {float(pub_pt.SY_at_published + pub_pt.SZ_at_published):.3f}, and r = {float(pub_pt.r_consistent):.3f} would make SS = 21.9665.
+* **SS = {pub['SS']:g} cannot be checked.** [x_S1] and r(k) are not printed. With [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm (assumed), our SY + SZ at
+  the paper's optimum is {float(pub_pt.SY_SZ_at_published):.3f}, and r = {float(pub_pt.r_consistent):.3f} would make SS = {pub['SS']:g}.
 """
 )
 
@@ -85,18 +73,18 @@ md(
 # ## 1. Parameters and material
 
 # %%
-g = section["geometry"]
+g = cfg["geometry"]
 rows = [
-    ("crank speed n", section["crank_speed_rpm"], "r/min", "sourced (Sec. 2)"),
+    ("crank speed n", cfg["crank_speed_rpm"], "r/min", "sourced (Sec. 2)"),
     ("AB, BC, CD, BE", ", ".join(f"{g[k] * 1e3:.1f}" for k in ("crank_m", "coupler_m", "rocker_m", "arm_m")), "mm", "sourced"),
     ("pivot D", f"({g['pivot_D_m'][0]:.4f}, {g['pivot_D_m'][1]:.4f})", "m", "sourced"),
     ("angle BC–BE", g["arm_angle_deg"], "deg", "sourced"),
     ("arm side, branch", f"{g['arm_side']:+d}, {g['branch']:+d}", "", "chosen below"),
 ]
-for key, v in section["materials"][section["material"]["name"]].items():
+for key, v in material.items():
     rows.append((key, f"{v['value']:g}", "", f"{v['status']}: {v['reason']}"))
-rows.append(("safety factor", section["material"]["safety_factor"], "", "sourced (allowable 33.6 MPa)"))
-rows.append(("[x_S1]", section["optimization"]["reference_diameter_m"]["value"], "m", section["optimization"]["reference_diameter_m"]["reason"]))
+rows.append(("safety factor", cfg["material"]["safety_factor"], "", f"sourced (allowable {float(opt.allowable):.1f} MPa)"))
+rows.append(("[x_S1]", cfg["optimization"]["reference_diameter_m"]["value"], "m", cfg["optimization"]["reference_diameter_m"]["reason"]))
 table(pd.DataFrame(rows, columns=["parameter", "value", "unit", "source"]))
 
 # %% [markdown]
@@ -117,7 +105,7 @@ asm = pd.DataFrame(
 )
 table(asm, {c: "{:.3f}" for c in asm.columns if c != "assembly"})
 md(
-    "Only arm side +1 with branch +1 gives the printed pattern: a small negative Ux and a vertical Uy of about +3.4 mm. "
+    "Only arm side +1 with branch +1 gives the printed pattern: a small negative Ux and a larger positive Uy. "
     "The others swap the sizes or the signs of the two components. We use it (config `geometry`). On this assembly the "
     "tip traces the closed loop below, sweeping down past the pivots, as a planting arm must."
 )
@@ -125,12 +113,8 @@ md(
 # %%
 fig, ax = plt.subplots(figsize=(6, 6), constrained_layout=True)
 ax.plot(ked.tip_x * 1e3, ked.tip_y * 1e3, "C0-", label="arm tip E (rigid path)")
-from linkwork.transplanter import rigid_motion  # noqa: E402
-from linkwork.transplanter_dataset import mechanism  # noqa: E402
-
-mo = rigid_motion(mechanism(section), np.radians([0.0, 90.0, 180.0, 270.0]))
-for k in range(4):
-    p = mo.pos[k] * 1e3
+for k in range(ked.snapshot.size):
+    p = ked.joint_position.values[k] * 1e3
     ax.plot([p[0, 0], p[1, 0], p[2, 0], p[3, 0]], [p[0, 1], p[1, 1], p[2, 1], p[3, 1]], "k-", lw=1, alpha=0.6)
     ax.plot([p[1, 0], p[4, 0]], [p[1, 1], p[4, 1]], "C3-", lw=1, alpha=0.6)
 ax.plot([0, g["pivot_D_m"][0] * 1e3], [0, g["pivot_D_m"][1] * 1e3], "ks", ms=6, label="pivots A, D")
@@ -158,7 +142,7 @@ for j, dset in enumerate(ked.diameters.values):
     d = ", ".join(f"{v:.2f}" for v in ked.diameter.sel(diameters=dset).values)
     axes[0, j].set_title(f"{dset} diameters ({d} mm): tip deformation")
     axes[1, j].set_title("largest member stress (dashed: dynamic)")
-    axes[1, j].axhline(section["materials"]["LF6"]["yield_Pa"]["value"] / section["material"]["safety_factor"] / 1e6, color="k", ls=":", lw=1)
+    axes[1, j].axhline(float(opt.allowable), color="k", ls=":", lw=1)
     axes[0, j].set_ylabel("elastic tip displacement (mm)")
     axes[1, j].set_ylabel("stress (MPa)")
     axes[1, j].set_xlabel("crank angle (deg)")
@@ -169,18 +153,15 @@ plt.show()
 md(
     f"Natural frequencies at crank angle 0: {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='initial').values)} rad/s (initial) "
     f"and {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='optimal').values)} rad/s (optimal), against a crank speed "
-    f"of {section['crank_speed_rpm'] * 2 * np.pi / 60:.1f} rad/s. Resonance warning: {ked.attrs['resonance_warning']}. "
-    f"The dynamic solution runs {section['fe']['revolutions']} revolutions; the last two differ by "
+    f"of {float(ked.crank_speed):.1f} rad/s. Resonance warning: {esc(ked.attrs['resonance_warning'])}. "
+    f"The dynamic solution runs {json.loads(ked.attrs['config_json'])['fe']['revolutions']} revolutions; the last two differ by "
     f"{', '.join(f'{v:.1e}' for v in ked.periodicity.values)} of the tip response range."
 )
-dyn_opt = float(ked.stress.sel(diameters="optimal", solution="dynamic").max())
-qs_opt = float(ked.stress.sel(diameters="optimal", solution="quasi-static").max())
-allow = section["materials"]["LF6"]["yield_Pa"]["value"] / section["material"]["safety_factor"] / 1e6
 md(
     f"**The optimum found on the quasi-static model is not safe dynamically.** At our optimum the quasi-static peak "
-    f"stress is {qs_opt:.1f} MPa, at the allowable {allow:.1f} MPa, but the dynamic solution reaches {dyn_opt:.1f} MPa "
-    f"({dyn_opt / allow - 1:+.0%}): the thin members let the arm vibrate at its first mode. The paper's constraint (16) "
-    "evaluated on the particular solution alone does not guard against this."
+    f"stress is {float(fnd.optimum_quasi_static_peak):.1f} MPa, at the allowable {float(fnd.allowable):.1f} MPa, but the dynamic "
+    f"solution reaches {float(fnd.optimum_dynamic_peak):.1f} MPa ({float(fnd.optimum_dynamic_excess):+.0%}): the thin members let "
+    "the arm vibrate at its first mode. The paper's constraint (16) evaluated on the particular solution alone does not guard against this."
 )
 
 # %% [markdown]
@@ -213,12 +194,9 @@ mv = pd.DataFrame(
 published_row = pd.DataFrame([{"model choice": "published", "Ux (mm)": pub["Ux"] * 1e3, "Uy (mm)": pub["Uy"] * 1e3, "distortion (mm)": pub["distortion"] * 1e3, "max stress (MPa)": pub["stress_max"]}])
 table(pd.concat([published_row, mv], ignore_index=True), {c: "{:.3f}" for c in mv.columns if c != "model choice"})
 md(
-    "Gravity brings Uy and the distortion onto the printed 3.4 mm but lowers the stress. The dynamic solution raises the "
-    "stress to about 31.9 MPa, next to the printed 31.09, and raises the deformation too. The modulus and the density "
-    "within the material's range move the deformation by ±3 %. Elastic deformation scales as ρ/E and stress as ρ, so "
-    "the modulus leaves the quasi-static stress unchanged. Sampling and element type are second-order. No single choice "
-    "reproduces all four printed numbers, which is consistent with a model that differs in unprinted details (mesh "
-    "placement, load terms, material values)."
+    "Each row changes one model choice at the published optimum. Elastic deformation scales as ρ/E and stress as ρ, so "
+    "the modulus leaves the quasi-static stress unchanged. No single choice reproduces all four printed numbers, which is "
+    "consistent with a model that differs in unprinted details (mesh placement, load terms, material values)."
 )
 
 # %% [markdown]
@@ -229,11 +207,11 @@ table(
     pd.DataFrame(
         [
             ("SY (eq. 10)", float(pub_pt.SY_at_published)),
-            ("SZ (eq. 11, [x_S1] = 8 mm)", float(pub_pt.SZ_at_published)),
+            (f"SZ (eq. 11, [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm)", float(pub_pt.SZ_at_published)),
             (f"SG (eq. 12, last r = {pub_pt.attrs['r_last']:.0e})", float(pub_pt.SG_at_published)),
             ("SS ours at their optimum", float(pub_pt.SS_at_published)),
             ("SS printed", pub["SS"]),
-            ("r that makes SS = 21.9665", float(pub_pt.r_consistent)),
+            (f"r that makes SS = {pub['SS']:g}", float(pub_pt.r_consistent)),
         ],
         columns=["quantity", "value"],
     ),
@@ -245,7 +223,7 @@ for i, member in enumerate(opt.member.values):
 table(hist, {"r(k)": "{:.0e}", **{p: "{:.4f}" for p in ("SY", "SZ", "SG", "SS")}, **{f"d {m} (mm)": "{:.3f}" for m in opt.member.values}}, caption="SUMT iterates")
 md(
     f"SUMT ({int(opt.evaluations)} evaluations) and SLSQP ({opt.attrs['slsqp_evaluations']} evaluations, {opt.attrs['slsqp_message']}) "
-    f"agree on our optimum to {np.max(np.abs(opt.d_opt.values - opt.d_slsqp.values)):.3f} mm. At it the stresses are "
+    f"agree on our optimum to {float(opt.sumt_slsqp_difference):.3f} mm. At it the stresses are "
     f"{', '.join(f'{v:.1f}' for v in opt.stress_opt.values)} MPa: the coupler and arm at the allowable, crank and rocker at "
     "the 4 mm bound. Our model has the crank carrying little bending and the rocker almost only axial force, so nothing "
     "holds them above the minimum. The paper's larger crank, coupler and rocker diameters would need stresses in those "
@@ -260,7 +238,7 @@ md(
 fig, axes = plt.subplots(1, 2, figsize=(12, 4), constrained_layout=True)
 for kind in acc.element.values:
     sel = acc.sel(element=kind)
-    t = [timings["ked_360_s"][f"{kind}x{int(r)}"] * 1e3 for r in acc.refinement.values]
+    t = [timings["summary_s"][f"{kind} x{int(r)}"] * 1e3 for r in acc.refinement.values]
     axes[0].loglog(t, sel.stress_error, "o-", label=f"{kind}: peak stress")
     for tt, e, n in zip(t, sel.stress_error.values, sel.dofs.values):
         axes[0].annotate(f"{int(n)}", (tt, e), fontsize=7)
@@ -276,7 +254,7 @@ for ax in axes:
     ax.grid(alpha=0.3, which="both")
 plt.show()
 md(
-    f"The tip deflection is exact already on the base mesh for both elements (error {float(acc.tip_error.max()):.0e}). The "
+    f"The tip deflection is exact already on the base mesh for both elements (error {float(acc.tip_error_max):.0e}). The "
     "rigid-body inertia load is linear along each member, and Hermite elements reproduce the nodal displacements "
     "exactly under such loads. The peak stress converges with refinement: it comes from the sampled curvature, which is "
     "linear per element for the frame element and exact for the quintic one, so the remaining error of the quintic mesh "
@@ -290,4 +268,4 @@ md(
 # ## Provenance
 
 # %%
-md("\n".join(f"* **{k}**: `{ked.attrs[k]}`" for k in ("paper_id", "source", "linkwork_version", "git_commit", "config_sha256", "element", "elements_per_member") if k in ked.attrs))
+provenance(ked)

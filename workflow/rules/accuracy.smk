@@ -1,23 +1,18 @@
 # Across the pipeline: what accuracy costs in time, for every numerical method.
 
+ACCURACY_PAPERS = list(PAPERS)  # every paper has an accuracy study
+
 
 rule accuracy_summary:
     input:
-        beatup="results/beatup/accuracy.nc",
-        beatup_t="results/beatup/accuracy_timings.json",
-        transplanter="results/transplanter/accuracy.nc",
-        transplanter_t="results/transplanter/accuracy_timings.json",
-        clearance="results/clearance/accuracy.nc",
-        clearance_t="results/clearance/accuracy_timings.json",
-        heald="results/heald/accuracy.nc",
-        heald_t="results/heald/accuracy_timings.json",
-        code=lib("accuracy_summary", "stiffness", "kinematics", "from_config", "timing", "results"),
+        **{p: f"results/{p}/accuracy.nc" for p in ACCURACY_PAPERS},
+        **{f"{p}_t": f"results/{p}/accuracy_timings.json" for p in ACCURACY_PAPERS},
+        code=code("linkwork.pipeline.accuracy"),
     output:
         result="results/accuracy/summary.nc",
         timings="results/accuracy/timings.json",
     params:
-        config={k: config[k] for k in ("stiffness", "transplanter", "clearance", "heald")},
-        panels=[2, 4, 8, 16, 32, 64, 128],
-        repeats=5,
+        study="linkwork.pipeline.accuracy:summary",
+        cfg={},
     script:
-        "../scripts/accuracy_summary.py"
+        STUDY

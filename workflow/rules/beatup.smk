@@ -1,49 +1,57 @@
 # Paper "beatup": six-bar beating-up mechanism kinematics (Table 1) and the weft window vs a four-bar.
 
+# The six-bar without its crank (the window study scales the crank to comparison.scaled_crank_m).
+SIXBAR_FRAME = [f"sixbar.{k}" for k in ("l2_m", "l3_m", "l4_m", "l5_m", "l6_m", "l7_m", "theta4_deg", "theta7_deg", "branch_rocker", "branch_sley")]
+
 
 rule beatup_sixbar:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
+        code=code("linkwork.papers.beatup.studies"),
     output:
         "results/beatup/sixbar.nc",
     params:
-        section=config["beatup"],
+        study="linkwork.papers.beatup.studies:sixbar",
+        cfg=section("beatup", "sixbar", "printed_rounding", "closed_form_signs", "grids", "numerics"),
     script:
-        "../scripts/beatup_sixbar.py"
+        STUDY
 
 
 rule beatup_window:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
+        code=code("linkwork.papers.beatup.studies"),
     output:
         "results/beatup/window.nc",
     params:
-        section=config["beatup"],
+        study="linkwork.papers.beatup.studies:window",
+        cfg=section("beatup", *SIXBAR_FRAME, "comparison.stroke_m", "comparison.scaled_crank_m", "fourbar", "sweep", "grids.fine_step_deg"),
     script:
-        "../scripts/beatup_window.py"
+        STUDY
 
 
 rule beatup_accuracy:
     input:
-        code=lib("kinematics", "beatup", "beatup_dataset", "timing", "from_config", "results"),
+        code=code("linkwork.papers.beatup.accuracy"),
     output:
         result="results/beatup/accuracy.nc",
         timings="results/beatup/accuracy_timings.json",
     params:
-        paper="beatup",
-        section=config["beatup"],
+        study="linkwork.papers.beatup.accuracy:accuracy",
+        cfg=section("beatup", "sixbar", "accuracy"),
     script:
-        "../scripts/accuracy.py"
+        STUDY
 
 
 rule beatup_compare:
     input:
-        results=["results/beatup/sixbar.nc", "results/beatup/window.nc"],
         published="config/published/beatup.yaml",
-        code=lib("compare", "results"),
+        sixbar="results/beatup/sixbar.nc",
+        window="results/beatup/window.nc",
+        code=code("linkwork.papers.beatup.findings"),
     output:
         "results/beatup/comparison.csv",
+        "results/beatup/findings.nc",
     params:
-        section=config["beatup"],
+        study="linkwork.papers.beatup.findings:compare",
+        cfg=section("beatup", "grids.paper_step_deg", "comparison.fourbar_window_band_deg"),
     script:
-        "../scripts/compare.py"
+        STUDY

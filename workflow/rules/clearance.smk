@@ -1,9 +1,15 @@
 # Paper "clearance": four-bar with clearance joints and lubrication (multibody engine, scenes).
+from linkwork.papers.clearance import adapter as clearance_adapter
 
-CLEARANCE_CODE = lib("kinematics", "multibody/kernels", "multibody/model", "clearance_dataset", "timing", "results")
-CLEARANCE_VARIANTS = list(config["clearance"]["variants"])
-CLEARANCE_SCENES = list(config["clearance"]["scenes"])
-CLEARANCE_DYNAMIC = [s for s in CLEARANCE_SCENES if config["clearance"]["scenes"][s]["clearance_joints"]]
+CLEARANCE = config["clearance"]
+CLEARANCE_VARIANTS = list(CLEARANCE["variants"])
+CLEARANCE_SCENES = list(CLEARANCE["scenes"])
+CLEARANCE_DYNAMIC = [s for s in CLEARANCE_SCENES if CLEARANCE["scenes"][s]["clearance_joints"]]
+
+
+def scene_cfg(tolerance):
+    """A scene's params: exactly the keys its effects, its variant and its integrator read."""
+    return lambda wildcards: section("clearance", *clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, tolerance))
 
 
 wildcard_constraints:
@@ -13,62 +19,68 @@ wildcard_constraints:
 
 rule clearance_scene:
     input:
-        code=CLEARANCE_CODE,
+        code=code("linkwork.papers.clearance.studies"),
     output:
         "results/clearance/{variant}/{scene}.nc",
     params:
-        section=config["clearance"],
-        tolerance="pipeline",
+        study="linkwork.papers.clearance.studies:scene",
+        cfg=scene_cfg("pipeline"),
+        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene, "tolerance": "pipeline"},
     script:
-        "../scripts/clearance_scene.py"
+        STUDY
 
 
 rule clearance_scene_tight:
     input:
-        code=CLEARANCE_CODE,
+        code=code("linkwork.papers.clearance.studies"),
     output:
         "results/clearance/{variant}/tight/{scene}.nc",
     params:
-        section=config["clearance"],
-        tolerance="tight",
+        study="linkwork.papers.clearance.studies:scene",
+        cfg=scene_cfg("tight"),
+        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene, "tolerance": "tight"},
     script:
-        "../scripts/clearance_scene.py"
+        STUDY
 
 
 rule clearance_claims:
     input:
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
         tight=expand("results/clearance/{variant}/tight/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_DYNAMIC),
-        code=CLEARANCE_CODE,
+        code=code("linkwork.papers.clearance.studies"),
     output:
         "results/clearance/claims.nc",
     params:
-        section=config["clearance"],
+        study="linkwork.papers.clearance.studies:claims",
+        cfg=section("clearance", "numerics.record_cycles", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
     script:
-        "../scripts/clearance_claims.py"
+        STUDY
 
 
 rule clearance_work_precision:
     input:
-        code=CLEARANCE_CODE,
+        code=code("linkwork.papers.clearance.accuracy"),
     output:
         result="results/clearance/accuracy.nc",
         timings="results/clearance/accuracy_timings.json",
     params:
-        paper="clearance",
-        section=config["clearance"],
+        study="linkwork.papers.clearance.accuracy:work_precision",
+        cfg=section("clearance", "work_precision", "numerics.points_per_cycle", "integrators",
+                    *(k for s in CLEARANCE["work_precision"]["scenes"] for k in clearance_adapter.model_keys(CLEARANCE, CLEARANCE["work_precision"]["variant"], s))),
     script:
-        "../scripts/accuracy.py"
+        STUDY
 
 
 rule clearance_compare:
     input:
-        results=["results/clearance/claims.nc"],
         published="config/published/clearance.yaml",
-        code=lib("compare", "results"),
+        claims="results/clearance/claims.nc",
+        code=code("linkwork.papers.clearance.findings"),
     output:
         "results/clearance/comparison.csv",
+        "results/clearance/findings.nc",
     params:
-        section=config["clearance"],
+        study="linkwork.papers.clearance.findings:compare",
+        cfg={},
     script:
-        "../scripts/compare.py"
+        STUDY

@@ -1,38 +1,43 @@
 # Paper "heald": mechanical chains of a heald motion, joint forces with clearance.
 
+HEALD_MODEL = ["parameters", "excitation", "speeds"]
+
 
 rule heald_chain:
     input:
-        code=lib("chains", "heald", "heald_dataset", "timing", "results"),
+        code=code("linkwork.papers.heald.studies"),
     output:
         "results/heald/chain.nc",
     params:
-        section=config["heald"],
+        study="linkwork.papers.heald.studies:chain",
+        cfg=section("heald", *HEALD_MODEL, "models", "sweeps"),
     script:
-        "../scripts/heald_chain.py"
+        STUDY
 
 
 rule heald_accuracy:
     input:
-        code=lib("chains", "heald", "heald_dataset", "timing", "results"),
+        code=code("linkwork.papers.heald.accuracy"),
     output:
         result="results/heald/accuracy.nc",
         timings="results/heald/accuracy_timings.json",
     params:
-        paper="heald",
-        section=config["heald"],
+        study="linkwork.papers.heald.accuracy:accuracy",
+        cfg=section("heald", *HEALD_MODEL, "accuracy"),
     script:
-        "../scripts/accuracy.py"
+        STUDY
 
 
 rule heald_compare:
     input:
-        results=["results/heald/chain.nc"],
         published="config/published/heald.yaml",
-        code=lib("compare", "results"),
+        chain="results/heald/chain.nc",
+        code=code("linkwork.papers.heald.findings"),
     output:
         "results/heald/comparison.csv",
+        "results/heald/findings.nc",
     params:
-        section=config["heald"],
+        study="linkwork.papers.heald.findings:compare",
+        cfg=section("heald", "claims"),
     script:
-        "../scripts/compare.py"
+        STUDY

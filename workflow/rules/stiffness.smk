@@ -1,25 +1,43 @@
 # Paper "stiffness": equivalent stiffness of the needle crank-rocker (energy method).
 
+STIFFNESS_MODEL = ["linkage", "members", "numerics.assembly_tol"]
+
 
 rule stiffness:
     input:
-        code=lib("kinematics", "stiffness", "stiffness_dataset", "from_config", "results"),
+        code=code("linkwork.papers.stiffness.studies"),
     output:
         "results/stiffness/stiffness.nc",
     params:
-        section=config["stiffness"],
+        study="linkwork.papers.stiffness.studies:stiffness",
+        cfg=section("stiffness", *STIFFNESS_MODEL, "forms", "grids"),
     script:
-        "../scripts/stiffness.py"
+        STUDY
+
+
+rule stiffness_accuracy:
+    input:
+        code=code("linkwork.papers.stiffness.accuracy"),
+    output:
+        result="results/stiffness/accuracy.nc",
+        timings="results/stiffness/accuracy_timings.json",
+    params:
+        study="linkwork.papers.stiffness.accuracy:quadrature_accuracy",
+        cfg=section("stiffness", *STIFFNESS_MODEL, "grids.fine_step_deg", "accuracy"),
+    script:
+        STUDY
 
 
 rule stiffness_compare:
     input:
-        result="results/stiffness/stiffness.nc",
         published="config/published/stiffness.yaml",
-        code=lib("compare", "results"),
+        result="results/stiffness/stiffness.nc",
+        code=code("linkwork.papers.stiffness.findings"),
     output:
         "results/stiffness/comparison.csv",
+        "results/stiffness/findings.nc",
     params:
-        section=config["stiffness"],
+        study="linkwork.papers.stiffness.findings:compare",
+        cfg=section("stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa", "reference_form"),
     script:
-        "../scripts/compare.py"
+        STUDY

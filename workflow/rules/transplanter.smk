@@ -1,65 +1,78 @@
 # Paper "transplanter": kineto-elastodynamics and penalty-function section optimisation.
 
-TRANSPLANTER_CODE = lib("kinematics", "fem", "transplanter", "optimize", "transplanter_dataset", "from_config", "results", "timing")
+TRANSPLANTER_MATERIAL = lambda *props: [f"materials.{config['transplanter']['material']['name']}.{p}" for p in props]
+TRANSPLANTER_MODEL = ["crank_speed_rpm", "geometry", "material.name", *TRANSPLANTER_MATERIAL("youngs_modulus_Pa", "density_kg_m3"),
+                      "fe.element", "fe.elements_per_member", "fe.gravity_m_s2"]
+TRANSPLANTER_DYNAMIC = ["fe.damping_ratio", "fe.revolutions", "fe.substeps"]
+TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLANTER_MATERIAL("yield_Pa"), "minimum_diameter_m",
+                        "optimization.angle_step_deg", "optimization.reference_diameter_m"]
 
 
 rule transplanter_optim:
     input:
-        code=TRANSPLANTER_CODE,
+        code=code("linkwork.papers.transplanter.studies"),
     output:
         "results/transplanter/optim.nc",
     params:
-        section=config["transplanter"],
+        study="linkwork.papers.transplanter.studies:optim",
+        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, "initial_diameters_m", "optimization"),
     script:
-        "../scripts/transplanter_optim.py"
+        STUDY
 
 
 rule transplanter_ked:
     input:
         optim="results/transplanter/optim.nc",
-        code=TRANSPLANTER_CODE,
+        code=code("linkwork.papers.transplanter.studies"),
     output:
         "results/transplanter/ked.nc",
     params:
-        section=config["transplanter"],
+        study="linkwork.papers.transplanter.studies:ked_responses",
+        cfg=section("transplanter", *TRANSPLANTER_MODEL, *TRANSPLANTER_DYNAMIC, "initial_diameters_m", "fe.angle_step_deg", "fe.resonance_warning_ratio"),
     script:
-        "../scripts/transplanter_ked.py"
+        STUDY
 
 
 rule transplanter_at_published:
     # comparison data: our model evaluated at the paper's optimum (reads config/published/)
     input:
         published="config/published/transplanter.yaml",
-        code=TRANSPLANTER_CODE,
+        code=code("linkwork.papers.transplanter.published_point"),
     output:
         "results/transplanter/at_published.nc",
     params:
-        section=config["transplanter"],
+        study="linkwork.papers.transplanter.published_point:at_published",
+        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_DYNAMIC, "fe.angle_step_deg", "sensitivity",
+                    "optimization.r0", "optimization.r_factor", "optimization.iterations", "optimization.gradient_step_m"),
     script:
-        "../scripts/transplanter_at_published.py"
+        STUDY
 
 
 rule transplanter_accuracy:
     input:
-        code=TRANSPLANTER_CODE,
+        code=code("linkwork.papers.transplanter.accuracy"),
     output:
         result="results/transplanter/accuracy.nc",
         timings="results/transplanter/accuracy_timings.json",
     params:
-        paper="transplanter",
-        section=config["transplanter"],
+        study="linkwork.papers.transplanter.accuracy:accuracy",
+        cfg=section("transplanter", *TRANSPLANTER_MODEL, "initial_diameters_m", "fe.angle_step_deg", "accuracy"),
     script:
-        "../scripts/accuracy.py"
+        STUDY
 
 
 rule transplanter_compare:
     input:
-        results=["results/transplanter/optim.nc", "results/transplanter/at_published.nc"],
         published="config/published/transplanter.yaml",
-        code=lib("compare", "results"),
+        optim="results/transplanter/optim.nc",
+        at_published="results/transplanter/at_published.nc",
+        ked="results/transplanter/ked.nc",
+        code=code("linkwork.papers.transplanter.findings"),
     output:
         "results/transplanter/comparison.csv",
+        "results/transplanter/findings.nc",
     params:
-        section=config["transplanter"],
+        study="linkwork.papers.transplanter.findings:compare",
+        cfg={},
     script:
-        "../scripts/compare.py"
+        STUDY

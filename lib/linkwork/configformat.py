@@ -1,0 +1,44 @@
+"""How values are written in config/config.yaml, and how a rule takes exactly the values it reads.
+
+* A value the paper does not give is a labelled entry ``{value, status, reason}`` with status
+  ``sourced``, ``inferred`` or ``assumed``; ``labelled`` returns its value.
+* ``pick`` copies chosen key paths (``"linkage"``, ``"numerics.assembly_tol"``) of a section into
+  a new nested dict of the same shape, so that a rule's params hold exactly what its study reads
+  and a study that reads anything else fails with a KeyError instead of going unnoticed.
+
+Light on purpose (standard library only): the Snakefile imports it.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Iterable, Mapping
+from typing import Any
+
+
+def labelled(entry: Mapping[str, Any]) -> float:
+    """The value of a labelled config entry ``{value, status, reason}`` as a float."""
+    return float(entry["value"])
+
+
+def get_path(section: Mapping[str, Any], path: str) -> Any:
+    """The value at a dotted key path of a nested mapping (KeyError names the path)."""
+    node: Any = section
+    for part in path.split("."):
+        if not isinstance(node, Mapping) or part not in node:
+            raise KeyError(f"config key {path!r} not found (missing {part!r})")
+        node = node[part]
+    return node
+
+
+def pick(section: Mapping[str, Any], paths: Iterable[str]) -> dict[str, Any]:
+    """A new nested dict holding only the given dotted key paths of ``section`` (deep copies)."""
+    out: dict[str, Any] = {}
+    for path in paths:
+        value = get_path(section, path)
+        parts = path.split(".")
+        node = out
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+        node[parts[-1]] = copy.deepcopy(value)
+    return out

@@ -1,0 +1,451 @@
+"""A four-bar with clearance joints as a planar multibody system, assembled from the scene's effects.
+
+Formulation (the paper's eqs. 1-3): bodies crank (0), coupler (1), rocker (2) in (x, y, phi) at
+their centres of mass; ideal revolutes and the constant-speed crank driver are constraints,
+M q'' = g - Phi_q^T lambda, Phi_q q'' = gamma - 2 alpha Phi' - beta^2 Phi (Baumgarte).  M is
+diagonal, so lambda comes from the small Schur complement Phi_q M^-1 Phi_q^T.  The crank torque
+is -lambda of the driver row.
+
+A clearance joint is not a constraint but a force element between a journal (on the first body)
+and a bearing (on the second).  The scene names its effects; the right-hand side is generated
+as source code containing exactly those effects (no branch, no call for an effect left out),
+compiled by numba and cached on disk by the hash of its source.  Each effect increments its own
+evaluation counter, so a test can prove that an effect left out is never evaluated.
+
+Sign conventions resolved here (the printed model differs):
+* eccentricity e = journal centre - bearing centre, n = e/|e|; the dry contact force on the
+  journal is -F_N n, i.e. it pushes the journal back into the bearing (eqs. 4/17 as printed push
+  it outward);
+* the wedge term uses omega_journal + omega_bearing - 2 gamma' in the fixed frame (eq. 22 speaks of
+  "the relative angular velocity", but both elements rotate);
+* the film force is capped at the eccentricity ratio eps_limit = 1 - e0/c: continuous and bounded
+  up to and past eps = 1, where the dry contact takes over (eq. 23 as printed is infinite at e = c).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ...units import STANDARD_GRAVITY
+from ..kinematics import FourBar, four_bar, toggle_positions
+
+CONTACT_LAWS = {"lankarani-nikravesh": 0, "hunt-crossley": 1, "flores": 2}
+EFFECTS = ("contact", "friction", "lubrication", "gravity")
+N_STATE = 19  # q (9), q' (9), driver work (1)
+DIAG_FIXED = 4  # rocker angular acceleration, crank torque, energy, constraint drift
+DIAG_PER_JOINT = 6  # e, delta, delta', dry normal force, film radial force, film tangential force
+
+
+@dataclass(frozen=True)
+class FourBarParameters:
+    """Physical data of the four-bar with clearance joints (SI)."""
+
+    ground: float
+    lengths: tuple[float, float, float]  # crank, coupler, rocker
+    masses: tuple[float, float, float]
+    inertias: tuple[float, float, float]  # about the centres of mass (kg m^2)
+    crank_speed: float  # rad/s
+    journal_radius: float
+    bearing_radius: float
+    youngs_modulus: tuple[float, float]  # journal, bearing
+    poisson: tuple[float, float]
+    joint_length: float  # L of the bearing (lubrication)
+    restitution: float
+    friction: float
+    v0: float
+    v1: float
+    viscosity: float  # Pa s
+    e0: float  # film/dry transition tolerance on the eccentricity, m
+    impact_velocity_floor: float  # m/s
+    baumgarte_alpha: float
+    baumgarte_beta: float
+    gravity: float = STANDARD_GRAVITY
+    contact_law: str = "lankarani-nikravesh"
+    branch: int = 1
+
+    @property
+    def clearance(self) -> float:
+        return self.bearing_radius - self.journal_radius
+
+    @property
+    def hertz_stiffness(self) -> float:
+        """K of eq. (9): 4 / (3 (sigma_i + sigma_j)) sqrt(R_i R_j / |R_j - R_i|), N/m^1.5."""
+        sig = sum((1 - nu**2) / e for nu, e in zip(self.poisson, self.youngs_modulus, strict=True))
+        return 4.0 / (3.0 * sig) * np.sqrt(self.journal_radius * self.bearing_radius / self.clearance)
+
+    @property
+    def film_coefficient(self) -> float:
+        """12 pi mu L R^3 / c^2 (N s/m per unit eccentricity-ratio rate... times 1/s)."""
+        return 12 * np.pi * self.viscosity * self.joint_length * self.journal_radius**3 / self.clearance**2
+
+    def linkage(self) -> FourBar:
+        l2, l3, l4 = self.lengths
+        return FourBar(crank=l2, coupler=l3, rocker=l4, ground=self.ground, branch=self.branch)
+
+
+# joint geometry: (journal body, journal point, bearing body, bearing point) as functions of the lengths
+def joint_points(lengths):
+    l2, l3, l4 = lengths
+    return {
+        1: (0, (l2 / 2, 0.0), 1, (-l3 / 2, 0.0)),  # crank pin A in the coupler's bushing
+        2: (1, (l3 / 2, 0.0), 2, (l4 / 2, 0.0)),  # coupler pin B in the rocker's bushing
+    }
+
+
+def pack(p: FourBarParameters, phi0: float) -> tuple[np.ndarray, dict[str, int]]:
+    """Parameters as one float array for the compiled code, with the index of every name."""
+    l2, l3, l4 = p.lengths
+    m, inertia = p.masses, p.inertias
+    values = {
+        "mass": [m[0], m[0], inertia[0], m[1], m[1], inertia[1], m[2], m[2], inertia[2]],
+        "ground": [p.ground],
+        "l": [l2, l3, l4],
+        "omega": [p.crank_speed],
+        "phi0": [phi0],
+        "alpha": [p.baumgarte_alpha],
+        "beta": [p.baumgarte_beta],
+        "gravity": [p.gravity],
+        "clearance": [p.clearance],
+        "r_journal": [p.journal_radius],
+        "r_bearing": [p.bearing_radius],
+        "hertz": [p.hertz_stiffness],
+        "restitution": [p.restitution],
+        "friction": [p.friction],
+        "v0": [p.v0],
+        "v1": [p.v1],
+        "film": [p.film_coefficient],
+        "eps_limit": [1.0 - p.e0 / p.clearance],
+        "floor": [p.impact_velocity_floor],
+    }
+    index, flat = {}, []
+    for key, vals in values.items():
+        index[key] = len(flat)
+        flat.extend(vals)
+    return np.array(flat, dtype=float), index
+
+
+def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...], contact_law: str, lengths) -> str:
+    """Python source of the scene's right-hand side and integrators (numba)."""
+    unknown = set(effects) - set(EFFECTS)
+    if unknown:
+        raise ValueError(f"unknown effect(s) {sorted(unknown)}; known: {EFFECTS}")
+    if any(j not in (1, 2) for j in clearance_joints):
+        raise ValueError(f"clearance joints must be 1 and/or 2, got {clearance_joints}")
+    if "friction" in effects and "contact" not in effects:
+        raise ValueError("friction needs the contact effect (it acts with the normal contact force)")
+    law = CONTACT_LAWS[contact_law]
+    _, idx = pack(_dummy_parameters(lengths), 0.0)
+    l2, l3, l4 = (f"p[{idx['l'] + k}]" for k in range(3))
+    pts = {1: (0, f"0.5 * {l2}", "0.0", 1, f"-0.5 * {l3}", "0.0"), 2: (1, f"0.5 * {l3}", "0.0", 2, f"0.5 * {l4}", "0.0")}
+    ideal = [j for j in (1, 2) if j not in clearance_joints]
+    nc = 2 + 1 + 2 + 2 * len(ideal)
+    n_diag = DIAG_FIXED + DIAG_PER_JOINT * len(clearance_joints)
+    P = lambda name, k=0: f"p[{idx[name] + k}]"  # noqa: E731
+    L = []
+    a = L.append
+    a("import numpy as np")
+    a("from numba import njit")
+    a("from linkwork.engines.multibody.kernels import (revolute, driver, apply_force, clearance_state, hertz_damping_factor,")
+    a("    friction_coefficient, film_forces, solve_constrained, point)")
+    a(f"NC = {nc}")
+    a(f"N_DIAG = {n_diag}")
+    a(f"JOINTS = {tuple(clearance_joints)}")
+    a(f"EFFECTS = {tuple(effects)}")
+    a("")
+    a("@njit(cache=True)")
+    a("def rhs(t, y, p, latched, counts, diag):")
+    a("    q = y[0:9]")
+    a("    qd = y[9:18]")
+    a("    g = np.zeros(9)")
+    a(f"    mass = p[{idx['mass']}:{idx['mass'] + 9}]")
+    a("    potential = 0.0")
+    if "gravity" in effects:
+        a("    counts[3] += 1")
+        a("    for b in range(3):")
+        a(f"        g[3 * b + 1] -= mass[3 * b] * {P('gravity')}")
+        a(f"        potential += mass[3 * b] * {P('gravity')} * q[3 * b + 1]")
+    for k, j in enumerate(clearance_joints):
+        bj, jx, jy, bb, bx, by = pts[j]
+        o = DIAG_FIXED + DIAG_PER_JOINT * k
+        a(f"    # clearance joint {j}")
+        a(f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, "
+          f"{P('clearance')}, {P('r_journal')}, {P('r_bearing')})")
+        a("    fn = 0.0")
+        a("    ft = 0.0")
+        a("    fr_film = 0.0")
+        a("    ft_film = 0.0")
+        if "contact" in effects:
+            a("    if delta > 0.0:")
+            a("        counts[0] += 1")
+            a(f"        vimp = latched[{k}] if latched[{k}] > {P('floor')} else {P('floor')}")
+            a(f"        fn = {P('hertz')} * delta ** 1.5 * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)")
+            a(f"        potential += {P('hertz')} * delta ** 2.5 / 2.5")
+            if "friction" in effects:
+                a("        counts[1] += 1")
+                a(f"        ft = friction_coefficient(vt, {P('friction')}, {P('v0')}, {P('v1')}) * fn")
+        if "lubrication" in effects:
+            a("    counts[2] += 1")
+            a(f"    fr_film, ft_film = film_forces(e / {P('clearance')}, ddot / {P('clearance')}, wj + wb, gd, {P('film')}, {P('eps_limit')})")
+        a("    tx, ty = -ny, nx")
+        a("    fx = (-fn + fr_film) * nx + (ft + ft_film) * tx")
+        a("    fy = (-fn + fr_film) * ny + (ft + ft_film) * ty")
+        a(f"    apply_force(q, g, {bj}, {jx}, {jy}, fx, fy)")
+        a(f"    apply_force(q, g, {bb}, {bx}, {by}, -fx, -fy)")
+        if "friction" in effects:
+            a(f"    g[{3 * bj + 2}] += {P('r_journal')} * ft")
+            a(f"    g[{3 * bb + 2}] -= {P('r_bearing')} * ft")
+        for m_, val in enumerate(("e", "delta", "ddot", "fn", "fr_film", "ft_film")):
+            a(f"    diag[{o + m_}] = {val}")
+    a("    phi = np.zeros(NC)")
+    a("    phiq = np.zeros((NC, 9))")
+    a("    gamma = np.zeros(NC)")
+    a("    phidot = np.zeros(NC)")
+    a(f"    revolute(q, qd, 0, -0.5 * {l2}, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)")
+    a(f"    driver(q, qd, t, 0, {P('phi0')}, {P('omega')}, 2, phi, phiq, gamma, phidot)")
+    a(f"    revolute(q, qd, 2, -0.5 * {l4}, 0.0, -1, 0.0, 0.0, {P('ground')}, 0.0, 3, phi, phiq, gamma, phidot)")
+    row = 5
+    for j in ideal:
+        bj, jx, jy, bb, bx, by = pts[j]
+        a(f"    revolute(q, qd, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, 0.0, 0.0, {row}, phi, phiq, gamma, phidot)")
+        row += 2
+    a(f"    gamma_b = gamma - 2.0 * {P('alpha')} * phidot - {P('beta')} ** 2 * phi")
+    a("    qdd, lam = solve_constrained(mass, g, phiq, gamma_b, NC)")
+    a("    out = np.empty(19)")
+    a("    out[0:9] = qd")
+    a("    out[9:18] = qdd")
+    a("    torque = -lam[2]")
+    a("    out[18] = torque * qd[2]")
+    a("    kinetic = 0.0")
+    a("    for k in range(9):")
+    a("        kinetic += 0.5 * mass[k] * qd[k] * qd[k]")
+    a("    diag[0] = qdd[8]")
+    a("    diag[1] = torque")
+    a("    diag[2] = kinetic + potential")
+    a("    diag[3] = np.sqrt(np.sum(phi * phi))")
+    a("    return out")
+    a("")
+    a(INTEGRATORS)
+    return "\n".join(L)
+
+
+INTEGRATORS = '''
+@njit(cache=True)
+def _latch(diag, latched, was_in_contact):
+    for k in range(len(JOINTS)):
+        delta = diag[4 + 6 * k + 1]
+        ddot = diag[4 + 6 * k + 2]
+        now = delta > 0.0
+        if now and not was_in_contact[k]:
+            latched[k] = abs(ddot)
+        was_in_contact[k] = now
+
+
+@njit(cache=True)
+def _start(y0, t0, n_out, p, latched, counts):
+    """Output buffers, work arrays and the first right-hand side (latching its contact state)."""
+    ys = np.empty((n_out, y0.size))
+    diags = np.empty((n_out, N_DIAG))
+    diag = np.zeros(N_DIAG)
+    scratch = np.zeros(N_DIAG)
+    was = np.zeros(max(len(JOINTS), 1), dtype=np.bool_)
+    y = y0.copy()
+    k1 = rhs(t0, y, p, latched, counts, diag)
+    _latch(diag, latched, was)
+    return ys, diags, diag, scratch, was, y, k1
+
+
+@njit(cache=True)
+def rk4(y0, t0, h, t_out, p, latched, counts):
+    """Fixed-step RK4; steps are shortened only to land on the output times."""
+    n_out = t_out.size
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
+    t = t0
+    steps = 0
+    for i in range(n_out):
+        while t < t_out[i] - 1e-15:
+            hh = min(h, t_out[i] - t)
+            k2 = rhs(t + 0.5 * hh, y + 0.5 * hh * k1, p, latched, counts, scratch)
+            k3 = rhs(t + 0.5 * hh, y + 0.5 * hh * k2, p, latched, counts, scratch)
+            k4 = rhs(t + hh, y + hh * k3, p, latched, counts, scratch)
+            y = y + hh / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            t = t + hh
+            k1 = rhs(t, y, p, latched, counts, diag)
+            _latch(diag, latched, was)
+            steps += 1
+        ys[i] = y
+        diags[i] = diag
+    return ys, diags, steps, 0
+
+
+@njit(cache=True)
+def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max):
+    """Adaptive Dormand-Prince 5(4) with FSAL; steps land on the output times; latching at accepted steps."""
+    c2, c3, c4, c5 = 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9
+    a21 = 1.0 / 5
+    a31, a32 = 3.0 / 40, 9.0 / 40
+    a41, a42, a43 = 44.0 / 45, -56.0 / 15, 32.0 / 9
+    a51, a52, a53, a54 = 19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729
+    a61, a62, a63, a64, a65 = 9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656
+    b1, b3, b4, b5, b6 = 35.0 / 384, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84
+    e1, e3, e4, e5, e6, e7 = 71.0 / 57600, -71.0 / 16695, 71.0 / 1920, -17253.0 / 339200, 22.0 / 525, -1.0 / 40
+    n_out = t_out.size
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
+    t = t0
+    h = h0
+    accepted = 0
+    rejected = 0
+    for i in range(n_out):
+        while t < t_out[i] - 1e-15:
+            hh = min(h, h_max, t_out[i] - t)
+            k2 = rhs(t + c2 * hh, y + hh * a21 * k1, p, latched, counts, scratch)
+            k3 = rhs(t + c3 * hh, y + hh * (a31 * k1 + a32 * k2), p, latched, counts, scratch)
+            k4 = rhs(t + c4 * hh, y + hh * (a41 * k1 + a42 * k2 + a43 * k3), p, latched, counts, scratch)
+            k5 = rhs(t + c5 * hh, y + hh * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4), p, latched, counts, scratch)
+            k6 = rhs(t + hh, y + hh * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5), p, latched, counts, scratch)
+            y_new = y + hh * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6)
+            k7 = rhs(t + hh, y_new, p, latched, counts, scratch)
+            err_vec = hh * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7)
+            sc = atol + rtol * np.maximum(np.abs(y), np.abs(y_new))
+            err = np.sqrt(np.mean((err_vec / sc) ** 2))
+            if err <= 1.0:
+                t = t + hh
+                y = y_new
+                k1 = rhs(t, y, p, latched, counts, diag)
+                _latch(diag, latched, was)
+                accepted += 1
+                fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
+                if hh == t_out[i] - (t - hh) and hh < h:
+                    fac = max(fac, 1.0)
+                h = hh * fac
+            else:
+                rejected += 1
+                h = hh * max(0.2, 0.9 * err ** -0.25)
+                if h < 1e-14:
+                    raise RuntimeError("dopri5: step size underflow")
+        ys[i] = y
+        diags[i] = diag
+    return ys, diags, accepted, rejected
+'''
+
+
+def _dummy_parameters(lengths) -> FourBarParameters:
+    return FourBarParameters(1.0, tuple(lengths), (1.0,) * 3, (1.0,) * 3, 1.0, 0.0099, 0.01, (1.0, 1.0), (0.3, 0.3),
+                             0.01, 0.9, 0.0, 1e-4, 1e-3, 0.0, 1e-7, 1e-3, 1.0, 1.0)
+
+
+def cache_dir() -> Path:
+    """Where generated scene modules are written (LINKWORK_CACHE, else ~/.cache/linkwork)."""
+    return Path(os.environ.get("LINKWORK_CACHE", Path.home() / ".cache" / "linkwork")) / "multibody"
+
+
+def compile_scene(clearance_joints: tuple[int, ...], effects: tuple[str, ...], contact_law: str = "lankarani-nikravesh"):
+    """The compiled module of a scene (rhs, rk4, dopri5), cached on disk by the hash of its source."""
+    source = generate_source(tuple(clearance_joints), tuple(effects), contact_law, (1.0, 1.0, 1.0))
+    digest = hashlib.sha256(source.encode()).hexdigest()[:16]
+    name = f"linkwork_scene_{digest}"
+    if name in sys.modules:
+        return sys.modules[name]
+    folder = cache_dir()
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / f"{name}.py"
+    if not path.exists() or path.read_text() != source:
+        tmp = path.with_suffix(f".{os.getpid()}.tmp")
+        tmp.write_text(source)
+        os.replace(tmp, path)
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    return module
+
+
+# --- initial state and the ideal (kinematic) scene -------------------------------------------------
+
+
+def start_angle(p: FourBarParameters) -> float:
+    """Crank angle with crank and coupler collinear (extended): the rocker's dead point."""
+    return float(toggle_positions(p.linkage()).crank_angle[0])
+
+
+def kinematic_state(p: FourBarParameters, crank_angle: np.ndarray):
+    """Body positions q, velocities q' and accelerations q'' of the ideal linkage (n, 9) each."""
+    m = four_bar(p.linkage(), crank_angle)
+    w = p.crank_speed
+    l2, l3, l4 = p.lengths
+    ang = np.stack([m.crank_angle, m.coupler_angle, m.rocker_angle], axis=-1)
+    rate = np.stack([np.ones_like(m.crank_angle), m.coupler_rate, m.rocker_rate], axis=-1) * w
+    acc = np.stack([np.zeros_like(m.crank_angle), m.coupler_accel, m.rocker_accel], axis=-1) * w**2
+    starts = [np.zeros_like(m.A), m.A, np.broadcast_to(p.linkage().rocker_pivot, m.A.shape)]
+    half = [l2 / 2, l3 / 2, l4 / 2]
+    q = np.empty(ang.shape[:-1] + (9,))
+    qd, qdd = np.empty_like(q), np.empty_like(q)
+    for b in range(3):
+        e = np.stack([np.cos(ang[..., b]), np.sin(ang[..., b])], axis=-1)
+        perp = np.stack([-e[..., 1], e[..., 0]], axis=-1)
+        start_vel = np.zeros_like(e) if b != 1 else l2 * w * np.stack([-np.sin(ang[..., 0]), np.cos(ang[..., 0])], axis=-1)
+        start_acc = np.zeros_like(e) if b != 1 else -l2 * w**2 * np.stack([np.cos(ang[..., 0]), np.sin(ang[..., 0])], axis=-1)
+        q[..., 3 * b : 3 * b + 2] = starts[b] + half[b] * e
+        q[..., 3 * b + 2] = ang[..., b]
+        qd[..., 3 * b : 3 * b + 2] = start_vel + half[b] * rate[..., b, None] * perp
+        qd[..., 3 * b + 2] = rate[..., b]
+        qdd[..., 3 * b : 3 * b + 2] = start_acc + half[b] * (acc[..., b, None] * perp - rate[..., b, None] ** 2 * e)
+        qdd[..., 3 * b + 2] = acc[..., b]
+    return q, qd, qdd
+
+
+def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict[str, np.ndarray]:
+    """The ideal scene: kinematics, then Phi_q^T lambda = g - M q'' (no time integration).
+
+    Returns rocker angular acceleration, crank torque, joint reaction magnitudes at A and B and the
+    mechanical energy, at the times t (s).
+    """
+    module = compile_scene((), ("gravity",) if gravity else ())
+    phi0 = start_angle(p)
+    theta = phi0 + p.crank_speed * np.asarray(t, dtype=float)
+    q, qd, qdd = kinematic_state(p, theta)
+    params, idx = pack(p, phi0)
+    from .kernels import driver, revolute
+
+    mass = params[idx["mass"] : idx["mass"] + 9]
+    l2, l3, l4 = p.lengths
+    torque = np.empty(theta.size)
+    force_a = np.empty(theta.size)
+    force_b = np.empty(theta.size)
+    energy = np.empty(theta.size)
+    for i in range(theta.size):
+        nc = module.NC
+        phi, phiq, gamma, phidot = np.zeros(nc), np.zeros((nc, 9)), np.zeros(nc), np.zeros(nc)
+        revolute(q[i], qd[i], 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
+        driver(q[i], qd[i], t[i], 0, phi0, p.crank_speed, 2, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
+        g = np.zeros(9)
+        if gravity:
+            g[1::3] -= mass[0::3] * p.gravity
+        lam = np.linalg.solve(phiq.T, g - mass * qdd[i])
+        torque[i] = -lam[2]
+        force_a[i] = np.hypot(lam[5], lam[6])
+        force_b[i] = np.hypot(lam[7], lam[8])
+        energy[i] = 0.5 * np.sum(mass * qd[i] ** 2) + (np.sum(mass[0::3] * p.gravity * q[i, 1::3]) if gravity else 0.0)
+    return {"rocker_acceleration": qdd[:, 8], "crank_torque": torque, "force_A": force_a, "force_B": force_b, "energy": energy}
+
+
+def initial_state(p: FourBarParameters, offset: tuple[float, float] = (0.0, 0.0), joint: int = 0) -> tuple[np.ndarray, float]:
+    """Consistent initial state at the dead point (journals centred), optionally displacing the coupler
+    by ``offset`` (m) to start a journal off-centre.  Returns (y0, phi0)."""
+    phi0 = start_angle(p)
+    q, qd, _ = kinematic_state(p, np.array([phi0]))
+    y0 = np.zeros(N_STATE)
+    y0[:9], y0[9:18] = q[0], qd[0]
+    if joint:
+        y0[3] += offset[0]
+        y0[4] += offset[1]
+    return y0, phi0

@@ -1,0 +1,1 @@
+"""Paper ``beatup``: see linkwork.papers."""

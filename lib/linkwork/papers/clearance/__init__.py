@@ -1,0 +1,1 @@
+"""Paper ``clearance``: see linkwork.papers."""

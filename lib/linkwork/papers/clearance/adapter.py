@@ -1,0 +1,109 @@
+"""Config adapter of the clearance paper: the config keys each scene reads, and the model parameters
+built from exactly those keys.
+
+A scene names its effects (contact, friction, lubrication, gravity); a parameter that only an effect
+the scene does not name would use is neither passed to the scene's rule nor read (it is NaN in the
+parameters, and the generated right-hand side never touches it).  Standard library only at import,
+so that the Snakefile can ask for the keys cheaply.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+BODIES = ("crank", "coupler", "rocker")
+
+#: Config keys (relative to the clearance section) that each effect adds to a scene with clearance joints.
+EFFECT_KEYS: dict[str, tuple[str, ...]] = {
+    "contact": (
+        "joints.youngs_modulus_Pa",
+        "joints.poisson",
+        "joints.restitution",
+        "joints.contact_law",
+        "numerics.impact_velocity_floor_m_s",
+    ),
+    "friction": ("joints.friction", "assumed.v0_m_s", "assumed.v1_m_s"),
+    "lubrication": ("joints.viscosity_Pa_s", "assumed.joint_length_m", "assumed.e0_m"),
+    "gravity": (),
+}
+#: What every scene reads: the linkage, the drive and the recorded window.
+LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
+WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.settle_cycles", "numerics.record_cycles")
+#: What a scene with clearance joints reads besides its effects.
+DYNAMIC_KEYS = ("joints.journal_radius_m", "joints.bearing_radius_m", "numerics.baumgarte")
+TOLERANCE_SETS = {"pipeline": "integrators", "tight": "tight_integrators"}
+
+
+def integrator_kind(scene: Mapping[str, Any]) -> str:
+    """'explicit' or 'stiff': which integrator group setting a scene uses."""
+    return scene.get("integrator", "explicit")
+
+
+def model_keys(section: Mapping[str, Any], variant: str, scene: str) -> list[str]:
+    """Keys the model of one scene of one variant reads (no recorded window, no integrator)."""
+    keys = [*LINKAGE_KEYS, f"variants.{variant}", f"scenes.{scene}"]
+    if section["variants"][variant]["inertia"] == "decoded":
+        keys += [f"bodies.{b}.inertia_kg_m2" for b in BODIES]
+    spec = section["scenes"][scene]
+    if spec["clearance_joints"]:
+        keys += DYNAMIC_KEYS
+        for effect in spec["effects"]:
+            keys += EFFECT_KEYS[effect]
+    return list(dict.fromkeys(keys))
+
+
+def scene_keys(section: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pipeline") -> list[str]:
+    """Keys a scene run reads: its model, the recorded window and (with clearance joints) its integrator."""
+    keys = model_keys(section, variant, scene) + list(WINDOW_KEYS)
+    spec = section["scenes"][scene]
+    if spec["clearance_joints"]:
+        keys.append(f"{TOLERANCE_SETS[tolerance]}.{integrator_kind(spec)}")
+    return keys
+
+
+def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
+    """FourBarParameters of a scene from the keys ``model_keys`` names (SI units).
+
+    Inertias are the decoded ones as printed, or J = m L^2 / 12 for the 'slender' variant.
+    Parameters of effects the scene does not name are NaN.
+    """
+    from ...engines.multibody.model import FourBarParameters
+
+    nan = float("nan")
+    b = cfg["bodies"]
+    lengths = tuple(float(b[n]["length_m"]) for n in BODIES)
+    masses = tuple(float(b[n]["mass_kg"]) for n in BODIES)
+    if cfg["variants"][variant]["inertia"] == "decoded":
+        inertias = tuple(float(b[n]["inertia_kg_m2"]) for n in BODIES)
+    else:
+        inertias = tuple(m * length**2 / 12 for m, length in zip(masses, lengths, strict=True))
+    spec = cfg["scenes"][scene]
+    effects = set(spec["effects"]) if spec["clearance_joints"] else set()
+    values: dict[str, Any] = {
+        "journal_radius": nan, "bearing_radius": nan, "youngs_modulus": (nan, nan), "poisson": (nan, nan),
+        "joint_length": nan, "restitution": nan, "friction": nan, "v0": nan, "v1": nan, "viscosity": nan,
+        "e0": nan, "impact_velocity_floor": nan, "baumgarte_alpha": nan, "baumgarte_beta": nan,
+    }
+    if spec["clearance_joints"]:
+        j, n = cfg["joints"], cfg["numerics"]
+        values.update(journal_radius=j["journal_radius_m"], bearing_radius=j["bearing_radius_m"],
+                      baumgarte_alpha=n["baumgarte"], baumgarte_beta=n["baumgarte"])
+    if "contact" in effects:
+        j = cfg["joints"]
+        values.update(youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
+                      impact_velocity_floor=cfg["numerics"]["impact_velocity_floor_m_s"], contact_law=j["contact_law"])
+    if "friction" in effects:
+        a = cfg["assumed"]
+        values.update(friction=cfg["joints"]["friction"], v0=a["v0_m_s"]["value"], v1=a["v1_m_s"]["value"])
+    if "lubrication" in effects:
+        a = cfg["assumed"]
+        values.update(viscosity=cfg["joints"]["viscosity_Pa_s"], joint_length=a["joint_length_m"]["value"], e0=a["e0_m"]["value"])
+    return FourBarParameters(ground=cfg["ground_m"], lengths=lengths, masses=masses, inertias=inertias,
+                             crank_speed=cfg["crank_speed_rad_s"], **values)
+
+
+def scene_effects(cfg: Mapping[str, Any], scene: str) -> tuple[tuple[int, ...], tuple[str, ...]]:
+    """(clearance joints, effects) of a scene."""
+    spec = cfg["scenes"][scene]
+    return tuple(spec["clearance_joints"]), tuple(spec["effects"])

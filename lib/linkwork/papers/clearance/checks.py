@@ -1,0 +1,48 @@
+"""Physical checks of the clearance section before any job runs (messages name the key and the value)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ...engines.kinematics import FourBar, four_bar
+from ...pipeline.errors import ConfigError
+
+
+def check(section: Mapping[str, Any], key: str = "clearance") -> None:
+    """Positive clearance; viscosity where lubrication is named; friction only with contact; joint effects
+    only with clearance joints; integrator settings complete; the work-precision variant exists; the
+    linkage assembles."""
+    joints = section["joints"]
+    if joints["journal_radius_m"] >= joints["bearing_radius_m"]:
+        raise ConfigError(
+            f"config key {key}.joints.journal_radius_m: value {joints['journal_radius_m']!r} is not smaller than "
+            f"{key}.joints.bearing_radius_m = {joints['bearing_radius_m']!r} (the clearance must be > 0)"
+        )
+    for name, scene in section["scenes"].items():
+        effects = scene["effects"]
+        if "lubrication" in effects and joints.get("viscosity_Pa_s", 0.0) <= 0.0:
+            raise ConfigError(
+                f"config key {key}.scenes.{name}.effects: value {effects!r} names lubrication but "
+                f"{key}.joints.viscosity_Pa_s is {joints.get('viscosity_Pa_s', 'missing')!r}"
+            )
+        if "friction" in effects and "contact" not in effects:
+            raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r}: friction needs contact")
+        if (effects and not scene["clearance_joints"]) and set(effects) - {"gravity"}:
+            raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r} names joint effects but no clearance joint")
+    for group in ("integrators", "tight_integrators"):
+        for kind, integ in section[group].items():
+            needed = ("step_s",) if integ["method"] == "rk4" else ("rtol", "atol", "first_step_s", "max_step_s")
+            missing = [n for n in needed if n not in integ]
+            if missing:
+                raise ConfigError(f"config key {key}.{group}.{kind}: method {integ['method']!r} needs {', '.join(missing)}")
+    if section["work_precision"]["variant"] not in section["variants"]:
+        raise ConfigError(f"config key {key}.work_precision.variant: value {section['work_precision']['variant']!r} is not a variant")
+    b = section["bodies"]
+    lw = FourBar(b["crank"]["length_m"], b["coupler"]["length_m"], b["rocker"]["length_m"], section["ground_m"])
+    try:
+        four_bar(lw, np.radians(np.arange(0.0, 360.0, 1.0)))
+    except ValueError as exc:
+        raise ConfigError(f"config key {key}.bodies: {exc}") from None

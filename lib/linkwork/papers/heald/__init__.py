@@ -1,0 +1,1 @@
+"""Paper ``heald``: see linkwork.papers."""

@@ -1,0 +1,32 @@
+"""Config adapter of the heald paper: plain parameter values and the frequency grid (SI units)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ...units import RAD_S_PER_RPM
+
+
+def parameters(cfg: Mapping[str, Any]) -> dict[str, float]:
+    """Plain values of the labelled entries of ``parameters`` (SI units)."""
+    return {k: float(v["value"]) for k, v in cfg["parameters"].items()}
+
+
+def omega_grid(speeds: Mapping[str, Any]) -> np.ndarray:
+    """Uniform main-shaft frequencies (rad/s) over ``speeds`` (min_rpm, max_rpm, points)."""
+    return np.linspace(speeds["min_rpm"], speeds["max_rpm"], speeds["points"]) * RAD_S_PER_RPM
+
+
+def amplitude(cfg: Mapping[str, Any]) -> float:
+    """Drive displacement amplitude at D (m)."""
+    return float(cfg["excitation"]["displacement_amplitude_m"]["value"])
+
+
+def sweep_values(spec: Mapping[str, Any]) -> np.ndarray:
+    """Values of a ``{start, stop, num, log}`` sweep."""
+    if spec.get("log", False):
+        return np.geomspace(spec["start"], spec["stop"], spec["num"])
+    return np.linspace(spec["start"], spec["stop"], spec["num"])

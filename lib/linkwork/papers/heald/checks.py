@@ -1,0 +1,34 @@
+"""Physical checks of the heald section before any job runs (messages name the key and the value)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from ...pipeline.errors import ConfigError
+from .adapter import parameters
+from .model import build
+
+NONNEGATIVE = ("c_O", "c_joint", "clearance_E", "clearance_F")
+
+
+def check(section: Mapping[str, Any], key: str = "heald") -> None:
+    """Masses, stiffnesses and reactions > 0, damping and clearance >= 0, lever ratios non-zero; the chains build."""
+    for name, entry in section["parameters"].items():
+        value = entry["value"]
+        if name.startswith("eta"):
+            if value == 0:
+                raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r}: a lever ratio cannot be 0")
+        elif name in NONNEGATIVE:
+            if value < 0:
+                raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be >= 0")
+        elif value <= 0:
+            raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be > 0 (a mass, stiffness or reaction)")
+    speeds = section["speeds"]
+    if speeds["min_rpm"] >= speeds["max_rpm"]:
+        raise ConfigError(f"config key {key}.speeds: min_rpm {speeds['min_rpm']!r} must be below max_rpm {speeds['max_rpm']!r}")
+    for model in section["models"]:
+        try:
+            build(model, parameters(section), "elastic")
+        except ValueError as exc:
+            raise ConfigError(f"config key {key}.parameters (model {model}): {exc}") from None

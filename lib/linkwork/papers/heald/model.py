@@ -1,0 +1,138 @@
+"""Heald-motion mechanism of an STB loom as mechanical chains (paper ``heald``, Grigoriev & Kheylo 2021).
+
+The paper prints no parameters, so both chain models are built from a
+parameter dict (SI units; every value is labelled sourced/assumed in config):
+
+``m_D``, ``m_E6``, ``m_F6``
+    masses of the longitudinal rod DEF (link 6) lumped at D, E, F (kg);
+``m_E7``, ``M_G``, ``m_H9``
+    bell crank EO3G (7) at E and at G (with rod GH, 9), rod 9 at H (kg);
+``m_F8``, ``M_K``, ``m_L10``
+    the same for the bell crank FO4K (8) and rod KL (10) (kg);
+``M_P``
+    the heald frame with its healds (the paper's "M_P"; kg);
+``eta7``, ``eta8``
+    lever ratios of the bell cranks (velocity at G over velocity at E, ...);
+``k_O``
+    warp stiffness per frame (N/m); ``c_O`` warp damping (N s/m);
+``k_n``
+    pin bending stiffness (N/m); ``c_joint`` damping in a joint (N s/m);
+``clearance_E``, ``clearance_F`` (m), ``reaction_E``, ``reaction_F`` (N)
+    Vulfson's clearance model of the joints E and F.
+
+Model A (the physical linkage): the rigid rod DEF moves with the drive D; the
+joints E and F are springs k_tau (Vulfson) into the bell cranks, whose levers
+drive G and K; the rigid rods GH, KL and the heald frame make G, K and the frame
+P move together; the warp spring holds P.  Model B (the form of eq. 2): three
+spring->mass branches hang on the driven node: joint E with the bell-crank-7
+side reduced to E, joint F likewise, and the warp spring with the heald frame.
+
+An "ideal" joint is Vulfson's Delta -> 0 limit, the pin's own stiffness k_n:
+with both joints rigid the linkage is a redundant closed loop (the frame is
+driven from both sides) and the split of force between E and F is undefined.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from ...engines.chains import GROUND, Element, Lever, Network, Parallel, Series, vulfson_stiffness
+
+MODELS = ("A", "B")
+JOINTS = ("ideal", "elastic")
+
+
+def joint_stiffness(p: Mapping[str, float], joint: str, variant: str) -> float:
+    """k_tau of joint E or F (N/m); the ideal variant has no clearance."""
+    clearance = 0.0 if variant == "ideal" else p[f"clearance_{joint}"]
+    return float(vulfson_stiffness(p[f"reaction_{joint}"], clearance, p["k_n"]))
+
+
+def reduced_masses(p: Mapping[str, float]) -> tuple[float, float]:
+    """Bell-crank sides reduced to E and to F through their levers (kg), used by model B."""
+    m_e = p["m_E7"] + p["eta7"] ** 2 * (p["M_G"] + p["m_H9"])
+    m_f = p["m_F8"] + p["eta8"] ** 2 * (p["M_K"] + p["m_L10"])
+    return m_e, m_f
+
+
+def model_a(p: Mapping[str, float], variant: str = "elastic") -> Network:
+    """The physical linkage as a chain (bridge network: not series/parallel)."""
+    k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
+    els = (
+        Element("rod", "mass", "D", GROUND, p["m_D"] + p["m_E6"] + p["m_F6"]),
+        Element("joint_E", "spring", "D", "e", k_e),
+        Element("joint_E_damping", "damper", "D", "e", p["c_joint"]),
+        Element("joint_F", "spring", "D", "f", k_f),
+        Element("joint_F_damping", "damper", "D", "f", p["c_joint"]),
+        Element("crank7_E", "mass", "e", GROUND, p["m_E7"]),
+        Element("crank8_F", "mass", "f", GROUND, p["m_F8"]),
+        Element("output", "mass", "P", GROUND, p["M_G"] + p["m_H9"] + p["M_K"] + p["m_L10"] + p["M_P"]),
+        Element("warp", "spring", "P", GROUND, p["k_O"]),
+        Element("warp_damping", "damper", "P", GROUND, p["c_O"]),
+    )
+    levers = (Lever("lever7", "e", "g", p["eta7"]), Lever("lever8", "f", "k", p["eta8"]), Lever("rod9", "g", "P", 1.0), Lever("rod10", "k", "P", 1.0))
+    return Network(("D", "e", "f", "g", "k", "P"), els, levers, "D", "velocity")
+
+
+def model_b(p: Mapping[str, float], variant: str = "elastic") -> Network:
+    """Eq. (2)'s chain: three spring->mass branches on the driven node, which carries no mass."""
+    k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
+    m_e, m_f = reduced_masses(p)
+    els = (
+        Element("joint_E", "spring", "D", "e", k_e),
+        Element("joint_E_damping", "damper", "D", "e", p["c_joint"]),
+        Element("side_E", "mass", "e", GROUND, m_e),
+        Element("joint_F", "spring", "D", "f", k_f),
+        Element("joint_F_damping", "damper", "D", "f", p["c_joint"]),
+        Element("side_F", "mass", "f", GROUND, m_f),
+        Element("warp", "spring", "D", "o", p["k_O"]),
+        Element("warp_damping", "damper", "D", "o", p["c_O"]),
+        Element("frame", "mass", "o", GROUND, p["M_P"]),
+    )
+    return Network(("D", "e", "f", "o"), els, (), "D", "velocity")
+
+
+def model_b_tree(p: Mapping[str, float], variant: str = "elastic"):
+    """Model B without dampers as a series/parallel tree (for eq. (2) and the closed-form route)."""
+    k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
+    m_e, m_f = reduced_masses(p)
+
+    def branch(k: float, m: float) -> Series:
+        return Series((Element("k", "spring", "a", "b", k), Element("m", "mass", "b", GROUND, m)))
+
+    return Parallel((branch(k_e, m_e), branch(k_f, m_f), branch(p["k_O"], p["M_P"])))
+
+
+def eq2_mobility(p: Mapping[str, float], omega, variant: str = "elastic"):
+    """The paper's eq. (2) with model B's (undamped) parameters.
+
+    Numerator: the branch frequencies w09..w011 = sqrt(k_i / m_i) (velocity resonances);
+    denominator: j w (k_E7 + k_F8 + k_O) (w07^2 - w^2)(w08^2 - w^2), where w07, w08 are the
+    roots of sum_i k_i prod_{j != i} (w_j^2 - w^2) (force resonances).
+    Returns (mobility, numerator frequencies, denominator frequencies).
+    """
+    k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
+    m_e, m_f = reduced_masses(p)
+    k = np.array([k_e, k_f, p["k_O"]])
+    wi2 = k / np.array([m_e, m_f, p["M_P"]])
+    # sum_i k_i prod_{j!=i} (wj^2 - x) as a polynomial in x = w^2
+    poly = np.zeros(3)  # coefficients in x = w^2, highest power first
+    for i in range(3):
+        others = [wi2[j] for j in range(3) if j != i]
+        poly = np.polyadd(poly, float(k[i]) * np.polymul([1.0, -others[0]], [1.0, -others[1]]))
+    roots = np.sort(np.real(np.roots(poly)))
+    w = np.asarray(omega, dtype=float)
+    x = w**2
+    num = np.prod([wi2[i] - x for i in range(3)], axis=0)
+    den = 1j * w * k.sum() * (roots[0] - x) * (roots[1] - x)
+    return num / den, np.sqrt(np.sort(wi2)), np.sqrt(roots)
+
+
+def build(model: str, p: Mapping[str, float], variant: str) -> Network:
+    if model == "A":
+        return model_a(p, variant)
+    if model == "B":
+        return model_b(p, variant)
+    raise ValueError(f"unknown heald model {model!r}; expected one of {MODELS}")

@@ -1,0 +1,1 @@
+"""Paper ``stiffness``: see linkwork.papers."""

@@ -1,0 +1,33 @@
+"""Physical checks of the stiffness section before any job runs (messages name the key and the value)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ...engines.kinematics import four_bar
+from ...pipeline.errors import ConfigError
+from ...units import angle_grid_deg, divides_turn
+from .adapter import four_bar as linkage_from_config
+
+
+def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
+    """The reference form is computed; the grids divide a turn; the linkage assembles on both grids."""
+    if section["reference_form"] not in section["forms"]:
+        raise ConfigError(f"config key {key}.reference_form: value {section['reference_form']!r} is not one of {key}.forms {section['forms']!r}")
+    linkage = section["linkage"]
+    try:
+        lw = linkage_from_config(linkage, section["numerics"]["assembly_tol"])
+    except ValueError as exc:
+        raise ConfigError(f"config key {key}.linkage: {exc}") from None
+    for grid_key in ("paper_step_deg", "fine_step_deg"):
+        step = section["grids"][grid_key]
+        if not divides_turn(step):
+            raise ConfigError(f"config key {key}.grids.{grid_key}: value {step!r} does not divide 360 deg")
+        try:
+            four_bar(lw, np.radians(angle_grid_deg(step)))
+        except ValueError as exc:
+            values = ", ".join(f"{k}={linkage[k]!r}" for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
+            raise ConfigError(f"config key {key}.linkage ({values}): {exc}") from None

@@ -1,0 +1,66 @@
+"""The stiffness paper's comparison and findings: every published number beside ours, and the numbers the
+report states that need a published value (the modulus the published figures imply, ...)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from ...pipeline.compare import compare_datasets, counts_dataset, scalar
+
+STIFFNESS_UNITS = ("N/m", "N m/rad")
+
+
+def implied_modulus(table: pd.DataFrame, youngs_modulus: float, forms: list[str]) -> xr.DataArray:
+    """E_implied = E_used x published / reproduced for every published stiffness, per form (Pa).
+
+    Every term of x_O' and phi_O' is proportional to 1/E (one E for all members), so each published
+    stiffness names the modulus that would reproduce it exactly.
+    """
+    rows = table[table.unit.isin(STIFFNESS_UNITS)]
+    ids = list(dict.fromkeys(rows.id))
+    values = np.full((len(forms), len(ids)), np.nan)
+    for i, form in enumerate(forms):
+        part = rows[rows.model == form].set_index("id")
+        values[i] = [youngs_modulus * part.published[q] / part.reproduced[q] for q in ids]
+    return xr.DataArray(values, dims=("implied_form", "stiffness_quantity"),
+                        coords={"implied_form": ("implied_form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"}),
+                                "stiffness_quantity": ("stiffness_quantity", np.array(ids, dtype=object), {"units": "1", "long_name": "published stiffness"})},
+                        attrs={"units": "Pa", "long_name": "Young's modulus the published stiffness implies"})
+
+
+def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
+    """Comparison table (every form) and the findings Dataset."""
+    table = compare_datasets(published, [result])
+    forms = [str(f) for f in result.form.values]
+    table3 = table.id.str.startswith("table3")
+    first = table[table3 & (table.model == forms[0])]
+    headline = table[~table3]
+    used = float(cfg["members"]["OA"]["youngs_modulus_Pa"])
+    data: dict[str, Any] = {
+        "table3_matches": scalar((first.verdict == "matches").sum(), "1", "Table 3 angles within half the printed digit"),
+        "table3_total": scalar(len(first), "1", "Table 3 angles compared"),
+        "table3_max_deviation_beta": scalar(first[first.id.str.contains("beta")].deviation.abs().max(), "deg", "largest |deviation| of beta in Table 3"),
+        "table3_max_deviation_gamma": scalar(first[first.id.str.contains("gamma")].deviation.abs().max(), "deg", "largest |deviation| of gamma in Table 3"),
+        "headline_matches": ("form", [int((headline[headline.model == f].verdict == "matches").sum()) for f in forms], {"units": "1", "long_name": "headline numbers within rounding, per form"}),
+        "headline_total": ("form", [int((headline.model == f).sum()) for f in forms], {"units": "1", "long_name": "headline numbers compared, per form"}),
+        "used_youngs_modulus": scalar(used, "Pa", "Young's modulus used (as printed)"),
+        "steel_factor": scalar(float(cfg["steel_youngs_modulus_Pa"]["value"]) / used, "1", "steel's modulus over the printed one: the factor every stiffness would grow by"),
+    }
+    if "printed" in forms:
+        kc = headline[(headline.model == "printed") & headline.id.isin(["K_c_min", "K_c_max", "K_c_mean"])].relative_deviation.abs()
+        data["printed_K_c_deviation_min"] = scalar(kc.min(), "1", "smallest |relative deviation| of the literal eq. (14) from the published K_c")
+        data["printed_K_c_deviation_max"] = scalar(kc.max(), "1", "largest |relative deviation| of the literal eq. (14) from the published K_c")
+    implied = implied_modulus(headline, used, [f for f in ("tables", "equilibrium") if f in forms])
+    data["implied_youngs_modulus"] = implied
+    if "tables" in forms:
+        data["implied_youngs_modulus_tables_min"] = scalar(implied.sel(implied_form="tables").min(), "Pa", "smallest modulus implied, paper's own model")
+        data["implied_youngs_modulus_tables_max"] = scalar(implied.sel(implied_form="tables").max(), "Pa", "largest modulus implied, paper's own model")
+    findings = xr.Dataset(data, coords={"form": ("form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"})})
+    findings = findings.merge(counts_dataset(table, ~table3))
+    findings.attrs.update(title="Stiffness paper: comparison findings", reference_model=cfg["reference_form"])
+    return table, findings

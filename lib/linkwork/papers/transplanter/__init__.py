@@ -1,0 +1,1 @@
+"""Paper ``transplanter``: see linkwork.papers."""

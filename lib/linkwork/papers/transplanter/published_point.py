@@ -1,0 +1,84 @@
+"""Comparison data of the transplanter paper: our model evaluated at the published optimum."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ...engines.optimize import gradient
+from ...units import STANDARD_GRAVITY, angle_grid_deg
+from .adapter import discretisation, material, mechanism
+from .model import MEMBERS
+from .studies import SUMMARY_ATTRS, problem, solve, summary
+
+
+def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dataset:
+    """Comparison data at the published optimum: our model's response there, what moves it, SS and stationarity.
+
+    The published diameters and SS enter here only to evaluate our model at the paper's point, for
+    comparison; nothing computed here feeds our own optimum.
+    """
+    published_mm = np.array(published["optimum_diameters_mm"], dtype=float)
+    published_ss = float(next(q["value"] for q in published["quantities"] if q["id"] == "SS"))
+    d = published_mm / 1e3
+    theta = angle_grid_deg(cfg["fe"]["angle_step_deg"])
+    sens = cfg["sensitivity"]
+    cases = {
+        "baseline (quasi-static)": {},
+        "dynamic (Newmark)": {"solution": "dynamic"},
+        f"E = {sens['youngs_modulus_low_Pa'] / 1e9:g} GPa": {"mat": material(cfg, youngs_modulus=sens["youngs_modulus_low_Pa"])},
+        f"E = {sens['youngs_modulus_high_Pa'] / 1e9:g} GPa": {"mat": material(cfg, youngs_modulus=sens["youngs_modulus_high_Pa"])},
+        f"density {sens['density_high_kg_m3']:g} kg/m3": {"mat": material(cfg, density=sens["density_high_kg_m3"])},
+        "gravity on": {"gravity": STANDARD_GRAVITY},
+        f"{sens['coarse_angle_step_deg']:g} deg crank sampling": {"theta": angle_grid_deg(sens["coarse_angle_step_deg"])},
+        "frame6 elements": {"disc": discretisation(cfg, kind="frame6")},
+    }
+    rows = []
+    for spec in cases.values():
+        spec = dict(spec)
+        sol = spec.pop("solution", "quasi-static")
+        th = spec.pop("theta", theta)
+        rows.append(summary(solve(cfg, d, sol, th, **spec)))
+    combos = [(s, b) for s in (1, -1) for b in (1, -1)]  # which assembly reproduces the published deformation pattern
+    combo_rows = []
+    for s, b in combos:
+        try:
+            combo_rows.append(summary(solve(cfg, d, "quasi-static", theta, mech=mechanism(cfg, arm_side=s, branch=b))))
+        except ValueError:
+            combo_rows.append({k: np.nan for k in SUMMARY_ATTRS})
+    prob = problem(cfg)
+    opt = cfg["optimization"]
+    r_last = opt["r0"] * opt["r_factor"] ** (opt["iterations"] - 1)
+    parts = prob.parts(d, r_last)
+    barrier = float(np.sum(1.0 / parts["g"][parts["g"] > 0]))
+    step = opt["gradient_step_m"]
+    grad = gradient(lambda x: prob.ss(x, r_last), d, step)
+    grad_sz = gradient(lambda x: prob.parts(x, r_last)["SY"] + prob.parts(x, r_last)["SZ"], d, step)
+    data = {k: ("case", np.array([r[k] for r in rows]), {"units": u, "long_name": f"{n}, at the published optimum"}) for k, (u, n) in SUMMARY_ATTRS.items()}
+    data.update({f"{k}_assembly": ("assembly", np.array([r[k] for r in combo_rows]), {"units": u, "long_name": f"{n}, by assembly"}) for k, (u, n) in SUMMARY_ATTRS.items()})
+    data.update(
+        {
+            "stress_members": ("member", prob.stresses(d) / 1e6, {"units": "MPa", "long_name": f"largest stress per member ({opt['angle_step_deg']:g} deg sampling)"}),
+            "SY_at_published": ((), parts["SY"], {"units": "1", "long_name": "SY at the published optimum"}),
+            "SZ_at_published": ((), parts["SZ"], {"units": "1", "long_name": "SZ at the published optimum ([x_S1] from config)"}),
+            "SY_SZ_at_published": ((), parts["SY"] + parts["SZ"], {"units": "1", "long_name": "SY + SZ at the published optimum"}),
+            "SG_at_published": ((), parts["SG"], {"units": "1", "long_name": "SG at the published optimum, last r(k)"}),
+            "SS_at_published": ((), parts["SS"], {"units": "1", "long_name": "SS at the published optimum, last r(k)"}),
+            "r_consistent": ((), (published_ss - parts["SY"] - parts["SZ"]) / barrier, {"units": "1", "long_name": "r that would make SS equal the printed value with our SY, SZ"}),
+            "gradient_SS": ("member", grad * 1e-3, {"units": "mm-1", "long_name": "dSS/dx at the published optimum (per mm), last r(k)"}),
+            "gradient_SY_SZ": ("member", grad_sz * 1e-3, {"units": "mm-1", "long_name": "d(SY + SZ)/dx at the published optimum (per mm)"}),
+            "published_diameter": ("member", published_mm, {"units": "mm", "long_name": "the published optimum (where our model is evaluated)"}),
+        }
+    )
+    return xr.Dataset(
+        data,
+        coords={
+            "case": ("case", np.array(list(cases), dtype=object), {"units": "1", "long_name": "model choice"}),
+            "assembly": ("assembly", np.array([f"arm side {s:+d}, branch {b:+d}" for s, b in combos], dtype=object), {"units": "1", "long_name": "arm side and assembly branch"}),
+            "member": ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member"}),
+        },
+        attrs={"title": "Our model at the published optimum (comparison)", "r_last": r_last},
+    )

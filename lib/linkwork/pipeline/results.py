@@ -1,0 +1,132 @@
+"""Write result Datasets to netCDF with units and provenance, atomically.
+
+Provenance goes into global attributes: the paper id, the paper's config
+section as canonical JSON and its sha256, the package version and the git
+commit of the working tree.  Nothing time- or host-dependent is written, so a
+rerun with the same config and code produces byte-identical files.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import subprocess
+from pathlib import Path
+from typing import Any
+
+from .. import __version__
+
+
+def canonical_json(obj: Any) -> str:
+    """JSON with sorted keys and no whitespace: the same config gives the same text."""
+    return json.dumps(obj, sort_keys=True, separators=(",", ":"), ensure_ascii=True)
+
+
+def config_sha256(obj: Any) -> str:
+    return hashlib.sha256(canonical_json(obj).encode()).hexdigest()
+
+
+def git_commit(path: str | os.PathLike[str] = ".") -> str:
+    """HEAD commit of the repository holding ``path`` ('-dirty' if tracked files changed).
+
+    Returns 'unknown' outside a git checkout.
+    """
+    try:
+        head = subprocess.run(
+            ["git", "rev-parse", "HEAD"], cwd=path, capture_output=True, text=True, check=True
+        ).stdout.strip()
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"], cwd=path, capture_output=True, text=True, check=True
+        ).stdout.strip()
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return head + ("-dirty" if dirty else "")
+
+
+def provenance(paper_id: str, config_section: Any, **extra: Any) -> dict[str, Any]:
+    """Global attributes that say where a result came from."""
+    attrs: dict[str, Any] = {
+        "paper_id": paper_id,
+        "config_json": canonical_json(config_section),
+        "config_sha256": config_sha256(config_section),
+        "linkwork_version": __version__,
+        "git_commit": git_commit(),
+    }
+    attrs.update(extra)
+    return attrs
+
+
+def check_units(ds) -> None:
+    """Every data variable and coordinate must carry ``units`` and ``long_name``."""
+    missing = [
+        str(name)
+        for name, var in {**ds.data_vars, **ds.coords}.items()
+        if "units" not in var.attrs or "long_name" not in var.attrs
+    ]
+    if missing:
+        raise ValueError(f"variables without units/long_name: {', '.join(sorted(missing))}")
+
+
+def write(ds, path: str | os.PathLike[str]) -> Path:
+    """Write ``ds`` to netCDF atomically: a temporary file beside it, then rename."""
+    check_units(ds)
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_name(target.name + ".tmp")
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+        os.replace(tmp, target)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return target
+
+
+def write_text(text: str, path: str | os.PathLike[str]) -> Path:
+    """Write a text file atomically."""
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    tmp = target.with_name(target.name + ".tmp")
+    try:
+        tmp.write_text(text, encoding="utf-8")
+        os.replace(tmp, target)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    return target
+
+
+class UnreadableResult(RuntimeError):
+    """A result file exists but cannot be read (truncated or corrupted)."""
+
+
+def load(path: str | os.PathLike[str]) -> Any:
+    """Read a rule input by its type: netCDF (loaded Dataset), JSON, YAML (dict) or CSV (DataFrame).
+
+    A file that cannot be read raises UnreadableResult with one line naming the file and the command
+    that rebuilds it.
+    """
+    target = Path(path)
+    try:
+        if target.suffix == ".nc":
+            import xarray as xr
+
+            with xr.open_dataset(target) as ds:
+                return ds.load()
+        if target.suffix == ".json":
+            return json.loads(target.read_text(encoding="utf-8"))
+        if target.suffix in (".yaml", ".yml"):
+            import yaml
+
+            return yaml.safe_load(target.read_text(encoding="utf-8"))
+        if target.suffix == ".csv":
+            import pandas as pd
+
+            return pd.read_csv(target, keep_default_na=True)
+    except (OSError, ValueError, RuntimeError, KeyError) as exc:
+        raise UnreadableResult(
+            f"cannot read {target} ({type(exc).__name__}: {str(exc).splitlines()[0] if str(exc) else 'no detail'}); "
+            f"rebuild it with: snakemake --force {target}"
+        ) from None
+    raise ValueError(f"no reader for {target}")
