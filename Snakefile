@@ -9,14 +9,16 @@ min_version("9.0")
 
 sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
-from linkwork.pipeline.validate import load_yaml, merge_overrides, validate_config  # noqa: E402
+from linkwork.pipeline.validate import load_yaml, merge_overrides, validate_once  # noqa: E402
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
 # --config/--configfile values override it, then validate everything before any job: schema (types,
-# ranges, unknown keys) and each paper's physical checks.  Errors are one line per problem.
+# ranges, unknown keys) and each paper's physical checks.  Errors are one line per problem.  A config
+# that passed with the same schema and checking code is not checked again (.snakemake/linkwork-validated).
+_root = Path(workflow.basedir)
 try:
-    merge_overrides(config, load_yaml(Path(workflow.basedir) / "config" / "config.yaml"))
-    validate_config(config, load_yaml(Path(workflow.basedir) / "config" / "schema.yaml"))
+    merge_overrides(config, load_yaml(_root / "config" / "config.yaml"))
+    validate_once(config, _root / "config" / "schema.yaml", _root / "lib", _root / ".snakemake" / "linkwork-validated")
 except ConfigError as exc:
     sys.exit(f"linkwork: {exc}")
 

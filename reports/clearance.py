@@ -140,7 +140,7 @@ for v in variants:
 
 # %%
 runs = summary.to_dataframe().reset_index()
-per_run = runs[runs.joint == runs.joint.min()].copy()
+per_run = runs.drop_duplicates(["variant", "run"]).copy()
 per_run = per_run[per_run.run != "ideal"]
 per_run["cycle-to-cycle change (first → last)"] = [f"{a:.2f} → {b:.3f}" for a, b in zip(per_run.summary_first_change, per_run.summary_last_change)]
 show = per_run[["variant", "run", "summary_integrator", "summary_steps", "cycle-to-cycle change (first → last)", "summary_max_drift",

@@ -5,8 +5,10 @@ import pandas as pd
 import pytest
 
 from conftest import load_yaml
-from linkwork import from_config
-from linkwork.beatup import (
+from linkwork.papers.beatup.accuracy import accuracy as accuracy_dataset
+from linkwork.papers.beatup.adapter import six_bar
+from linkwork.papers.beatup.findings import table1_evidence
+from linkwork.papers.beatup.model import (
     FourBarBeatup,
     dead_centres,
     paper_closed_form,
@@ -15,11 +17,12 @@ from linkwork.beatup import (
     sley_motion,
     window_span,
 )
-from linkwork.beatup_dataset import accuracy_dataset, sixbar_dataset, table1_evidence, window_dataset
-from linkwork.compare import compare
+from linkwork.papers.beatup.studies import sixbar as sixbar_dataset
+from linkwork.papers.beatup.studies import window as window_dataset
+from linkwork.pipeline.compare import compare
 
 SECTION = load_yaml("config/config.yaml")["beatup"]
-MECH = from_config.six_bar(SECTION["sixbar"])
+MECH = six_bar(SECTION["sixbar"])
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from scipy.signal import freqresp
 
 from conftest import load_yaml
-from linkwork.chains import (
+from linkwork.engines.chains import (
     GROUND,
     Element,
     Lever,
@@ -21,8 +21,8 @@ from linkwork.chains import (
     state_space,
     vulfson_stiffness,
 )
-from linkwork.heald import build, eq2_mobility, joint_stiffness, model_a, model_b, model_b_tree
-from linkwork.heald_dataset import parameters
+from linkwork.papers.heald.adapter import parameters
+from linkwork.papers.heald.model import build, eq2_mobility, joint_stiffness, model_a, model_b, model_b_tree
 
 P = parameters(load_yaml("config/config.yaml")["heald"])
 W = np.linspace(1.0, 400.0, 997)
@@ -104,7 +104,7 @@ def test_series_parallel_reduction_with_a_lever():
     k, m, eta = 2e5, 3.0, 2.5
     tree = Series((Element("k", "spring", "a", "b", k), Parallel((Element("m", "mass", "b", GROUND, m),))))
     net = Network(("a", "b", "c"), (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)), (Lever("l", "b", "c", eta),), "a")
-    from linkwork.chains import Through
+    from linkwork.engines.chains import Through
 
     tree = Series((Element("k", "spring", "a", "b", k), Through(eta, Element("m", "mass", "b", GROUND, m))))
     assert _rel(series_parallel_mobility(tree, W), 1 / solve_network(net, W, 1.0).input_force) < 1e-9
@@ -176,3 +176,14 @@ def test_bad_networks_are_rejected():
         Network(("a", "b"), (Element("m", "mass", "a", GROUND, 1.0),), (Lever("l", "a", "b", 0.0),), "a")
     with pytest.raises(ValueError, match="undeclared node 'z'"):
         Network(("a",), (Element("k", "spring", "a", "z", 1.0),), (), "a")
+
+
+def test_interlacing_of_zeros_and_poles():
+    from linkwork.papers.heald.studies import interlaced
+
+    assert interlaced(np.array([1.0, 3.0, 5.0]), np.array([2.0, 4.0]))
+    assert not interlaced(np.array([1.0, 2.0, 5.0]), np.array([3.0, 4.0]))
+    assert not interlaced(np.array([2.0, 4.0]), np.array([1.0, 3.0, 5.0]))  # must start with a zero
+    w = np.linspace(10, 1000, 50)
+    _, num, den = eq2_mobility(P, w)
+    assert interlaced(num, den)  # the property the paper's form relies on, at the assumed parameters

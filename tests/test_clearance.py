@@ -7,12 +7,14 @@ import numpy as np
 import pytest
 
 from conftest import load_yaml
-from linkwork.clearance_dataset import integrate, parameters, scene_dataset
-from linkwork.multibody.kernels import film_forces, friction_coefficient
-from linkwork.multibody.model import generate_source, initial_state, inverse_dynamics
+from linkwork.engines.multibody.kernels import film_forces, friction_coefficient
+from linkwork.engines.multibody.model import generate_source, initial_state, inverse_dynamics
+from linkwork.engines.multibody.simulate import integrate
+from linkwork.papers.clearance.adapter import parameters
+from linkwork.papers.clearance.studies import scene as scene_dataset
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
-SLENDER = parameters(SECTION, "slender")
+SLENDER = parameters({**SECTION, "scenes": {"all": {"clearance_joints": [1, 2], "effects": ["contact", "friction", "lubrication", "gravity"]}}}, "slender", "all")
 EXPLICIT = SECTION["integrators"]["explicit"]
 STIFF = SECTION["integrators"]["stiff"]
 DRIFT_BOUND = 1e-6  # m
@@ -139,3 +141,13 @@ def test_bad_clearance_input(config, schema):
     c = copy.deepcopy(config)
     del c["clearance"]["joints"]["viscosity_Pa_s"]
     _expect(c, schema, "clearance.scenes.lubricated_1.effects", "lubrication", "viscosity_Pa_s")
+
+
+def test_claimed_order_of_the_dry_scenes():
+    from linkwork.papers.clearance.studies import order_as_claimed
+
+    # values: dry_1, dry_2, dry_both (then the lubricated ones, ignored)
+    assert order_as_claimed(np.array([1.0, 2.0, 3.0, 0, 0, 0]), "rocker_acceleration")
+    assert not order_as_claimed(np.array([2.0, 1.0, 3.0]), "rocker_acceleration")
+    assert order_as_claimed(np.array([2.0, 1.0, 3.0]), "crank_torque")
+    assert not order_as_claimed(np.array([2.0, 1.0, 1.5]), "crank_torque")  # both joints not the largest

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from linkwork.compare import compare, evaluate_measure, expand_tables, tolerance_of, verdict, verdict_counts
+from linkwork.pipeline.compare import compare, evaluate_measure, expand_tables, tolerance_of, verdict, verdict_counts
 
 DS = xr.Dataset(
     {"k": ("angle", np.array([1.0, 3.0, 2.0])), "b": ("angle", np.array([10.0, 20.0, 30.0]))},

@@ -4,7 +4,7 @@ import copy
 
 import yaml
 
-from linkwork.config import validate_config
+from linkwork.pipeline.validate import validate_config
 
 
 def test_project_config_is_valid(config, schema):

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 from scipy.linalg import eigh
 
-from linkwork.fem import BeamMesh, assemble, local_matrices, solve_static
+from linkwork.engines.fem import BeamMesh, assemble, local_matrices, solve_static
 
 E, RHO, L = 70e9, 2640.0, 0.25
 D = 0.008
@@ -67,7 +67,7 @@ def test_natural_frequencies_converge_at_the_expected_rate(kind, low, high):
 
 
 def test_frame_element_matches_the_closed_form_matrix():
-    from linkwork.fem import frame_element_stiffness
+    from linkwork.engines.fem import frame_element_stiffness
 
     k_loc, _ = local_matrices("frame6", E, A, I, RHO, L)
     assert np.allclose(k_loc, frame_element_stiffness(E, A, I, (0.0, 0.0), (L, 0.0)), rtol=1e-12, atol=1e-9)

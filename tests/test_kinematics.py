@@ -5,7 +5,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from linkwork.kinematics import (
+from linkwork.engines.kinematics import (
     FourBar,
     dyad_position,
     four_bar,

@@ -6,10 +6,11 @@ all headline numbers but the upper end of the K_c range; the statics-consistent
 model deviates; eq. (14) taken literally misses the K_c numbers.
 """
 
+import numpy as np
 import pytest
 
-from linkwork.compare import compare, verdict_counts
-from linkwork.stiffness_dataset import build_dataset
+from linkwork.papers.stiffness.studies import stiffness as build_dataset
+from linkwork.pipeline.compare import compare, verdict_counts
 
 
 @pytest.fixture(scope="module")
@@ -52,3 +53,15 @@ def test_literal_eq14_misses_the_rotational_stiffness(stiffness_published, stiff
         assert t.loc[qid, "verdict"] == "deviates"
         assert -0.13 < t.loc[qid, "relative_deviation"] < -0.10
     assert t.loc["K_h_max", "verdict"] == "matches"  # eq. (8) is right
+
+
+def test_implied_modulus_scales_with_the_ratio():
+    """E_implied = E x published / reproduced: a model that gives half the published value implies twice E."""
+    import pandas as pd
+
+    from linkwork.papers.stiffness.findings import implied_modulus
+
+    table = pd.DataFrame({"model": ["tables", "tables"], "id": ["K_h_max", "K_c_min"], "unit": ["N/m", "N m/rad"],
+                          "published": [2.0, 3.0], "reproduced": [1.0, 3.0]})
+    implied = implied_modulus(table, 2.1e8, ["tables"])
+    assert np.allclose(implied.sel(implied_form="tables").values, [4.2e8, 2.1e8])

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from linkwork import results
+from linkwork.pipeline import results
 
 
 def _ds():

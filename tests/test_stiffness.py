@@ -4,15 +4,20 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from linkwork.fem import assemble_frame, solve_static
-from linkwork.kinematics import FourBar, four_bar
-from linkwork.stiffness import (
+from linkwork.engines.fem import assemble_frame, solve_static
+from linkwork.engines.kinematics import FourBar, four_bar
+from conftest import load_yaml
+from linkwork.papers.stiffness.model import (
     Section,
+    axial_share,
+    compliance_parts,
     equivalent_stiffness,
+    moment_jump_at_b,
     paper_angles,
     printed_eq8,
     printed_eq14,
     unit_force_internal_forces,
+    unit_load_displacement,
     unit_moment_internal_forces,
 )
 
@@ -156,14 +161,48 @@ def test_printed_equations_against_the_tables():
 
 
 def test_moment_continuity_at_joint_b_separates_the_forms():
-    """Statics makes the bending moment continuous at the rigid joint B; the printed tables do not."""
+    """Statics makes the bending moment continuous at the rigid joint B; the printed tables do not.
+
+    Independent route for the force case: a unit horizontal force at O' bends every section by its
+    height above the line OO', so |M(B)| is |y_B| from the four-bar solution.
+    """
     l1, l2, l3, l4 = LINKAGE.lengths
-    a, b, g = paper_angles(LINKAGE, np.radians(np.arange(0.0, 360.0, 1.0)))
+    alpha = np.radians(np.arange(0.0, 360.0, 1.0))
+    a, b, g = paper_angles(LINKAGE, alpha)
+    y_b = np.abs(four_bar(LINKAGE, alpha).B[:, 1])
     for form, continuous in (("equilibrium", True), ("tables", False)):
-        for forces in (unit_force_internal_forces(l1, a, b, g, form), unit_moment_internal_forces(l1, l4, a, b, g, form)):
-            ab, bo = forces[1], forces[2]
-            jump = np.abs(np.abs(ab.m0 + ab.m1 * l2) - np.abs(bo.m0 + bo.m1 * l3))
-            assert (jump.max() < 1e-12) == continuous
+        force = unit_force_internal_forces(l1, a, b, g, form)
+        moment = unit_moment_internal_forces(l1, l4, a, b, g, form)
+        for forces in (force, moment):
+            assert (moment_jump_at_b(l2, l3, forces).max() < 1e-12) == continuous
+        assert np.allclose(np.abs(force[2].m0 + force[2].m1 * l3), y_b, atol=1e-12)
+        if continuous:
+            assert np.allclose(np.abs(force[1].m0 + force[1].m1 * l2), y_b, atol=1e-12)
+
+
+def test_axial_share_is_the_axial_fraction_of_the_compliance():
+    l1, l2, l3, l4 = LINKAGE.lengths
+    a, b, g = paper_angles(LINKAGE, ALPHA)
+    forces = unit_force_internal_forces(l1, a, b, g, "equilibrium")
+    share = axial_share((l1, l2, l3), SECTIONS, forces)
+    stiff = tuple(Section(s.youngs_modulus, s.area * 1e6, s.second_moment) for s in SECTIONS)
+    assert np.all((share > 0) & (share < 1))
+    assert axial_share((l1, l2, l3), stiff, forces).max() < 1e-5  # rigid in tension: no axial share
+    axial, bending = compliance_parts((l1, l2, l3), SECTIONS, forces)
+    assert np.allclose(share * unit_load_displacement((l1, l2, l3), SECTIONS, forces), axial, rtol=1e-12)
+
+
+def test_the_result_dataset_states_what_its_curves_show():
+    from linkwork.papers.stiffness.studies import stiffness
+
+    ds = stiffness(load_yaml("config/config.yaml")["stiffness"])
+    for form in ds.form.values:
+        s = ds.sel(form=form)
+        assert float(s.K_h_max_fine) == float(s.K_h_fine.max())
+        assert float(s.K_c_argmin_fine) == float(s.crank_angle_fine[int(np.argmin(s.K_c_fine.values))])
+        assert np.isclose(float(s.K_h_spread_fine), float((s.K_h_fine.max() - s.K_h_fine.min()) / s.K_h_fine.mean()))
+    assert float(ds.moment_jump_B.sel(force_form="equilibrium").max()) < 1e-12
+    assert float(ds.moment_jump_B.sel(force_form="tables", load_case="unit force")) > 0.01
 
 
 def test_stiffness_is_proportional_to_youngs_modulus():

@@ -1,11 +1,20 @@
-"""The Snakemake workflow on temporary copies of the project: real runs, dry runs, reruns, bad input."""
+"""The Snakemake workflow on temporary copies of the project: real runs, dry runs, reruns, bad input.
 
+The `built` fixture runs the whole pipeline once on a copy, with every Python process recording which
+linkwork modules it loaded (tests/tracing/sitecustomize.py).  The rerun tests then edit that copy and
+compare what a dry run schedules with the specification (tests/rerun_spec.yaml for config keys; the
+declared code inputs, checked against the recorded imports, for lib modules).
+"""
+
+import fnmatch
 import hashlib
+import json
 import os
 import re
 import shutil
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import pytest
@@ -16,92 +25,78 @@ from conftest import PROJECT
 pytestmark = pytest.mark.workflow
 
 COPIED = ["Snakefile", "config", "workflow", "lib", "reports", "profiles"]
+TRACING = Path(__file__).resolve().parent / "tracing"
 OUTPUTS = [
     "results/stiffness/stiffness.nc",
-    "results/reports/stiffness.html",
     "results/beatup/sixbar.nc",
     "results/beatup/window.nc",
-    "results/reports/beatup.html",
     "results/heald/chain.nc",
-    "results/reports/heald.html",
     "results/transplanter/ked.nc",
     "results/transplanter/optim.nc",
-    "results/reports/transplanter.html",
     "results/clearance/slender/dry_both.nc",
     "results/clearance/claims.nc",
-    "results/reports/clearance.html",
     "results/accuracy/summary.nc",
-    "results/reports/accuracy.html",
-    "results/reports/index.html",
+    "results/sweeps/clearance.nc",
+    "results/sweeps/heald.nc",
 ]
+REPORTS = ("stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index")
 ALL_JOBS = {
-    "all": 1,
-    "stiffness": 1,
-    "stiffness_compare": 1,
-    "beatup_sixbar": 1,
-    "beatup_window": 1,
-    "beatup_accuracy": 1,
-    "beatup_compare": 1,
-    "heald_chain": 1,
-    "heald_accuracy": 1,
-    "heald_compare": 1,
-    "transplanter_optim": 1,
-    "transplanter_ked": 1,
-    "transplanter_at_published": 1,
-    "transplanter_accuracy": 1,
-    "transplanter_compare": 1,
-    "clearance_scene": 14,
-    "clearance_scene_tight": 12,
-    "clearance_claims": 1,
-    "clearance_work_precision": 1,
-    "clearance_compare": 1,
-    "accuracy_summary": 1,
-    "sweep_point": 15,
-    "sweep_gather": 2,
-    "report": 7,
-    "index": 1,
+    "all": 1, "stiffness": 1, "stiffness_accuracy": 1, "stiffness_compare": 1,
+    "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1,
+    "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1,
+    "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
+    "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
+    "accuracy_summary": 1, "sweep_point": 15, "sweep_gather": 2, "report": 8,
 }
-STIFFNESS_JOBS = {"all": 1, "stiffness": 1, "stiffness_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
-BEATUP_JOBS = {"all": 1, "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
-TRANSPLANTER_JOBS = {"all": 1, "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1,
-                     "transplanter_accuracy": 1, "transplanter_compare": 1, "report": 2, "accuracy_summary": 1, "index": 1}
-CLEARANCE_JOBS = {"all": 1, "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1,
-                  "clearance_work_precision": 1, "clearance_compare": 1, "report": 3, "accuracy_summary": 1,
-                  "sweep_point": 6, "sweep_gather": 1, "index": 1}
-HEALD_JOBS = {"all": 1, "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "report": 3, "accuracy_summary": 1,
-              "sweep_point": 9, "sweep_gather": 1, "index": 1}
 
 
-def _env(root: Path) -> dict[str, str]:
+def _env(root: Path, trace: Path | None = None) -> dict[str, str]:
     env = dict(os.environ)
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
-    env["PYTHONPATH"] = str(root / "lib")  # the copy's lib, not the installed one
+    paths = ([str(TRACING)] if trace else []) + [str(root / "lib")]  # the copy's lib, not the installed one
+    env["PYTHONPATH"] = os.pathsep.join(paths)
+    if trace:
+        env["LINKWORK_TRACE_DIR"] = str(trace)
     return env
 
 
-def snakemake(root: Path, *args: str, check: bool = True) -> subprocess.CompletedProcess:
+def snakemake(root: Path, *args: str, check: bool = True, trace: Path | None = None) -> subprocess.CompletedProcess:
     proc = subprocess.run(
-        [sys.executable, "-m", "snakemake", *args], cwd=root, env=_env(root), capture_output=True, text=True, timeout=600
+        [sys.executable, "-m", "snakemake", *args], cwd=root, env=_env(root, trace), capture_output=True, text=True, timeout=900
     )
     if check and proc.returncode != 0:
-        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout}\n{proc.stderr}")
+        raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-5000:]}\n{proc.stderr[-5000:]}")
     return proc
+
+
+def job_listing(root: Path, *args: str) -> dict[str, dict[str, list[str]]]:
+    """Jobs of a dry run: id ('rule' or 'rule:wildcard/values') -> {'input': [...], 'output': [...]}."""
+    out = snakemake(root, "-n", *args).stdout
+    jobs, current = {}, None
+    for line in out.splitlines():
+        head = re.match(r"^(?:local)?rule (\w+):$", line)
+        if head:
+            current = {"rule": head.group(1), "input": [], "output": [], "wildcards": ""}
+            jobs[id(current)] = current
+            continue
+        field = re.match(r"^    (input|output|wildcards): (.*)$", line)
+        if field and current is not None:
+            value = field.group(2)
+            if field.group(1) == "wildcards":
+                current["wildcards"] = "/".join(part.split("=", 1)[1] for part in value.split(", "))
+            else:
+                current[field.group(1)] = [v.strip() for v in value.split(", ") if v.strip()]
+    return {(j["rule"] + (f":{j['wildcards']}" if j["wildcards"] else "")): j for j in jobs.values()}
 
 
 def planned_jobs(root: Path) -> dict[str, int]:
     """Rules a dry run would execute, with counts (from Snakemake's job-stats table)."""
-    out = snakemake(root, "-n").stdout
-    if "Nothing to be done" in out:
-        return {}
-    stats = out[out.index("Job stats:") :]
+    out = snakemake(root, "-n", "--quiet", "rules").stdout
     jobs = {}
-    for line in stats.splitlines()[3:]:
+    for line in out.splitlines():
         m = re.match(r"^(\S+)\s+(\d+)$", line.strip())
-        if not m or m.group(1) == "total":
-            if jobs:
-                break
-            continue
-        jobs[m.group(1)] = int(m.group(2))
+        if m and m.group(1) != "total":
+            jobs[m.group(1)] = int(m.group(2))
     return jobs
 
 
@@ -116,34 +111,45 @@ def copy_project(dest: Path) -> Path:
     return dest
 
 
+def clone_of(built: Path, dest: Path) -> Path:
+    shutil.copytree(built, dest, symlinks=True, ignore=shutil.ignore_patterns("trace"))
+    return dest
+
+
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
-    """A copy of the project on which bare `snakemake` (profiles/default) has run once."""
+    """A copy of the project on which bare `snakemake` (profiles/default) has run once, imports traced."""
     root = copy_project(tmp_path_factory.mktemp("built"))
     assert planned_jobs(root) == ALL_JOBS
-    snakemake(root)
+    trace = root / "trace"
+    trace.mkdir()
+    snakemake(root, trace=trace)
     return root
+
+
+@pytest.fixture(scope="module")
+def declared(built) -> dict[str, dict[str, list[str]]]:
+    """Every job of the built copy with its declared inputs and outputs (a forced dry run)."""
+    return job_listing(built, "--forceall")
 
 
 @pytest.fixture()
 def clone(built, tmp_path) -> Path:
     """An independent copy of the built project (results and .snakemake metadata included)."""
-    dest = tmp_path / "clone"
-    shutil.copytree(built, dest, symlinks=True)
-    return dest
+    return clone_of(built, tmp_path / "clone")
 
 
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel
-    for paper in ("stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps"):
-        html = (built / f"results/reports/{paper}.html").read_text()
-        assert "data:image/png;base64" in html  # figures embedded
+    for name in REPORTS:
+        html = (built / f"results/reports/{name}.html").read_text()
         assert "Traceback" not in html
         assert 'vnd.jupyter.stderr" tabindex' not in html  # no warnings or errors printed
+        if name != "index":
+            assert "data:image/png;base64" in html  # figures embedded
     index = (built / "results/reports/index.html").read_text()
     assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "clearance", "heald", "transplanter"))
-    assert 'vnd.jupyter.stderr" tabindex' not in index
 
 
 def test_second_run_has_nothing_to_do(built):
@@ -158,54 +164,154 @@ def test_forced_rerun_writes_identical_bytes(clone):
     assert hashlib.sha256(path.read_bytes()).hexdigest() == before
 
 
-@pytest.mark.parametrize(
-    ("old", "new", "expected"),
-    [
-        ("fine_step_deg: 1.0", "fine_step_deg: 0.5", STIFFNESS_JOBS),
-        ("scaled_crank_m: 0.062", "scaled_crank_m: 0.060", BEATUP_JOBS),
-        ("M_P: {value: 8.0", "M_P: {value: 9.0", HEALD_JOBS),
-        ("crank_speed_rpm: 300.0", "crank_speed_rpm: 310.0", TRANSPLANTER_JOBS),
-        ("restitution: 0.9", "restitution: 0.8", CLEARANCE_JOBS),
-    ],
-    ids=["stiffness", "beatup", "heald", "transplanter", "clearance"],
-)
-def test_changing_a_parameter_reruns_only_that_papers_rules(clone, old, new, expected):
-    cfg_path = clone / "config/config.yaml"
-    text = cfg_path.read_text()
-    assert old in text
-    cfg_path.write_text(text.replace(old, new, 1))
-    assert planned_jobs(clone) == expected
+# --- reruns at the granularity of a config key --------------------------------------------------------
+
+SPEC = yaml.safe_load((Path(__file__).resolve().parent / "rerun_spec.yaml").read_text())
 
 
-def _touch_module(root: Path, module: str) -> None:
-    path = root / "lib/linkwork" / module
-    path.write_text(path.read_text() + "\n# edited\n")
+def expected_jobs(patterns: list[str], all_jobs: list[str]) -> set[str]:
+    """The job ids matching the spec's patterns (each pattern must match at least one job), plus 'all'."""
+    out = {"all"}
+    for pattern in patterns:
+        hits = [j for j in all_jobs if fnmatch.fnmatchcase(j, pattern)]
+        assert hits, f"spec pattern {pattern!r} matches no job"
+        out.update(hits)
+    return out
 
 
-def test_editing_stiffness_module_reruns_the_rules_that_use_it(clone):
-    _touch_module(clone, "stiffness.py")
-    assert planned_jobs(clone) == STIFFNESS_JOBS
+def _set_key(path: Path, key: str, value) -> None:
+    cfg = yaml.safe_load(path.read_text())
+    node = cfg
+    *parents, last = key.split(".")
+    for part in parents:
+        node = node[part]
+    assert last in node, key
+    assert node[last] != value, f"{key} already has the value {value!r}"
+    node[last] = value
+    path.write_text(yaml.safe_dump(cfg, sort_keys=False))
 
 
-def test_editing_beatup_module_reruns_only_beatup_rules(clone):
-    _touch_module(clone, "beatup.py")
-    assert planned_jobs(clone) == BEATUP_JOBS
+def test_the_spec_covers_every_paper_and_the_sweeps():
+    assert len(SPEC) >= 15
+    assert {row["key"].split(".")[0] for row in SPEC} == {"stiffness", "beatup", "heald", "transplanter", "clearance", "sweeps"}
 
 
-def test_editing_the_shared_kinematics_reruns_both_papers(clone):
-    _touch_module(clone, "kinematics.py")
-    jobs = planned_jobs(clone)
-    assert jobs["stiffness"] == 1 and jobs["beatup_sixbar"] == 1 and jobs["transplanter_ked"] == 1
-    assert jobs["clearance_scene"] == 14 and jobs["report"] == 6 and jobs["accuracy_summary"] == 1
-    assert jobs["sweep_point"] == 6  # the clearance sweep uses the kinematics, the heald sweep does not
-    assert "heald_chain" not in jobs  # the chain solver does not use the kinematics
+def test_single_key_edits_rerun_exactly_what_reads_the_key(built, declared, tmp_path):
+    """Each row of tests/rerun_spec.yaml: the dry run after the edit schedules exactly the listed jobs."""
+    root = clone_of(built, tmp_path / "edits")
+    config = root / "config/config.yaml"
+    original = config.read_text()
+    failures = []
+    for row in SPEC:
+        _set_key(config, row["key"], row["value"])
+        planned = set(job_listing(root))
+        expected = expected_jobs(row["jobs"], list(declared))
+        if planned != expected:
+            failures.append(f"{row['key']}: extra {sorted(planned - expected)}, missing {sorted(expected - planned)}")
+        config.write_text(original)
+    assert not failures, "\n".join(failures)
 
 
-def test_editing_compare_module_does_not_rerun_the_computation(clone):
-    _touch_module(clone, "compare.py")
-    jobs = planned_jobs(clone)
-    assert "stiffness" not in jobs
-    assert jobs.get("stiffness_compare") == 1
+def test_readme_rerun_table_is_the_spec():
+    """The README shows the specification, row for row (generated by `python tests/rerun_spec.py`)."""
+    from rerun_spec import readme_table
+
+    readme = (PROJECT / "README.md").read_text()
+    assert readme_table(SPEC) in readme
+
+
+# --- reruns at the granularity of a lib module ------------------------------------------------------
+
+LIB_MODULES = sorted(str(p.relative_to(PROJECT)) for p in (PROJECT / "lib/linkwork").rglob("*.py"))
+
+
+def _descendants(jobs: dict[str, dict[str, list[str]]], start: set[str]) -> set[str]:
+    """``start`` and every job that consumes, directly or not, an output of a job in it."""
+    producer = {out: j for j, spec in jobs.items() for out in spec["output"]}
+    consumers: dict[str, set[str]] = {}
+    for j, spec in jobs.items():
+        for inp in spec["input"]:
+            if inp in producer:
+                consumers.setdefault(producer[inp], set()).add(j)
+    out, todo = set(start), list(start)
+    while todo:
+        for nxt in consumers.get(todo.pop(), ()):
+            if nxt not in out:
+                out.add(nxt)
+                todo.append(nxt)
+    return out
+
+
+def traced_modules(built: Path) -> dict[str, set[str]]:
+    """Job outputs (first output) -> lib files the job's processes (and a report's kernel) loaded."""
+    records = [json.loads(p.read_text()) for p in (built / "trace").glob("*.json")]
+    by_pid = {r["pid"]: r for r in records}
+    jobs: dict[str, set[str]] = {}
+    for r in records:
+        owner = r if r["outputs"] else by_pid.get(r["ppid"])
+        if owner is None or not owner["outputs"]:
+            continue  # the snakemake process itself, or a helper process of no job
+        files = {str(Path(f).resolve().relative_to(built.resolve())) for f in r["files"] if f and Path(f).resolve().is_relative_to(built.resolve())}
+        jobs.setdefault(owner["outputs"][0], set()).update(files)
+    return jobs
+
+
+def test_every_import_a_job_made_is_a_declared_input(built, declared):
+    """The independent route: what each job really loaded at run time is inside its declared code inputs."""
+    traced = traced_modules(built)
+    by_output = {spec["output"][0]: (j, set(spec["input"])) for j, spec in declared.items() if spec["output"]}
+    jobs_with_lib = 0
+    for output, files in traced.items():
+        job, inputs = by_output[output]
+        missing = sorted(f for f in files if f not in inputs)
+        assert not missing, f"{job} loaded {missing} without declaring them"
+        jobs_with_lib += bool(files)
+    assert jobs_with_lib >= len(declared) - 2  # every job but `all` ran Python that loaded linkwork
+
+
+def test_editing_any_lib_module_reruns_exactly_its_dependants(built, declared, tmp_path):
+    """Edit every lib module in turn: the dry run schedules the jobs that declare it and their descendants."""
+    def run(worker: int, modules: list[str]) -> list[str]:
+        root = clone_of(built, tmp_path / f"modules{worker}")
+        failures = []
+        for rel in modules:
+            path = root / rel
+            text, stat = path.read_text(), path.stat()
+            path.write_text(text + "\n# edited\n")
+            try:
+                planned = set(job_listing(root))
+            finally:
+                path.write_text(text)
+                os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+            users = {j for j, spec in declared.items() if rel in spec["input"]}
+            expected = _descendants(declared, users) | ({"all"} if users else set())
+            if planned != expected:
+                failures.append(f"{rel}: extra {sorted(planned - expected)}, missing {sorted(expected - planned)}")
+        return failures
+
+    halves = [LIB_MODULES[0::2], LIB_MODULES[1::2]]
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        failures = [f for part in pool.map(run, range(2), halves) for f in part]
+    assert not failures, "\n".join(failures)
+    # the layout's promise, as examples: an engine reaches several papers, a paper reaches only itself
+    users = {rel: {j.split(":")[0] for j, spec in declared.items() if rel in spec["input"]} for rel in LIB_MODULES}
+    assert {"stiffness", "beatup_sixbar", "transplanter_optim", "clearance_scene"} <= users["lib/linkwork/engines/kinematics.py"]
+    assert not {r for r in users["lib/linkwork/engines/kinematics.py"] if r.startswith("heald")}
+    assert users["lib/linkwork/papers/heald/model.py"] <= {"heald_chain", "heald_accuracy", "heald_compare", "sweep_point"}
+
+
+def test_unactivated_environment_runs_the_reports(clone):
+    """`.venv/bin/snakemake` without activating the environment: the report rule finds jupytext."""
+    env = dict(os.environ, PATH="/usr/bin:/bin", PYTHONPATH=str(clone / "lib"))
+    proc = subprocess.run(
+        [str(Path(sys.executable).parent / "snakemake"), "--cores", "1", "--forcerun", "report", "results/reports/stiffness.html"],
+        cwd=clone, env=env, capture_output=True, text=True, timeout=600,
+    )
+    assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
+    assert "data:image/png;base64" in (clone / "results/reports/stiffness.html").read_text()
+
+
+# --- bad input and interruptions --------------------------------------------------------------------
 
 
 def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
@@ -231,15 +337,19 @@ def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
         ("value: 0.100, status: assumed", "value: 0.200, status: assumed", ["beatup.fourbar.weft_clearance_m", "0.2", "stroke"]),
         ("M_P: {value: 8.0", "M_P: {value: -8.0", ["heald.parameters.M_P.value", "-8.0"]),
         ("eta7: {value: 2.0", "eta7: {value: 0.0", ["heald.parameters.eta7.value", "0.0", "lever ratio"]),
+        ("    restitution: 0.9\n", "    restitution: 0.9\n    restitution: 0.8\n", ["config.yaml, line", "'restitution' is given twice"]),
+        ("  crank_speed_rpm: 300.0", "  crank_speed_rpm: [300.0", ["config.yaml, line", "not valid YAML"]),
     ],
     ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key",
-         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke", "negative-mass", "lever-ratio-zero"],
+         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke", "negative-mass", "lever-ratio-zero",
+         "duplicate-key", "yaml-syntax"],
 )
 def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
     proc = _bad_config(tmp_path, lambda text: text.replace(old, new, 1))
     message = proc.stdout + proc.stderr
     for fragment in fragments:
         assert fragment in message, message
+    assert "Traceback" not in message
 
 
 def test_dry_run_of_a_fresh_copy_plans_every_rule(tmp_path):

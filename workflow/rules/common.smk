@@ -1,5 +1,6 @@
 # Helpers shared by the rule files: the study script, narrow config values, code inputs from real imports.
 import sys
+from functools import lru_cache
 from pathlib import Path
 
 from linkwork.configformat import pick
@@ -14,15 +15,16 @@ RENDERER = "workflow/scripts/render_report.py"
 PYTHON = sys.executable
 
 
-def code(*entries):
-    """Lib files in the import closure of the study script and the given modules or files (rule inputs)."""
-    return relative(closure(ROOT / "workflow/scripts/study.py", LIB, extra=entries), ROOT)
-
-
+@lru_cache(maxsize=None)
 def code_of(*entries):
-    """Lib files (and sibling helpers) in the import closure of the given files or modules only."""
+    """Lib files (and sibling helpers) in the import closure of the given files or modules (rule inputs)."""
     first, *rest = entries
     return relative(closure(first, LIB, extra=tuple(rest)), ROOT)
+
+
+def code(*entries):
+    """Lib files in the import closure of the study script and the given modules or files (rule inputs)."""
+    return code_of(ROOT / "workflow/scripts/study.py", *entries)
 
 
 def section(paper, *paths):

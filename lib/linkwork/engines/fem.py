@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 from numpy.typing import NDArray
@@ -149,6 +150,15 @@ def local_matrices(kind: str, youngs_modulus: float, area: float, second_moment:
     kind 'quintic8': (u1, v1, v1', v1'', u2, v2, v2', v2''), linear axial and quintic transverse.
     Consistent mass (rho A, no rotary inertia).  SI units.
     """
+    axial_k, axial_m, bend_k, bend_m = _shape_integrals(kind, float(length), gauss_points)
+    return (youngs_modulus * area * axial_k + youngs_modulus * second_moment * bend_k,
+            density * area * (axial_m + bend_m))
+
+
+@lru_cache(maxsize=256)
+def _shape_integrals(kind: str, length: float, gauss_points: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Integrals of the shape-function products over one element of ``length`` (m), scattered into the
+    element's dof layout: (int N'^T N' (axial), int N^T N (axial), int H''^T H'' (transverse), int H^T H (transverse))."""
     lay = LAYOUTS[kind]
     xi, w = _gauss(gauss_points)
     shapes = cubic_hermite if kind == "frame6" else quintic_hermite
@@ -156,13 +166,15 @@ def local_matrices(kind: str, youngs_modulus: float, area: float, second_moment:
     lin = np.stack([1 - xi, xi], axis=1)
     dlin = np.array([-1.0, 1.0]) / length
     n = lay["size"]
-    k, m = np.zeros((n, n)), np.zeros((n, n))
-    ax, tr = np.array(lay["axial"]), np.array(lay["transverse"])
-    k[np.ix_(ax, ax)] = youngs_modulus * area * length * np.outer(dlin, dlin)
-    m[np.ix_(ax, ax)] = density * area * length * (lin.T * w) @ lin
-    k[np.ix_(tr, tr)] = youngs_modulus * second_moment * length * (d2h.T * w) @ d2h
-    m[np.ix_(tr, tr)] = density * area * length * (h.T * w) @ h
-    return k, m
+    out = [np.zeros((n, n)) for _ in range(4)]
+    ax, tr = np.ix_(lay["axial"], lay["axial"]), np.ix_(lay["transverse"], lay["transverse"])
+    out[0][ax] = length * np.outer(dlin, dlin)
+    out[1][ax] = length * (lin.T * w) @ lin
+    out[2][tr] = length * (d2h.T * w) @ d2h
+    out[3][tr] = length * (h.T * w) @ h
+    for a in out:
+        a.setflags(write=False)
+    return tuple(out)  # type: ignore[return-value]
 
 
 def local_to_global(kind: str, angle: FloatArray) -> FloatArray:
@@ -183,12 +195,19 @@ def local_to_global(kind: str, angle: FloatArray) -> FloatArray:
     return t
 
 
+@lru_cache(maxsize=256)
+def _curvature_shapes(kind: str, length: float, points: int) -> FloatArray:
+    """Second derivatives of the transverse shape functions at ``points`` equally spaced stations."""
+    shapes = cubic_hermite if kind == "frame6" else quintic_hermite
+    d2h = shapes(np.linspace(0.0, 1.0, points), length)[2]
+    d2h.setflags(write=False)
+    return d2h
+
+
 def element_strain_extremes(kind: str, length: float, half_depth: float, local_u: FloatArray, points: int = 9) -> FloatArray:
     """max over the element of |h v''| + |u'| (the strain of eq. (8) divided by E), for local dof vectors (..., n)."""
     lay = LAYOUTS[kind]
-    xi = np.linspace(0.0, 1.0, points)
-    shapes = cubic_hermite if kind == "frame6" else quintic_hermite
-    _, _, d2h = shapes(xi, length)
+    d2h = _curvature_shapes(kind, float(length), points)
     v = local_u[..., list(lay["transverse"])]
     curvature = np.einsum("pk,...k->...p", d2h, v)
     axial = (local_u[..., lay["axial"][1]] - local_u[..., lay["axial"][0]]) / length
@@ -216,26 +235,38 @@ class BeamMesh:
 
     def dof_indices(self) -> tuple[int, NDArray[np.int64]]:
         """(number of free dofs, element-to-global index array with -1 for fixed dofs)."""
-        index: dict = {}
-        for node in range(self.n_nodes):
-            if node not in self.fixed_nodes:
-                index[("x", node)] = len(index)
-                index[("y", node)] = len(index)
-        for ends in self.extra_keys:
-            for keys in ends:
-                for key in keys:
-                    if key is not None and ("extra", key) not in index:
-                        index[("extra", key)] = len(index)
-        per_end = LAYOUTS[self.kind]["per_end"]
-        table = np.full((len(self.elements), 2 * per_end), -1, dtype=np.int64)
-        for e, ((i, j), ends) in enumerate(zip(self.elements, self.extra_keys, strict=True)):
-            for end, (node, keys) in enumerate(((i, ends[0]), (j, ends[1]))):
-                o = end * per_end
-                table[e, o] = index.get(("x", node), -1)
-                table[e, o + 1] = index.get(("y", node), -1)
-                for k, key in enumerate(keys):
-                    table[e, o + 2 + k] = index[("extra", key)] if key is not None else -1
-        return len(index), table
+        return _dof_indices(self)
+
+
+@lru_cache(maxsize=64)
+def _dof_indices(mesh: BeamMesh) -> tuple[int, NDArray[np.int64]]:
+    """The dof numbering of a mesh (cached: meshes are immutable)."""
+    index: dict = {}
+    for node in range(mesh.n_nodes):
+        if node not in mesh.fixed_nodes:
+            index[("x", node)] = len(index)
+            index[("y", node)] = len(index)
+    for ends in mesh.extra_keys:
+        for keys in ends:
+            for key in keys:
+                if key is not None and ("extra", key) not in index:
+                    index[("extra", key)] = len(index)
+    per_end = LAYOUTS[mesh.kind]["per_end"]
+    table = np.full((len(mesh.elements), 2 * per_end), -1, dtype=np.int64)
+    for e, ((i, j), ends) in enumerate(zip(mesh.elements, mesh.extra_keys, strict=True)):
+        for end, (node, keys) in enumerate(((i, ends[0]), (j, ends[1]))):
+            o = end * per_end
+            table[e, o] = index.get(("x", node), -1)
+            table[e, o + 1] = index.get(("y", node), -1)
+            for k, key in enumerate(keys):
+                table[e, o + 2 + k] = index[("extra", key)] if key is not None else -1
+    table.setflags(write=False)
+    return len(index), table
+
+
+def rotate(t: FloatArray, m_loc: FloatArray) -> FloatArray:
+    """T^T m T for a stack of transformations T (c, n, n) and one local matrix m (n, n)."""
+    return np.swapaxes(t, -1, -2) @ m_loc @ t
 
 
 def assemble(mesh: BeamMesh, element_matrices: list[FloatArray], angles: FloatArray) -> FloatArray:
@@ -249,7 +280,7 @@ def assemble(mesh: BeamMesh, element_matrices: list[FloatArray], angles: FloatAr
     out = np.zeros((angles.shape[0], n_dof, n_dof))
     for e, m_loc in enumerate(element_matrices):
         t = local_to_global(mesh.kind, angles[:, e])
-        m_glob = np.einsum("cki,kl,clj->cij", t, m_loc, t)
+        m_glob = rotate(t, m_loc)
         idx = table[e]
         keep = np.flatnonzero(idx >= 0)
         gi = idx[keep]

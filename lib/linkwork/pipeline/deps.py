@@ -2,21 +2,27 @@
 
 Snakemake does not see what a script imports, so each rule declares the lib files in the import
 closure of its script (and of the study module it runs) as inputs; editing a module then reruns
-exactly the rules that can execute it.  Imports are read statically with ``ast`` (nothing is
-imported): absolute ``linkwork...`` imports, relative imports inside the package, imports inside
-functions (lazy imports count), and sibling modules of the entry file (a report's ``_common``).
-A module's parent packages count too (their ``__init__`` runs on import).  Standard library only.
+exactly the rules that can execute it.  Imports are read statically, nothing is imported: every
+``import`` / ``from ... import`` statement at the start of a line, at any indentation (lazy
+imports inside functions count), absolute ``linkwork...`` ones, relative ones inside the package,
+and sibling modules of the entry file (a report's ``_common``).  A module's parent packages count
+too (their ``__init__`` runs on import).  The scan is a line match, not a parse, because it runs on
+every Snakemake invocation: a docstring line that reads like an import statement can only add a
+dependency, never hide one.  Standard library only.
 """
 
 from __future__ import annotations
 
-import ast
+import re
 from functools import lru_cache
 from pathlib import Path
+
+_IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(\.*[\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]+)|import[ \t]+([^\n#]+))", re.M)
 
 PACKAGE = "linkwork"
 
 
+@lru_cache(maxsize=None)
 def module_file(name: str, lib: Path) -> Path | None:
     """The file of module ``name`` under ``lib`` (a package's __init__.py), or None if not ours."""
     parts = name.split(".")
@@ -35,27 +41,38 @@ def _package_of(name: str, file: Path) -> str:
 
 
 @lru_cache(maxsize=None)
-def _imported_names(file: Path, name: str | None) -> tuple[str, ...]:
-    """Module names a file imports (absolute, and relative ones resolved when ``name`` is known)."""
-    tree = ast.parse(file.read_text(encoding="utf-8"), filename=str(file))
-    found: list[str] = []
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Import):
-            found += [alias.name for alias in node.names]
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                if name is None:
-                    continue
-                package = _package_of(name, file).split(".")
-                base = ".".join(package[: len(package) - (node.level - 1)])
-                base = f"{base}.{node.module}" if node.module else base
-            else:
-                base = node.module or ""
-            found.append(base)
-            found += [f"{base}.{alias.name}" for alias in node.names]  # from package import submodule
+def _statements(file: Path) -> tuple[tuple[int, str, tuple[str, ...]], ...]:
+    """(relative level, module, imported names) of every import statement in a file (read once)."""
+    found = []
+    for src, names, plain in _IMPORT.findall(file.read_text(encoding="utf-8")):
+        if plain:
+            found += [(0, part.split(" as ")[0].strip(), ()) for part in plain.split(",") if part.strip()]
+            continue
+        level = len(src) - len(src.lstrip("."))
+        items = tuple(n.split(" as ")[0].strip() for n in names.strip("()").replace("\\", " ").split(",") if n.strip())
+        found.append((level, src[level:], items))
     return tuple(found)
 
 
+def _imported_names(file: Path, name: str | None) -> list[str]:
+    """Module names a file imports (absolute, and relative ones resolved when ``name`` is known)."""
+    found: list[str] = []
+    for level, module, items in _statements(file):
+        if level:
+            if name is None:
+                continue
+            package = _package_of(name, file).split(".")
+            base = ".".join(package[: len(package) - (level - 1)])
+            base = f"{base}.{module}" if module else base
+        else:
+            base = module
+        if base:
+            found.append(base)
+        found += [f"{base}.{item}" for item in items if item != "*"]  # from package import submodule
+    return found
+
+
+@lru_cache(maxsize=None)
 def closure(entry: str | Path, lib: str | Path, extra: tuple[str | Path, ...] = ()) -> list[Path]:
     """Every file in the import closure of ``entry``: lib modules, sibling helpers and the entry itself.
 
@@ -63,7 +80,7 @@ def closure(entry: str | Path, lib: str | Path, extra: tuple[str | Path, ...] = 
     ``extra`` are more entries whose closures are joined in.
     """
     lib = Path(lib)
-    seen: dict[Path, None] = {}
+    seen: dict[Path, None] = {}  # insertion-ordered set
     todo: list[tuple[Path, str | None, Path | None]] = []
     for item in (entry, *extra):
         item_str = str(item)

@@ -9,6 +9,7 @@ and the offending value.
 from __future__ import annotations
 
 import importlib
+import os
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -122,3 +123,33 @@ def merge_overrides(config: dict[str, Any], base: Mapping[str, Any]) -> None:
     overrides = dict(config)
     config.clear()
     config.update(merged(dict(base), overrides))
+
+
+def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path) -> str:
+    """sha256 of what a validation depends on: the config, the schema file and the validating code."""
+    import hashlib
+    import json
+
+    from .deps import closure
+
+    digest = hashlib.sha256(json.dumps(config, sort_keys=True, default=str).encode())
+    digest.update(Path(schema_path).read_bytes())
+    checks = tuple(f"linkwork.papers.{p}.checks" for p in PAPERS)
+    for file in closure("linkwork.pipeline.validate", lib, extra=checks):
+        digest.update(str(file).encode() + b"\0" + Path(file).read_bytes())
+    return digest.hexdigest()
+
+
+def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path) -> None:
+    """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key).
+
+    A passed validation is remembered so that a no-op run stays fast; any change to the three runs it again.
+    """
+    key = validation_key(config, schema_path, lib)
+    if stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == key:
+        return
+    validate_config(config, load_yaml(schema_path))
+    stamp.parent.mkdir(parents=True, exist_ok=True)
+    tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
+    tmp.write_text(key + "\n", encoding="utf-8")
+    os.replace(tmp, stamp)

@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global
+from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, rotate
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
 FloatArray = NDArray[np.float64]
@@ -218,8 +218,7 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
             rig[:, o + 1] = node_acc[:, node, 1] + gravity
             rig[:, o + 2] = motion.alpha[:, member]
         t = local_to_global(kind, el_dir[:, e])
-        m_glob = np.einsum("cki,kl,clj->cij", t, m_loc[e], t)
-        f_e = -np.einsum("cij,cj->ci", m_glob, rig)
+        f_e = -(rotate(t, m_loc[e]) @ rig[..., None])[..., 0]
         idx = table[e]
         keep = np.flatnonzero(idx >= 0)
         np.add.at(f, (slice(None), idx[keep]), f_e[:, keep])

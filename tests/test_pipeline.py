@@ -1,0 +1,193 @@
+"""Pipeline plumbing: narrow config values, import closures, config reading, validation memo, sweeps, text."""
+
+import copy
+import os
+import textwrap
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from conftest import PROJECT, load_yaml
+from linkwork.configformat import get_path, labelled, pick
+from linkwork.pipeline.compare import where_true
+from linkwork.pipeline.deps import closure
+from linkwork.pipeline.errors import ConfigError
+from linkwork.pipeline.sweeps import gather, grid, point_dataset
+from linkwork.pipeline.validate import load_yaml as read_config
+from linkwork.pipeline.validate import merge_overrides, validate_once
+
+
+def test_pick_copies_exactly_the_named_paths():
+    section = {"a": {"b": 1, "c": [2, 3]}, "d": 4, "e": {"f": {"g": 5}}}
+    out = pick(section, ["a.c", "e.f.g"])
+    assert out == {"a": {"c": [2, 3]}, "e": {"f": {"g": 5}}}
+    out["a"]["c"].append(9)
+    assert section["a"]["c"] == [2, 3]  # a deep copy
+    with pytest.raises(KeyError, match="a.x"):
+        pick(section, ["a.x"])
+    assert get_path(section, "e.f") == {"g": 5}
+    assert labelled({"value": 2, "status": "assumed", "reason": "r"}) == 2.0
+
+
+def _package(tmp_path: Path) -> Path:
+    """A small package ``linkwork`` with absolute, relative, lazy and 'from package import module' imports."""
+    lib = tmp_path / "lib"
+    files = {
+        "linkwork/__init__.py": "",
+        "linkwork/a.py": "from . import b\nfrom .sub import c as cc\n",
+        "linkwork/b.py": "import numpy as np\n",
+        "linkwork/sub/__init__.py": "",
+        "linkwork/sub/c.py": "def f():\n    from ..d import g\n    return g\n",
+        "linkwork/d.py": "from linkwork.e import (\n    x,\n    y,\n)\n",
+        "linkwork/e.py": '"""Not an import: from the paper we import nothing."""\n',
+        "linkwork/unused.py": "",
+    }
+    for rel, text in files.items():
+        (lib / rel).parent.mkdir(parents=True, exist_ok=True)
+        (lib / rel).write_text(text)
+    (tmp_path / "reports").mkdir()
+    (tmp_path / "reports/_helper.py").write_text("import linkwork.b\n")
+    (tmp_path / "reports/r.py").write_text("from _helper import x\nimport pandas\n")
+    return lib
+
+
+def test_closure_follows_every_kind_of_import(tmp_path):
+    lib = _package(tmp_path)
+    names = {str(p.relative_to(tmp_path)) for p in closure("linkwork.a", lib)}
+    assert names == {f"lib/linkwork/{n}" for n in ("__init__.py", "a.py", "b.py", "sub/__init__.py", "sub/c.py", "d.py", "e.py")}
+    report = {str(p.relative_to(tmp_path)) for p in closure(tmp_path / "reports/r.py", lib)}
+    assert report == {"reports/r.py", "reports/_helper.py", "lib/linkwork/__init__.py", "lib/linkwork/b.py"}
+
+
+def test_closure_of_the_real_studies_keeps_papers_apart():
+    lib = PROJECT / "lib"
+    for paper in ("stiffness", "beatup", "clearance", "transplanter", "heald"):
+        files = {str(p.relative_to(lib)) for p in closure(f"linkwork.papers.{paper}.studies", lib)}
+        others = {f for f in files if f.startswith("linkwork/papers/") and f.count("/") == 3 and f.split("/")[2] != paper}
+        assert not others, f"{paper} reaches {others}"
+    heald = {str(p.relative_to(lib)) for p in closure("linkwork.papers.heald.studies", lib)}
+    assert "linkwork/engines/kinematics.py" not in heald and "linkwork/engines/chains.py" in heald
+
+
+def test_config_reader_names_duplicate_keys_and_syntax_errors(tmp_path):
+    path = tmp_path / "c.yaml"
+    path.write_text("a:\n  b: 1\n  b: 2\n")
+    with pytest.raises(ConfigError, match=r"c.yaml, line 3: config key 'b' is given twice .*first at line 2"):
+        read_config(path)
+    path.write_text("a: [1, 2\nb: 3\n")
+    with pytest.raises(ConfigError, match=r"c.yaml, line \d+, column \d+: not valid YAML"):
+        read_config(path)
+    path.write_text("a: {b: 1.0e-6, c: 1e-6}\n")
+    assert read_config(path) == {"a": {"b": 1e-6, "c": "1e-6"}}  # PyYAML's rule, caught later by the schema
+
+
+def test_command_line_values_override_the_file_key_by_key():
+    config = {"clearance": {"joints": {"friction": 0.3}}, "new": 1}
+    merge_overrides(config, {"clearance": {"joints": {"friction": 0.001, "restitution": 0.9}, "ground_m": 0.4}})
+    assert config == {"clearance": {"joints": {"friction": 0.3, "restitution": 0.9}, "ground_m": 0.4}, "new": 1}
+
+
+def test_validation_is_remembered_only_for_the_same_config(tmp_path, config):
+    stamp = tmp_path / "stamp"
+    lib, schema = PROJECT / "lib", PROJECT / "config/schema.yaml"
+    validate_once(config, schema, lib, stamp)
+    key = stamp.read_text()
+    validate_once(config, schema, lib, stamp)  # remembered
+    assert stamp.read_text() == key
+    bad = copy.deepcopy(config)
+    bad["stiffness"]["linkage"]["crank_m"] = -1.0
+    with pytest.raises(ConfigError, match="stiffness.linkage.crank_m"):
+        validate_once(bad, schema, lib, stamp)
+    assert stamp.read_text() == key  # a failed validation leaves the memo as it was
+
+
+def test_sweep_grid_and_gather_fill_every_cell_once():
+    axes = {"clearance_m": [1e-5, 2e-5], "crank_speed_rad_s": [10.0, 20.0, 30.0]}
+    points = grid(axes)
+    assert len(points) == 6 and points[1] == {"clearance_m": 1e-5, "crank_speed_rad_s": 20.0}
+    outputs = {"y": ("N", "a force")}
+    datasets = [point_dataset(p, {"y": p["clearance_m"] * p["crank_speed_rad_s"]}, outputs) for p in points]
+    out = gather(axes, datasets)
+    assert np.allclose(out.y.values, np.outer(axes["clearance_m"], axes["crank_speed_rad_s"]))
+    with pytest.raises(ValueError, match="once each"):
+        gather(axes, datasets[:-1] + datasets[:1])
+
+
+def test_where_true_names_sub_ranges():
+    x = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    assert where_true(x, [True] * 5) == "all of 1–5"
+    assert where_true(x, [False] * 5) == "none of 1–5"
+    assert where_true(x, [True, True, False, True, False]) == "1–2, 4–4"
+
+
+def test_every_lib_module_docstring_and_no_paper_imports_another():
+    lib = PROJECT / "lib/linkwork"
+    for path in lib.rglob("*.py"):
+        text = path.read_text()
+        assert text.lstrip().startswith('"""'), f"{path} has no module docstring"
+        rel = path.relative_to(lib).parts
+        if rel[0] == "papers" and len(rel) == 3:
+            for other in ("stiffness", "beatup", "clearance", "transplanter", "heald"):
+                if other != rel[1]:
+                    assert f"papers.{other}" not in text and f"from ..{other}" not in text, f"{path} imports paper {other}"
+        if rel[0] == "engines":
+            assert "papers" not in text.split('"""', 2)[-1] and "pipeline" not in text.split('"""', 2)[-1], f"engine {path} imports a paper or the pipeline"
+
+
+def test_results_load_names_the_file_and_the_rebuild_command(tmp_path):
+    from linkwork.pipeline.results import UnreadableResult, load, write
+
+    path = tmp_path / "r.nc"
+    write(xr.Dataset({"a": ((), 1.0, {"units": "1", "long_name": "a"})}), path)
+    assert float(load(path).a) == 1.0
+    path.write_bytes(path.read_bytes()[:100])
+    with pytest.raises(UnreadableResult, match=rf"cannot read {path}.*snakemake --force {path}"):
+        load(path)
+
+
+def test_units_are_one_home():
+    """rpm, gravity and degree conversions are defined once, in linkwork.units."""
+    lib = PROJECT / "lib/linkwork"
+    for path in lib.rglob("*.py"):
+        if path.name == "units.py":
+            continue
+        text = path.read_text()
+        assert "9.80665" not in text, path
+        assert "2 * np.pi / 60" not in text and "2.0 * np.pi / 60" not in text, path
+
+
+def test_scene_keys_follow_the_effects():
+    from linkwork.papers.clearance.adapter import parameters, scene_keys
+
+    section = load_yaml("config/config.yaml")["clearance"]
+    dry = scene_keys(section, "slender", "dry_1")
+    lub = scene_keys(section, "slender", "lubricated_1")
+    ideal = scene_keys(section, "decoded", "ideal")
+    assert "joints.friction" in dry and "joints.friction" not in lub and "joints.friction" not in ideal
+    assert "joints.viscosity_Pa_s" in lub and "joints.viscosity_Pa_s" not in dry
+    assert not any(k.startswith("integrators") for k in ideal) and "integrators.explicit" in dry
+    assert "bodies.crank.inertia_kg_m2" in ideal and "bodies.crank.inertia_kg_m2" not in dry  # slender computes J
+    p = parameters(pick(section, dry), "slender", "dry_1")
+    assert np.isnan(p.viscosity) and p.friction == section["joints"]["friction"]
+
+
+def test_no_report_or_script_is_left_over_from_the_flat_layout():
+    assert not os.path.exists(PROJECT / "lib/linkwork/from_config.py")
+    for path in list((PROJECT / "reports").glob("*.py")) + list((PROJECT / "workflow/scripts").glob("*.py")):
+        text = path.read_text()
+        assert "report_context" not in text and "linkwork.config " not in text, path
+
+
+@pytest.mark.parametrize("name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"])
+def test_reports_only_load_and_format(name):
+    """A report imports presentation helpers only, never a numerical lib module, and holds no reductions of results."""
+    text = (PROJECT / "reports" / f"{name}.py").read_text()
+    imports = [line for line in text.splitlines() if line.startswith(("import ", "from "))]
+    allowed = ("import json", "import matplotlib.pyplot as plt", "import numpy as np", "import pandas as pd",
+               "from _common import", "from linkwork.papers import PAPERS")
+    assert all(line.startswith(allowed) for line in imports), imports
+    for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
+        assert reduction not in text, f"reports/{name}.py computes {reduction}"
+    textwrap.dedent(text)  # (readable as a script)
