@@ -3,7 +3,7 @@
 Run: python benchmarks/chains.py [--repeats N]
 
 Method: a chain of 10 springs and 10 masses (20 elements), velocity-driven,
-solved by linkwork.chains.solve_network at 1e4 frequencies; wall clock (time.perf_counter),
+solved by linkwork.engines.chains.solve_network at 1e4 frequencies; wall clock (time.perf_counter),
 median of N repeats after a warm-up; with and without the per-frequency singularity check.
 Figures go to results/benchmarks/chains.json.
 """
@@ -19,8 +19,8 @@ import numpy as np
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
-from linkwork.chains import GROUND, Element, Network, solve_matrices, solve_network  # noqa: E402
-from linkwork.timing import median_time  # noqa: E402
+from linkwork.engines.chains import GROUND, Element, Network, solve_matrices, solve_network  # noqa: E402
+from linkwork.pipeline.timing import median_time  # noqa: E402
 
 TARGET_S = 0.5
 

@@ -25,10 +25,14 @@ import yaml
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
-from linkwork.clearance_dataset import integrate, output_times, parameters, scene_dataset  # noqa: E402
-from linkwork.multibody import kernels  # noqa: E402
-from linkwork.multibody.model import compile_scene, generate_source, initial_state, pack  # noqa: E402
-from linkwork.timing import median_time  # noqa: E402
+from linkwork.configformat import pick  # noqa: E402
+from linkwork.engines.multibody import kernels  # noqa: E402
+from linkwork.engines.multibody.model import compile_scene, generate_source, initial_state, pack  # noqa: E402
+from linkwork.engines.multibody.simulate import integrate  # noqa: E402
+from linkwork.papers.clearance.adapter import parameters, scene_keys  # noqa: E402
+from linkwork.papers.clearance.studies import output_times  # noqa: E402
+from linkwork.papers.clearance.studies import scene as scene_dataset  # noqa: E402
+from linkwork.pipeline.timing import median_time  # noqa: E402
 
 
 def pure_python_rhs(joints, effects, law):
@@ -76,10 +80,10 @@ def main() -> None:
     parser.add_argument("--variant", default="slender")
     args = parser.parse_args()
     section = yaml.safe_load((PROJECT / "config" / "config.yaml").read_text())["clearance"]
-    p = parameters(section, args.variant)
+    p = parameters(section, args.variant, args.scene)
     spec = section["scenes"][args.scene]
     joints, effects = tuple(spec["clearance_joints"]), tuple(spec["effects"])
-    t, _ = output_times(section, p)
+    t, _ = output_times(section["numerics"], p)
     early = t <= 0.5 * 2 * np.pi / p.crank_speed  # accuracy is compared before the impact sequences diverge
     setting = section["integrators"]["explicit"]
     ref = integrate(p, joints, effects, t, {**setting, "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-8})[1][early, 0]
@@ -105,7 +109,7 @@ def main() -> None:
     for variant in section["variants"]:
         for scene in section["scenes"]:
             t0 = time.perf_counter()
-            scene_dataset(section, variant, scene)
+            scene_dataset(pick(section, scene_keys(section, variant, scene)), variant, scene)
             scene_times[f"{variant}/{scene}"] = time.perf_counter() - t0
     worst = max(scene_times.values())
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024

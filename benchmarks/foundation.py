@@ -22,8 +22,8 @@ import numpy as np
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
-from linkwork.kinematics import FourBar, four_bar  # noqa: E402
-from linkwork.timing import median_time  # noqa: E402
+from linkwork.engines.kinematics import FourBar, four_bar  # noqa: E402
+from linkwork.pipeline.timing import median_time  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _project import project_copy  # noqa: E402
@@ -58,7 +58,7 @@ def main() -> None:
             lambda: run(
                 sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", "results/bench.html",
                 "--input", "result=results/stiffness/stiffness.nc", "--input", "comparison=results/stiffness/comparison.csv",
-                "--input", "published=config/published/stiffness.yaml",
+                "--input", "findings=results/stiffness/findings.nc", "--input", "published=config/published/stiffness.yaml",
             ),
             args.repeats,
         )

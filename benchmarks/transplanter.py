@@ -22,9 +22,10 @@ import yaml
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
-from linkwork.timing import median_time  # noqa: E402
-from linkwork.transplanter import ked  # noqa: E402
-from linkwork.transplanter_dataset import discretisation, material, mechanism, optim_dataset  # noqa: E402
+from linkwork.papers.transplanter.adapter import discretisation, material, mechanism  # noqa: E402
+from linkwork.papers.transplanter.model import ked  # noqa: E402
+from linkwork.papers.transplanter.studies import optim as optim_dataset  # noqa: E402
+from linkwork.pipeline.timing import median_time  # noqa: E402
 
 TARGETS = {"ked_quasi_static_360_s": 2.0, "optimisation_s": 60.0}
 

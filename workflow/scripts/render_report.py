@@ -1,45 +1,96 @@
 """Execute a jupytext percent script and render it to self-contained HTML.
 
-As a rule script: the notebook is ``input.notebook``; every other named input except ``renderer`` and
-``code`` is passed to the report by name.  By hand:
-``render_report.py NOTEBOOK.py OUTPUT.html [--input KEY=PATH[,PATH...] ...]``.
+As a rule script: the notebook is ``input.notebook``; every other named input except ``code`` is passed
+to the report by name.  By hand: ``render_report.py NOTEBOOK.py OUTPUT.html [--input KEY=PATH[,PATH...] ...]``.
 
-Inputs are exported to the kernel as absolute paths in the environment variable LINKWORK_REPORT
-(JSON: {"inputs": {...}}), because the kernel runs in the notebook's folder; a list input is a list of
-paths.  Code cells are hidden in the HTML; figures are embedded as data URIs.  The kernel is this
-interpreter (jupyter_client maps the 'python3' kernel to sys.executable), so an unactivated
-environment works.  The HTML is written atomically.
+The cells run in this process, in an IPython shell with the inline matplotlib backend (no kernel to
+start: a report is one job and one process).  Inputs reach the report as absolute paths in the environment
+variable LINKWORK_REPORT (JSON: {"inputs": {...}}); a list input is a list of paths.  A cell that raises
+stops the render with the cell and the error.  Code cells are hidden in the HTML; figures are embedded as
+data URIs.  Cell ids are derived from the notebook's path and the cell's position, so rendering the same
+report twice writes the same bytes.  The HTML is written atomically.
 """
 
 import argparse
+import hashlib
 import json
 import os
 import sys
 import time
 from pathlib import Path
 
-SKIPPED = ("notebook", "renderer", "code")
+SKIPPED = ("notebook", "code")
 
 
-def render(notebook: Path, output: Path, inputs: dict[str, str | list[str]], timeout: int = 600) -> None:
+class CellError(RuntimeError):
+    """A report cell raised; the message holds the cell's first lines and the error."""
+
+
+def _outputs(captured, nbformat) -> list:
+    """nbformat outputs from IPython's captured stdout, stderr and rich displays, in that order."""
+    out = []
+    if captured.stdout:
+        out.append(nbformat.v4.new_output("stream", name="stdout", text=captured.stdout))
+    if captured.stderr:
+        out.append(nbformat.v4.new_output("stream", name="stderr", text=captured.stderr))
+    for rich in captured.outputs:
+        out.append(nbformat.v4.new_output("display_data", data=rich.data, metadata=rich.metadata or {}))
+    return out
+
+
+def execute(nb, folder: Path) -> None:
+    """Run every code cell of ``nb`` in a fresh IPython shell whose working folder is ``folder``."""
+    import nbformat
+    from IPython.core.interactiveshell import InteractiveShell
+    from IPython.utils.capture import capture_output
+
+    os.environ["MPLBACKEND"] = "module://matplotlib_inline.backend_inline"
+    os.chdir(folder)
+    sys.path.insert(0, str(folder))
+    shell = InteractiveShell.instance()
+    from matplotlib_inline.backend_inline import configure_inline_support
+
+    configure_inline_support(shell, "module://matplotlib_inline.backend_inline")
+    for index, cell in enumerate(nb.cells):
+        if cell.cell_type != "code":
+            continue
+        with capture_output() as captured:
+            result = shell.run_cell(cell.source, store_history=False, silent=False)
+        cell.outputs = _outputs(captured, nbformat)
+        if not result.success:
+            error = result.error_in_exec or result.error_before_exec
+            head = "\n".join(cell.source.splitlines()[:5])
+            raise CellError(f"cell {index} failed:\n{head}\n...\n{type(error).__name__}: {error}")
+
+
+def stable_ids(nb, name: str) -> None:
+    """Cell ids from the report's name and the cell's position (nbformat's are random)."""
+    for index, cell in enumerate(nb.cells):
+        cell.id = hashlib.sha256(f"{name}:{index}".encode()).hexdigest()[:16]
+
+
+def render(notebook: Path, output: Path, inputs: dict) -> None:
     import jupytext
-    from nbclient import NotebookClient
     from nbconvert import HTMLExporter
 
     absolute = {k: [str(Path(p).resolve()) for p in v] if isinstance(v, list) else str(Path(v).resolve()) for k, v in inputs.items()}
     os.environ["LINKWORK_REPORT"] = json.dumps({"inputs": absolute})
-    os.environ.setdefault("MPLBACKEND", "module://matplotlib_inline.backend_inline")
+    output = output.resolve()
     start = time.perf_counter()
     nb = jupytext.read(notebook)
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
     print(f"render_report: executing {notebook} ...", flush=True)
-    NotebookClient(nb, timeout=timeout, kernel_name="python3", resources={"metadata": {"path": str(notebook.parent.resolve())}}).execute()
+    try:
+        execute(nb, notebook.resolve().parent)
+    except CellError as exc:
+        sys.exit(f"render_report: {notebook}: {exc}")
+    stable_ids(nb, notebook.name)
     html, _ = HTMLExporter(exclude_input=True, exclude_input_prompt=True, exclude_output_prompt=True).from_notebook_node(nb)
     output.parent.mkdir(parents=True, exist_ok=True)
     tmp = output.with_name(output.name + ".tmp")
     tmp.write_text(html, encoding="utf-8")
     os.replace(tmp, output)
-    print(f"render_report: wrote {output} in {time.perf_counter() - start:.1f} s", flush=True)
+    print(f"render_report: wrote {output.name} in {time.perf_counter() - start:.1f} s", flush=True)
 
 
 def _cli() -> None:
@@ -48,7 +99,7 @@ def _cli() -> None:
     parser.add_argument("output", type=Path)
     parser.add_argument("--input", action="append", default=[], help="KEY=PATH or KEY=PATH1,PATH2")
     args = parser.parse_args()
-    inputs: dict[str, str | list[str]] = {}
+    inputs: dict = {}
     for item in args.input:
         key, sep, value = item.partition("=")
         if not sep:

@@ -262,6 +262,23 @@ def _start(y0, t0, n_out, p, latched, counts):
 
 
 @njit(cache=True)
+def jacobian(t, y, p, latched, counts, scratch):
+    """d rhs / d y by forward differences (step sqrt(eps) max(|y_j|, 1)), compiled: for the implicit integrators."""
+    n = y.size
+    f0 = rhs(t, y, p, latched, counts, scratch)
+    jac = np.empty((n, n))
+    yy = y.copy()
+    for j in range(n):
+        h = 1.4901161193847656e-08 * max(abs(y[j]), 1.0)
+        yy[j] = y[j] + h
+        f1 = rhs(t, yy, p, latched, counts, scratch)
+        for i in range(n):
+            jac[i, j] = (f1[i] - f0[i]) / h
+        yy[j] = y[j]
+    return jac
+
+
+@njit(cache=True)
 def rk4(y0, t0, h, t_out, p, latched, counts):
     """Fixed-step RK4; steps are shortened only to land on the output times."""
     n_out = t_out.size

@@ -45,8 +45,8 @@ def integrate(p: FourBarParameters, joints, effects, t_out, integrator: Mapping[
 
 
 def _stiff(module, y0, t_out, params, latched, counts, integrator):
-    """scipy BDF or Radau stepped from Python around the compiled right-hand side, with the impact
-    velocity latched at accepted steps and dense output at t_out."""
+    """scipy BDF or Radau stepped from Python around the compiled right-hand side and its compiled
+    finite-difference Jacobian, with the impact velocity latched at accepted steps and dense output at t_out."""
     from scipy.integrate import BDF, Radau
 
     diag = np.zeros(module.N_DIAG)
@@ -54,6 +54,7 @@ def _stiff(module, y0, t_out, params, latched, counts, integrator):
     was = np.zeros(max(len(module.JOINTS), 1), dtype=bool)
     solver_cls = BDF if integrator["method"] == "bdf" else Radau
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
+    jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
     ys = np.empty((t_out.size, y0.size))
     diags = np.empty((t_out.size, module.N_DIAG))
     module.rhs(t_out[0], y0, params, latched, counts, diag)
@@ -61,7 +62,7 @@ def _stiff(module, y0, t_out, params, latched, counts, integrator):
     ys[0], diags[0] = y0, diag
     i = 1
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
-        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"])
+        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"], jac=jac)
         steps = 0
         while solver.status == "running":
             solver.step()
