@@ -57,6 +57,8 @@ def test_closure_follows_every_kind_of_import(tmp_path):
     lib = _package(tmp_path)
     names = {str(p.relative_to(tmp_path)) for p in closure("linkwork.a", lib)}
     assert names == {f"lib/linkwork/{n}" for n in ("__init__.py", "a.py", "b.py", "sub/__init__.py", "sub/c.py", "d.py", "e.py")}
+    # an entry given by name brings its parent packages (they run when it is imported)
+    assert {str(p.relative_to(tmp_path)) for p in closure("linkwork.sub.c", lib)} >= {"lib/linkwork/__init__.py", "lib/linkwork/sub/__init__.py"}
     report = {str(p.relative_to(tmp_path)) for p in closure(tmp_path / "reports/r.py", lib)}
     assert report == {"reports/r.py", "reports/_helper.py", "lib/linkwork/__init__.py", "lib/linkwork/b.py"}
 

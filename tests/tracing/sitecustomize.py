@@ -11,11 +11,11 @@ import os
 import sys
 
 _DIR = os.environ.get("LINKWORK_TRACE_DIR")
+_MAIN = sys.modules.get("__main__")  # the script's module (IPython later puts its own in sys.modules)
 
 
 def _record() -> None:
-    main = sys.modules.get("__main__")
-    job = getattr(main, "snakemake", None)
+    job = getattr(_MAIN, "snakemake", None)
     files = sorted(
         str(getattr(module, "__file__", "") or "")
         for name, module in list(sys.modules.items())

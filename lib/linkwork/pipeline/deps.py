@@ -85,10 +85,11 @@ def closure(entry: str | Path, lib: str | Path, extra: tuple[str | Path, ...] = 
     for item in (entry, *extra):
         item_str = str(item)
         if item_str.startswith(PACKAGE + ".") or item_str == PACKAGE:
-            file = module_file(item_str, lib)
-            if file is None:
+            if module_file(item_str, lib) is None:
                 raise ValueError(f"module {item_str} not found under {lib}")
-            todo.append((file, item_str, None))
+            parts = item_str.split(".")
+            for k in range(1, len(parts) + 1):  # importing a module runs its parent packages first
+                todo.append((module_file(".".join(parts[:k]), lib), ".".join(parts[:k]), None))
         else:
             todo.append((Path(item), None, Path(item).parent))
     done: set[Path] = set()
