@@ -6,7 +6,7 @@ VENV   ?= .venv
 BIN    := $(abspath $(VENV))/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup reproduce test bench clean
+.PHONY: setup reproduce test browser bench readme clean
 
 setup: $(STAMP)
 
@@ -19,8 +19,19 @@ $(STAMP): pyproject.toml constraints.txt
 reproduce: $(STAMP)
 	PATH="$(BIN):$$PATH" snakemake
 
-test: $(STAMP)
+test: $(STAMP) browser
 	PATH="$(BIN):$$PATH" python -m pytest
+
+# The browser the report test drives: Debian's chromium (installed if missing and apt-get is at hand).
+browser:
+	@command -v chromium >/dev/null || command -v chromium-browser >/dev/null || \
+	  { command -v apt-get >/dev/null && (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) ; } || \
+	  { echo "make test needs Chromium for the report test: install Debian's chromium (apt-get install chromium)"; exit 1; }
+
+readme: $(STAMP)
+	$(BIN)/snakemake results/readme_findings.md
+	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.pipeline.readme import replace_block; \
+	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
 
 bench: $(STAMP)
 	PATH="$(BIN):$$PATH" python benchmarks/foundation.py

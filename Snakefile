@@ -30,10 +30,12 @@ include: "workflow/rules/transplanter.smk"
 include: "workflow/rules/clearance.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/sweeps.smk"
+include: "workflow/rules/uncertainty.smk"
 include: "workflow/rules/reports.smk"
 
 
-# Every report; together they read every result, so this is the whole reproduction.
+# Every report (together they read every result) and the README's findings: the whole reproduction.
 rule all:
     input:
         expand("results/reports/{report}.html", report=REPORT_INPUTS),
+        "results/readme_findings.md",

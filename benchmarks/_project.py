@@ -17,10 +17,13 @@ COPIED = ("Snakefile", "config", "workflow", "lib", "reports", "profiles")
 @contextlib.contextmanager
 def project_copy() -> Iterator[tuple[Path, dict[str, str]]]:
     """(root of a fresh copy without results/, environment that runs this Python and the copy's lib)."""
-    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(PROJECT / "lib"))
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
+        env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(root / "lib"))
         for name in COPIED:
             src = PROJECT / name
-            (shutil.copytree if src.is_dir() else shutil.copy2)(src, root / name)
+            if src.is_dir():
+                shutil.copytree(src, root / name, ignore=shutil.ignore_patterns("__pycache__"))
+            else:
+                shutil.copy2(src, root / name)
         yield root, env

@@ -18,7 +18,9 @@ from IPython.display import HTML, Markdown, display
 
 from linkwork.pipeline.results import load as load_result
 
-VERDICT_COLOURS = {"matches": "#d9f2d9", "deviates": "#f9d6d5", "not reproducible": "#eeeeee"}
+VERDICT_COLOURS = {"matches": "#d9f2d9", "deviates": "#f9d6d5", "not reproducible": "#eeeeee",
+                   "undetermined (numerics)": "#fff2cc", "depends on assumptions": "#dbe9f6"}
+RELATION = {"eq": "±", "ge": "≥", "le": "≤"}
 
 
 def inputs() -> dict[str, Path | list[Path]]:
@@ -53,7 +55,8 @@ def _colour_verdict(value: str) -> str:
 
 def table(df: pd.DataFrame, formats: dict[str, str] | None = None, caption: str | None = None, html_columns: tuple[str, ...] = ()) -> None:
     """Show a DataFrame with verdict cells coloured; every cell is escaped except ``html_columns`` (links we build)."""
-    styler = df.style.hide(axis="index")
+    styler = df.style.hide(axis="index").set_properties(**{"text-align": "left", "vertical-align": "top"})
+    styler = styler.set_table_styles([{"selector": "th", "props": [("text-align", "left")]}])
     verdict_cols = [c for c in df.columns if "verdict" in str(c)]
     if verdict_cols:
         styler = styler.map(_colour_verdict, subset=verdict_cols)
@@ -69,3 +72,90 @@ def table(df: pd.DataFrame, formats: dict[str, str] | None = None, caption: str 
 def provenance(ds, keys=("paper_id", "study", "linkwork_version", "git_commit", "config_sha256")) -> None:
     """The provenance attributes of a result, as a list."""
     md("\n".join(f"* **{k}**: `{esc(ds.attrs[k])}`" for k in keys if k in ds.attrs))
+
+
+def _num(value: float, digits: int = 5) -> str:
+    return "–" if pd.isna(value) else f"{value:.{digits}g}"
+
+
+def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: float = 1.0, digits: int = 5) -> None:
+    """Published numbers beside ours with the verdict's ingredients: tolerance and its source, our numerical
+    error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
+    ``scale`` multiplies every value (a unit change for display, e.g. 1e3 for m -> mm)."""
+    out = pd.DataFrame({
+        "quantity": rows.quantity,
+        "published": [f"{_num(p * scale, digits)} ({'≥ ' + _num((p - t) * scale, 3) if r == 'ge' else '± ' + _num(t * scale, 2)})"
+                      for p, t, r in zip(rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)))],
+        "tolerance from": rows.tolerance_source,
+        "ours": [_num(v * scale, digits) for v in rows.reproduced],
+        "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
+        "error from": rows.numerical_source,
+        "over the assumed inputs": [("–" if pd.isna(lo) else f"{_num(lo * scale, 4)} … {_num(hi * scale, 4)}") for lo, hi in zip(rows.input_low, rows.input_high)],
+        "decided by": rows.decided_by.fillna(""),
+        "unit": rows.unit,
+        "verdict": rows.verdict,
+    })
+    table(out, caption=caption)
+
+
+def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str, float] | None = None, caption: str | None = None) -> None:
+    """Each assumed input moved alone over its range: the range it gives each listed quantity.
+
+    ``quantities``: published id -> column label; ``scale``: id -> display factor."""
+    scale = scale or {}
+    index = {str(q): i for i, q in enumerate(unc.quantity.values)}
+    rows = []
+    for k, name in enumerate(unc.input.values):
+        row = {"input": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": str(unc.input_reason.values[k])}
+        for qid, label in quantities.items():
+            q = index[f"{model}|{qid}"]
+            f = scale.get(qid, 1.0)
+            row[label] = f"{_num(unc.oat_low.values[k, q] * f, 4)} … {_num(unc.oat_high.values[k, q] * f, 4)}"
+        rows.append(row)
+    table(pd.DataFrame(rows), caption=caption or f"each assumed input moved alone over its range ({int(unc.samples)} samples in all, Latin hypercube included)")
+
+
+def answer(findings) -> None:
+    """The paper's one-sentence answer, computed by its findings, at the top of its report."""
+    md(f"**Does the paper hold up?** {esc(findings.attrs['answer'])}")
+
+
+def caption(text: str) -> None:
+    """A figure caption (escaped), shown under the figure."""
+    md(f"*Figure: {esc(text)}*")
+
+
+def verdict_figure(rows: pd.DataFrame, title: str) -> None:
+    """Each published number's acceptance band (grey, |ours - published| <= tolerance) against our nominal value (dot),
+    our numerical error bar (black whisker) and our range over the assumed inputs (blue bar), all in units of the
+    tolerance.  Rows with a zero tolerance or no value of ours are left out."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    rows = rows[(rows.tolerance > 0) & rows.reproduced.notna()]
+    if rows.empty:
+        return
+    fig, ax = plt.subplots(figsize=(9, 0.45 * len(rows) + 1.2), constrained_layout=True)
+    y = np.arange(len(rows))[::-1]
+    scale = rows.tolerance.to_numpy()
+    nominal = (rows.reproduced.to_numpy() - rows.published.to_numpy()) / scale
+    low = (rows.input_low.to_numpy() - rows.published.to_numpy()) / scale
+    high = (rows.input_high.to_numpy() - rows.published.to_numpy()) / scale
+    error = np.nan_to_num(rows.numerical_error.to_numpy() / scale)
+    for yi, rel in zip(y, rows.get("relation", ["eq"] * len(rows))):
+        ax.fill_betweenx([yi - 0.35, yi + 0.35], -1, 1e9 if rel == "ge" else 1, color="0.85", lw=0)
+    ax.hlines(y, low, high, color="C0", lw=5, alpha=0.6, label="ours over the assumed inputs")
+    ax.errorbar(nominal, y, xerr=error, fmt="o", color="k", ms=5, capsize=3, label="ours at nominal inputs (± numerical error)")
+    ax.axvline(0, color="k", lw=0.8)
+    span = np.nanmax(np.abs(np.concatenate([nominal, low, high, [1.5]])))
+    ax.set_xlim(-1.15 * span, 1.15 * span)
+    if span > 50:
+        ax.set_xscale("symlog", linthresh=1.0)
+    ax.set_yticks(y, [esc(q)[:60] for q in rows.quantity])
+    ax.set_xlabel("(our value − published) / tolerance   (grey: within the tolerance)")
+    ax.set_title(title)
+    ax.grid(alpha=0.3, axis="x")
+    ax.legend(fontsize=8, loc="lower right")
+    plt.show()
+    caption(f"{title}: for each published number the grey band is the published value ± its tolerance; the dot is ours at the "
+            "nominal inputs with its numerical error bar, the blue bar our range over the assumed inputs, all divided by the tolerance.")

@@ -9,14 +9,21 @@
 
 # %% [markdown]
 # # Six-link beating-up mechanism (GN721) vs four-link (1511M): reproduction report
+
+# %%
+from _common import esc, md
+
+from linkwork.papers import CITATIONS
+
+md(f"**Paper.** {esc(CITATIONS['beatup'])}")
+
+# %% [markdown]
+# **What the paper does.** The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a
+# double rocker CDEF. The paper solves both loops with complex vectors (tangent half-angle closed forms, eqs. 5 and 11),
+# tabulates the rocker angle θ3 and the sley-sword angle θ6 with their derivatives (Table 1), and compares the weft
+# window with that of the 1511M four-bar at equal reed stroke.
 #
-# **Paper.** Gao Weidong, "The kinematic analysis of the six-link beating-up mechanism" (received 3 August 1983).
-# The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a double rocker CDEF.
-# The paper solves both loops with complex vectors (tangent half-angle closed forms, eqs. 5 and 11), tabulates the
-# rocker angle θ3 and the sley-sword angle θ6 with their derivatives (Table 1), and compares the weft window with that
-# of the 1511M four-bar at equal reed stroke.
-#
-# **What we do.** We solve the six-bar as a chain of dyads with the shared solver (`linkwork.kinematics.solve_chain`),
+# **What we do.** We solve the six-bar as a chain of dyads with the shared solver (`linkwork.engines.kinematics.solve_chain`),
 # using vector loop closure with explicit branches and analytic rates. We check it against the paper's own closed
 # forms and against finite differences. For every cell of Table 1 that differs beyond rounding we give the evidence
 # of which side is wrong. For the weft-window comparison the paper gives neither the 1511M dimensions nor S_w, so we
@@ -28,7 +35,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import esc, inputs, load, md, provenance, table
+from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
 files = inputs()
 ds = load(files["result"])
@@ -37,6 +44,7 @@ acc = load(files["accuracy"])
 timings = load(files["timings"])
 cmp = load(files["comparison"])
 fnd = load(files["findings"])
+unc = load(files["uncertainty"])
 published = load(files["published"])
 cfg = json.loads(ds.attrs["config_json"])
 win_cfg = json.loads(win.attrs["config_json"])
@@ -54,6 +62,7 @@ printed = {table1_spec["columns"][n]["variable"]: np.array(table1_spec["rows"], 
 # ## Summary
 
 # %%
+answer(fnd)
 md(
     f"""
 * **Table 1:** {int(fnd.table1_matches)} of {int(fnd.table1_total)} printed numbers match within half a unit of the last digit. Of the others,
@@ -134,10 +143,9 @@ md("The largest printed-cell errors, each contradicted by the paper's own neighb
 # ## 3. Headline numbers
 
 # %%
-table(
-    head[["quantity", "where", "published", "reproduced", "unit", "deviation", "tolerance", "verdict"]],
-    {"published": "{:.2f}", "reproduced": "{:.2f}", "deviation": "{:+.2f}", "tolerance": "{:.3g}"},
-)
+comparison_table(head, caption="Headline numbers; our range over the rounding of the printed l4, l7, θ4, θ7 (half a unit of their last digit)")
+verdict_figure(head, "Beat-up: published headline numbers against ours")
+oat_table(unc, {"front_dead_centre": "front dead centre (deg)", "span_front_to_back": "front to back (deg)", "swing": "swing (deg)"})
 md(
     f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "
     f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. In the sense of increasing θ1 the velocity peaks "
@@ -175,6 +183,7 @@ axes[2].set_xlabel("crank angle from the front dead centre (deg, crank turning t
 axes[2].set_xticks(range(0, 361, 30))
 axes[0].legend(fontsize=8)
 plt.show()
+caption("Sley angle θ6, rate θ6' and acceleration θ6'' (per unit crank angle) against the crank angle from the front dead centre, counted for the crank turning towards decreasing θ1 (the sense of the paper's claims); the rate is drawn with the sign of that sense, so Table 1's θ6' appears with its sign reversed. Crosses: Table 1 as printed; red dotted lines: the published velocity peaks.")
 
 # %% [markdown]
 # ## 4. Which printed equations do not follow from (3) and (10)
@@ -251,6 +260,7 @@ ax.set_xticks(range(0, 361, 30))
 ax.grid(alpha=0.3)
 ax.legend(fontsize=8)
 plt.show()
+caption("Reed distance behind its front position at cloth-fell height over a crank turn, measured from the front dead centre, for the scaled six-bar and the assumed four-bar at equal stroke; shaded: where the reed is further back than S_w (the weft window).")
 
 # %% [markdown]
 # ### What the published 168°, 147° and 21° constrain
@@ -285,6 +295,7 @@ axes[1].set_ylabel("six-bar window − four-bar window (deg)")
 axes[1].legend(fontsize=7)
 axes[1].grid(alpha=0.3)
 plt.show()
+caption("Left: weft window versus S_w for the six-bar (black) and four-bars of several L/R; dotted: the printed windows; dashed: the S_w at which our six-bar gives the printed six-bar window. Right: six-bar minus four-bar window versus L/R for several S_w; dotted: the printed difference. Crank angles in degrees of crank rotation.")
 band = float(fnd.fourbar_window_band)
 lo, hi = float(fnd.arm_to_crank_in_band_min), float(fnd.arm_to_crank_in_band_max)
 md(
@@ -319,6 +330,7 @@ axes[1].set_ylabel("max error")
 axes[1].legend(fontsize=8)
 axes[1].grid(alpha=0.3, which="both")
 plt.show()
+caption("Central-difference error of the sley rate and acceleration against the analytic ones versus the step (left) and versus the time of one evaluation (right); the dotted line is the step used for the Table 1 checks, the dashed one the analytic time.")
 md(
     f"Central differences reach at best {float(acc.best_error.sel(derivative='theta6_rate')):.1e} for θ6' and "
     f"{float(acc.best_error.sel(derivative='theta6_accel')):.1e} for θ6''. Truncation error falls as h² until round-off takes "

@@ -19,7 +19,7 @@ import json
 
 import matplotlib.pyplot as plt
 import numpy as np
-from _common import inputs, load, md
+from _common import caption, inputs, load, md
 
 files = inputs()
 cl = load(files["result"])
@@ -48,6 +48,7 @@ for ax, (ds, var, xdim, ydim, xs, ys, xl, yl) in zip(axes.flat, panels):
     ax.set_title(f"{ds[var].attrs['long_name']} ({ds[var].attrs['units']})", fontsize=9)
     fig.colorbar(im, ax=ax)
 plt.show()
+caption("Heat maps of the sweeps (value in each cell): top, the clearance sweep (peak joint force and RMS rocker acceleration over clearance and crank speed); bottom, the heald sweep (peak |Q_E| and the smallest E/F ratio over clearance and frame mass).")
 md(
     f"Clearance sweep: scene `{cl_spec['scene']}`, variant `{cl_spec['variant']}`, {cl_spec['settle_cycles']} settling and "
     f"{cl_spec['record_cycles']} recorded cycle(s) per point. Heald sweep: model {he_spec['model']}, "

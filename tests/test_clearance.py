@@ -151,3 +151,15 @@ def test_claimed_order_of_the_dry_scenes():
     assert not order_as_claimed(np.array([2.0, 1.0, 3.0]), "rocker_acceleration")
     assert order_as_claimed(np.array([2.0, 1.0, 3.0]), "crank_torque")
     assert not order_as_claimed(np.array([2.0, 1.0, 1.5]), "crank_torque")  # both joints not the largest
+
+
+def test_small_linear_solve_equals_lapack():
+    """The Schur-complement solve (pivoted Gaussian elimination, compiled) against numpy's LAPACK."""
+    from linkwork.engines.multibody.kernels import gauss_solve
+
+    rng = np.random.default_rng(7)
+    for n in (1, 3, 9):
+        a = rng.normal(size=(n, n)) + np.diag(rng.uniform(0.1, 1.0, n))
+        a[[0, -1]] = a[[-1, 0]]  # needs pivoting
+        b = rng.normal(size=n)
+        assert np.allclose(gauss_solve(a.copy(), b.copy()), np.linalg.solve(a, b), rtol=1e-10, atol=1e-12)

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import xarray as xr
 
-from linkwork.pipeline.compare import compare, evaluate_measure, expand_tables, tolerance_of, verdict, verdict_counts
+from linkwork.pipeline.compare import acceptance, classify, compare, decided_by, evaluate_measure, expand_tables, tolerance_of, verdict_counts
 
 DS = xr.Dataset(
     {"k": ("angle", np.array([1.0, 3.0, 2.0])), "b": ("angle", np.array([10.0, 20.0, 30.0]))},
@@ -23,10 +23,30 @@ def test_measures():
     assert math.isnan(m("at", at={"angle": 15.0}))
 
 
-def test_verdicts_and_tolerances():
-    assert verdict(1.0, 1.005, 0.005) == "matches"
-    assert verdict(1.0, 1.0051, 0.005) == "deviates"
-    assert verdict(1.0, math.nan, 0.005) == "not reproducible"
+def test_verdict_classes():
+    nan = math.nan
+    # published 1.0 +- 0.005; nominal, numerical error, range over the assumed inputs
+    assert classify(1.0, 0.005, "eq", 1.005, 0.0, nan, nan) == "matches"
+    assert classify(1.0, 0.005, "eq", 1.0051, 0.0, nan, nan) == "deviates"
+    assert classify(1.0, 0.005, "eq", nan, 0.0, nan, nan) == "not reproducible"
+    assert classify(1.0, 0.005, "eq", 1.004, 0.002, 1.004, 1.004) == "undetermined (numerics)"  # the error bar straddles
+    assert classify(1.0, 0.005, "eq", 1.004, 0.0, 0.99, 1.02) == "depends on assumptions"  # the inputs' range straddles
+    assert classify(1.0, 0.005, "eq", 1.010, 0.0, 1.002, 1.02) == "depends on assumptions"  # deviates nominally, not robustly
+    assert classify(1.0, 0.005, "eq", 1.010, 0.001, 1.008, 1.02) == "deviates"
+    assert classify(1.0, 0.005, "eq", 1.000, 0.001, 0.998, 1.003) == "matches"
+    assert classify(3.0, 0.0, "ge", 2.9, 0.01, 2.5, 3.5) == "depends on assumptions"
+    assert classify(3.0, 0.0, "ge", 3.2, 0.01, 3.1, 30.0) == "matches"
+    assert acceptance(3.0, 0.0, "ge")[1] == math.inf
+
+
+def test_the_deciding_input_is_the_one_that_crosses():
+    region = acceptance(1.0, 0.005, "eq")
+    oat = {"a.value": (1.009, 1.011), "b.value": (0.999, 1.010), "c.value": (1.008, 1.030)}
+    assert decided_by(region, 1.010, 0.0, oat) == "b"
+    assert decided_by(region, 1.010, 0.0, {"a.value": (1.009, 1.011), "c.value": (1.008, 1.030)}) == "jointly (largest alone: c)"
+
+
+def test_tolerances():
     assert tolerance_of({"value": -200.0, "tolerance": {"rel": 0.01}}) == 2.0
     assert tolerance_of({"value": 5.0, "tolerance": {"abs": 0.5}}) == 0.5
 
@@ -51,4 +71,5 @@ def test_tables_expand_cell_by_cell_and_compare():
     assert table.loc["t.b@0", "verdict"] == "matches"
     assert table.loc["t.b@10", "verdict"] == "deviates"
     assert np.isclose(table.loc["t.b@10", "deviation"], -1.0)
-    assert verdict_counts(table.reset_index()) == {"matches": 2, "deviates": 1, "not reproducible": 1}
+    assert verdict_counts(table.reset_index()) == {"matches": 2, "deviates": 1, "undetermined (numerics)": 0, "depends on assumptions": 0, "not reproducible": 1}
+    assert (table.role == ["headline", "headline", "table cell", "table cell"]).all()

@@ -43,10 +43,10 @@ def test_unknown_key(config, schema):
     _expect(c, schema, "stifness", "unknown key")
 
 
-def test_reference_form_must_be_computed(config, schema):
+def test_compared_forms_must_be_computed(config, schema):
     c = copy.deepcopy(config)
     c["stiffness"]["forms"] = ["equilibrium"]
-    _expect(c, schema, "stiffness.reference_form", "'tables'")
+    _expect(c, schema, "stiffness.forms", "'tables'")
 
 
 def test_grid_step_must_divide_a_turn(config, schema):

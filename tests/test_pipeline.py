@@ -188,7 +188,7 @@ def test_reports_only_load_and_format(name):
     text = (PROJECT / "reports" / f"{name}.py").read_text()
     imports = [line for line in text.splitlines() if line.startswith(("import ", "from "))]
     allowed = ("import json", "import matplotlib.pyplot as plt", "import numpy as np", "import pandas as pd",
-               "from _common import", "from linkwork.papers import PAPERS")
+               "from _common import", "from linkwork.papers import PAPERS", "from linkwork.papers import CITATIONS")
     assert all(line.startswith(allowed) for line in imports), imports
     for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
         assert reduction not in text, f"reports/{name}.py computes {reduction}"

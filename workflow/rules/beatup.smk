@@ -46,6 +46,7 @@ rule beatup_compare:
         published="config/published/beatup.yaml",
         sixbar="results/beatup/sixbar.nc",
         window="results/beatup/window.nc",
+        uncertainty="results/beatup/uncertainty.nc",
         code=code("linkwork.papers.beatup.findings"),
     output:
         "results/beatup/comparison.csv",

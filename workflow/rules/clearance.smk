@@ -75,6 +75,7 @@ rule clearance_compare:
     input:
         published="config/published/clearance.yaml",
         claims="results/clearance/claims.nc",
+        uncertainty="results/clearance/uncertainty.nc",
         code=code("linkwork.papers.clearance.findings"),
     output:
         "results/clearance/comparison.csv",

@@ -32,12 +32,14 @@ rule heald_compare:
     input:
         published="config/published/heald.yaml",
         chain="results/heald/chain.nc",
+        accuracy="results/heald/accuracy.nc",
+        uncertainty="results/heald/uncertainty.nc",
         code=code("linkwork.papers.heald.findings"),
     output:
         "results/heald/comparison.csv",
         "results/heald/findings.nc",
     params:
         study="linkwork.papers.heald.findings:compare",
-        cfg=section("heald", "claims"),
+        cfg={},
     script:
         STUDY

@@ -3,7 +3,8 @@
 
 
 def paper_report(paper, **results):
-    return {**results, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
+    uncertainty = {"uncertainty": f"results/{paper}/uncertainty.nc"} if paper in UNCERTAIN_PAPERS else {}
+    return {**results, **uncertainty, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
             "published": f"config/published/{paper}.yaml"}
 
 
@@ -38,6 +39,7 @@ def report_inputs(wildcards):
     notebook = f"reports/{wildcards.report}.py"
     return {
         "notebook": notebook,
+        "template": "reports/templates/linkwork/index.html.j2",
         "code": code_of(notebook, RENDERER),
         **REPORT_INPUTS[wildcards.report],
     }
@@ -52,3 +54,17 @@ rule report:
         report="|".join(REPORT_INPUTS),
     script:
         "../scripts/render_report.py"
+
+
+rule readme_findings:
+    input:
+        **{f"findings_{p}": f"results/{p}/findings.nc" for p in PAPERS},
+        **{f"comparison_{p}": f"results/{p}/comparison.csv" for p in PAPERS},
+        code=code("linkwork.pipeline.readme"),
+    output:
+        "results/readme_findings.md",
+    params:
+        study="linkwork.pipeline.readme:generated",
+        cfg={},
+    script:
+        STUDY

@@ -4,6 +4,7 @@ TRANSPLANTER_MATERIAL = lambda *props: [f"materials.{config['transplanter']['mat
 TRANSPLANTER_MODEL = ["crank_speed_rpm", "geometry", "material.name", *TRANSPLANTER_MATERIAL("youngs_modulus_Pa", "density_kg_m3"),
                       "fe.element", "fe.elements_per_member", "fe.gravity_m_s2"]
 TRANSPLANTER_DYNAMIC = ["fe.damping_ratio", "fe.revolutions", "fe.substeps"]
+TRANSPLANTER_COMPARED = ["fe.compared_solution", *TRANSPLANTER_DYNAMIC]  # the solution compared with the paper's numbers
 TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLANTER_MATERIAL("yield_Pa"), "minimum_diameter_m",
                         "optimization.angle_step_deg", "optimization.reference_diameter_m"]
 
@@ -42,7 +43,7 @@ rule transplanter_at_published:
         "results/transplanter/at_published.nc",
     params:
         study="linkwork.papers.transplanter.published_point:at_published",
-        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_DYNAMIC, "fe.angle_step_deg", "sensitivity",
+        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "fe.angle_step_deg", "numerical_checks",
                     "optimization.r0", "optimization.r_factor", "optimization.iterations", "optimization.gradient_step_m"),
     script:
         STUDY
@@ -67,6 +68,8 @@ rule transplanter_compare:
         optim="results/transplanter/optim.nc",
         at_published="results/transplanter/at_published.nc",
         ked="results/transplanter/ked.nc",
+        accuracy="results/transplanter/accuracy.nc",
+        uncertainty="results/transplanter/uncertainty.nc",
         code=code("linkwork.papers.transplanter.findings"),
     output:
         "results/transplanter/comparison.csv",

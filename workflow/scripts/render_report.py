@@ -19,7 +19,8 @@ import sys
 import time
 from pathlib import Path
 
-SKIPPED = ("notebook", "code")
+SKIPPED = ("notebook", "code", "template")
+TEMPLATE = "reports/templates/linkwork/index.html.j2"  # the project's nbconvert template (no scripts from the network)
 
 
 class CellError(RuntimeError):
@@ -69,13 +70,13 @@ def stable_ids(nb, name: str) -> None:
         cell.id = hashlib.sha256(f"{name}:{index}".encode()).hexdigest()[:16]
 
 
-def render(notebook: Path, output: Path, inputs: dict) -> None:
+def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     import jupytext
     from nbconvert import HTMLExporter
 
     absolute = {k: [str(Path(p).resolve()) for p in v] if isinstance(v, list) else str(Path(v).resolve()) for k, v in inputs.items()}
     os.environ["LINKWORK_REPORT"] = json.dumps({"inputs": absolute})
-    output = output.resolve()
+    output, template = output.resolve(), template.resolve()
     start = time.perf_counter()
     nb = jupytext.read(notebook)
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3", "language": "python"}
@@ -85,7 +86,9 @@ def render(notebook: Path, output: Path, inputs: dict) -> None:
     except CellError as exc:
         sys.exit(f"render_report: {notebook}: {exc}")
     stable_ids(nb, notebook.name)
-    html, _ = HTMLExporter(exclude_input=True, exclude_input_prompt=True, exclude_output_prompt=True).from_notebook_node(nb)
+    exporter = HTMLExporter(template_name=template.parent.name, extra_template_basedirs=[str(template.resolve().parent.parent)], exclude_input=True,
+                            exclude_input_prompt=True, exclude_output_prompt=True)
+    html, _ = exporter.from_notebook_node(nb)
     output.parent.mkdir(parents=True, exist_ok=True)
     tmp = output.with_name(output.name + ".tmp")
     tmp.write_text(html, encoding="utf-8")
@@ -105,11 +108,11 @@ def _cli() -> None:
         if not sep:
             sys.exit(f"render_report: --input {item!r} is not KEY=PATH")
         inputs[key] = value.split(",") if "," in value else value
-    render(args.notebook, args.output, inputs)
+    render(args.notebook, args.output, inputs, Path(__file__).resolve().parents[2] / TEMPLATE)
 
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    render(Path(sm.input.notebook), Path(sm.output[0]), {k: v for k, v in sm.input.items() if k not in SKIPPED})
+    render(Path(sm.input.notebook), Path(sm.output[0]), {k: v for k, v in sm.input.items() if k not in SKIPPED}, Path(sm.input.template))
 elif __name__ == "__main__":
     _cli()

@@ -39,6 +39,8 @@ for obj, path in zip(outputs, sm.output):
         results.write(obj, path)
     elif hasattr(obj, "to_csv"):
         results.write_text(obj.to_csv(index=False, float_format="%.10g"), path)
+    elif isinstance(obj, str):
+        results.write_text(obj, path)
     else:
         results.write_text(json.dumps(obj, indent=2, sort_keys=True), path)
 print(f"{label}: wrote {', '.join(sm.output)} in {time.perf_counter() - start:.1f} s", flush=True)

@@ -22,6 +22,16 @@ enough to reproduce (verdict "not reproducible"; say why in ``note``).
 A table column is a variable name, or ``{variable, unit, tolerance}`` when the
 columns differ in unit or precision.
 
+Verdict classes (``classify``): with the acceptance region A of a published value (value +- tolerance, or
+one-sided for ``ge``/``le``), our value N at the nominal inputs, our numerical error bar e and the range
+[low, high] of our value over the assumed inputs' ranges,
+
+``not reproducible``          N is undefined (the paper lacks what is needed);
+``undetermined (numerics)``   [N - e, N + e] is partly inside A and partly outside;
+``matches``                   [low - e, high + e] lies inside A;
+``deviates``                  [low - e, high + e] lies outside A;
+``depends on assumptions``    otherwise: the verdict changes within the assumed inputs' ranges.
+
 Published numbers are read here and nowhere else in the library; they never
 enter a computation.
 """
@@ -36,19 +46,12 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-VERDICTS = ("matches", "deviates", "not reproducible")
+VERDICTS = ("matches", "deviates", "undetermined (numerics)", "depends on assumptions", "not reproducible")
+HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
-    "model",
-    "id",
-    "quantity",
-    "where",
-    "published",
-    "reproduced",
-    "unit",
-    "deviation",
-    "relative_deviation",
-    "tolerance",
-    "verdict",
+    "model", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance", "tolerance_source",
+    "reproduced", "deviation", "relative_deviation", "numerical_error", "numerical_source",
+    "input_low", "input_high", "input_source", "decided_by", "verdict",
 ]
 
 
@@ -92,26 +95,56 @@ def tolerance_of(entry: Mapping[str, Any]) -> float:
     return float(tol["rel"]) * abs(float(entry["value"]))
 
 
-def verdict(published: float, reproduced: float, tolerance: float, relation: str = "eq") -> str:
-    """'matches' within the tolerance, 'deviates' beyond it, 'not reproducible' if NaN.
-
-    relation 'eq' (default) is |reproduced - published| <= tolerance; 'ge' and 'le'
-    judge a one-sided claim ("at least", "at most") with the tolerance as slack.
-    A hair of floating-point slack (1e-9 of the tolerance) keeps a deviation of
-    exactly the tolerance on the matching side.
-    """
-    if not np.isfinite(reproduced):
-        return "not reproducible"
-    slack = tolerance * (1 + 1e-9)
+def acceptance(published: float, tolerance: float, relation: str = "eq") -> tuple[float, float]:
+    """The interval of values that reproduce a published one (one-sided for 'ge' and 'le')."""
+    slack = tolerance * (1 + 1e-9) + 1e-12 * abs(published)
     if relation == "ge":
-        ok = reproduced >= published - slack
-    elif relation == "le":
-        ok = reproduced <= published + slack
-    elif relation == "eq":
-        ok = abs(reproduced - published) <= slack
-    else:
-        raise ValueError(f"unknown relation {relation!r}")
-    return "matches" if ok else "deviates"
+        return published - slack, math.inf
+    if relation == "le":
+        return -math.inf, published + slack
+    if relation == "eq":
+        return published - slack, published + slack
+    raise ValueError(f"unknown relation {relation!r}")
+
+
+def _inside(lo: float, hi: float, region: tuple[float, float]) -> bool:
+    return region[0] <= lo and hi <= region[1]
+
+
+def _outside(lo: float, hi: float, region: tuple[float, float]) -> bool:
+    return hi < region[0] or lo > region[1]
+
+
+def classify(published: float, tolerance: float, relation: str, nominal: float, error: float, low: float, high: float) -> str:
+    """The verdict class of one comparison (see the module docstring); NaN ``error`` counts as 0."""
+    if not np.isfinite(nominal):
+        return "not reproducible"
+    region = acceptance(published, tolerance, relation)
+    e = 0.0 if not np.isfinite(error) else abs(error)
+    if not _inside(nominal - e, nominal + e, region) and not _outside(nominal - e, nominal + e, region):
+        return "undetermined (numerics)"
+    lo = min(nominal, low if np.isfinite(low) else nominal) - e
+    hi = max(nominal, high if np.isfinite(high) else nominal) + e
+    if _inside(lo, hi, region):
+        return "matches"
+    if _outside(lo, hi, region):
+        return "deviates"
+    return "depends on assumptions"
+
+
+def decided_by(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> str:
+    """Which inputs, moved alone within their ranges, change the verdict (else the one that moves our value most)."""
+    e = abs(error) if np.isfinite(error) else 0.0
+    base_inside = _inside(nominal - e, nominal + e, region)
+
+    def changes(lo: float, hi: float) -> bool:  # moving this input alone reaches the other side of the boundary
+        return not _inside(lo - e, hi + e, region) if base_inside else not _outside(lo - e, hi + e, region)
+
+    crossing = [input_name(name) for name, (lo, hi) in oat.items() if np.isfinite(lo) and changes(lo, hi)]
+    if crossing:
+        return ", ".join(crossing)
+    spans = {input_name(name): hi - lo for name, (lo, hi) in oat.items() if np.isfinite(lo) and hi > lo}
+    return f"jointly (largest alone: {max(spans, key=spans.get)})" if spans else "jointly"
 
 
 def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
@@ -128,6 +161,8 @@ def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
                     column = {"variable": column}
                 entries.append(
                     {
+                        "role": "table cell",
+                        "tolerance_source": table.get("tolerance_source", HALF_DIGIT),
                         "id": f"{table['id']}.{col_name}@{key_value:g}",
                         "quantity": f"{col_name} at {key} = {key_value:g}",
                         "value": value,
@@ -144,27 +179,50 @@ def expand_tables(published: Mapping[str, Any]) -> list[dict[str, Any]]:
     return entries
 
 
-def compare(published: Mapping[str, Any], ds: xr.Dataset, model: str = "") -> pd.DataFrame:
-    """The comparison table for one result Dataset (one model variant)."""
+def compare(
+    published: Mapping[str, Any],
+    ds: xr.Dataset,
+    model: str = "",
+    errors: Mapping[str, tuple[float, str]] | None = None,
+    uncertainty: xr.Dataset | None = None,
+) -> pd.DataFrame:
+    """The comparison table for one result Dataset (one model variant).
+
+    ``errors``: published id -> (our numerical error bar in the published unit, where it comes from); an id
+    missing here has no estimate (NaN; it cannot make a verdict 'undetermined').  ``uncertainty``: the
+    gathered input-uncertainty study (linkwork.pipeline.uncertainty.summary) or None (no assumed input).
+    """
+    errors = errors or {}
     rows = []
+    inputs = [str(i) for i in uncertainty.input.values] if uncertainty is not None and "input" in uncertainty.dims else []
+    quantities = {str(q): i for i, q in enumerate(uncertainty.quantity.values)} if uncertainty is not None else {}
     for entry in [*published.get("quantities", []), *expand_tables(published)]:
         value = float(entry["value"])
         reproduced = evaluate_measure(ds, entry["measure"])
         tol = tolerance_of(entry)
+        relation = entry.get("relation", "eq")
+        error, error_source = errors.get(entry["id"], (math.nan, "no estimate"))
+        low = high = reproduced
+        source, decider = "no assumed input enters this number", ""
+        key = f"{model}|{entry['id']}"
+        if key in quantities and inputs:
+            q = quantities[key]
+            low, high = float(uncertainty.low.values[q]), float(uncertainty.high.values[q])
+            source = f"{int(uncertainty.samples)} samples over {len(inputs)} assumed inputs"
+            oat = {name: (float(uncertainty.oat_low.values[k, q]), float(uncertainty.oat_high.values[k, q])) for k, name in enumerate(inputs)}
+        elif entry["measure"] is None:
+            source = "not reproducible: nothing to propagate"
+        verdict_class = classify(value, tol, relation, reproduced, error, low, high)
+        if verdict_class == "depends on assumptions":
+            decider = decided_by(acceptance(value, tol, relation), reproduced, error, oat)
         deviation = reproduced - value
         rows.append(
             {
-                "model": model,
-                "id": entry["id"],
-                "quantity": entry["quantity"],
-                "where": entry["where"],
-                "published": value,
-                "reproduced": reproduced,
-                "unit": entry["unit"],
-                "deviation": deviation,
-                "relative_deviation": deviation / value if value != 0 else math.nan,
-                "tolerance": tol,
-                "verdict": verdict(value, reproduced, tol, entry.get("relation", "eq")),
+                "model": model, "id": entry["id"], "role": entry.get("role", "headline"), "quantity": entry["quantity"], "where": entry["where"],
+                "published": value, "relation": relation, "unit": entry["unit"], "tolerance": tol, "tolerance_source": entry.get("tolerance_source", HALF_DIGIT),
+                "reproduced": reproduced, "deviation": deviation, "relative_deviation": deviation / value if value != 0 else math.nan,
+                "numerical_error": error, "numerical_source": error_source, "input_low": low, "input_high": high, "input_source": source,
+                "decided_by": decider, "verdict": verdict_class,
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)
@@ -180,24 +238,57 @@ def verdict_counts(table: pd.DataFrame) -> dict[str, int]:
 VARIANT_DIMS = ("form", "model", "variant")
 
 
-def compare_datasets(published: Mapping[str, Any], datasets: list[xr.Dataset]) -> pd.DataFrame:
-    """The comparison table over the merged result Datasets, one block per model variant."""
+def compare_datasets(
+    published: Mapping[str, Any],
+    datasets: list[xr.Dataset],
+    errors: Mapping[str, Mapping[str, tuple[float, str]]] | None = None,
+    uncertainty: xr.Dataset | None = None,
+) -> pd.DataFrame:
+    """The comparison table over the merged result Datasets, one block per model variant.
+
+    ``errors``: model variant -> published id -> (numerical error bar, source); see ``compare``.
+    """
     ds = xr.merge(datasets, combine_attrs="drop")
     dim = next((d for d in VARIANT_DIMS if d in ds.dims), None)
     variants = [str(v) for v in ds[dim].values] if dim else [""]
-    return pd.concat([compare(published, ds.sel({dim: v}) if dim else ds, model=v) for v in variants], ignore_index=True)
-
-
-def counts_dataset(table: pd.DataFrame, rows: pd.Series | None = None) -> xr.Dataset:
-    """Verdict counts per model (dims count_model x verdict), optionally of a subset of rows."""
-    part = table if rows is None else table[rows]
-    models = list(dict.fromkeys(table["model"]))
-    counts = np.array([[verdict_counts(part[part.model == m])[v] for v in VERDICTS] for m in models])
-    return xr.Dataset(
-        {"verdict_count": (("count_model", "verdict"), counts, {"units": "1", "long_name": "comparison rows per verdict"})},
-        coords={"count_model": ("count_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the comparison block"}),
-                "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict"})},
+    errors = errors or {}
+    return pd.concat(
+        [compare(published, ds.sel({dim: v}) if dim else ds, model=v, errors=errors.get(v), uncertainty=uncertainty) for v in variants],
+        ignore_index=True,
     )
+
+
+ROLES = ("headline", "table cell")
+
+
+def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
+    """Verdict counts per model, role (headline claims apart from table cells) and class."""
+    models = list(dict.fromkeys(table["model"]))
+    counts = np.array([[[int(((table.model == m) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS] for r in ROLES] for m in models])
+    return xr.Dataset(
+        {"verdict_count": (("count_model", "role", "verdict"), counts, {"units": "1", "long_name": "comparison rows per model, role and verdict class"})},
+        coords={"count_model": ("count_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the comparison block"}),
+                "role": ("role", np.array(ROLES, dtype=object), {"units": "1", "long_name": "headline claim or table cell (a trivial check)"}),
+                "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict class"})},
+    )
+
+
+def count_text(table: pd.DataFrame, model: str, role: str = "headline") -> str:
+    """'3 match, 1 deviates, 2 depend on assumptions' for one model's rows of one role (classes that occur)."""
+    part = table[(table.model == model) & (table.role == role)]
+    words = {"matches": "match", "deviates": "deviate", "undetermined (numerics)": "undetermined by numerics",
+             "depends on assumptions": "depend on assumptions", "not reproducible": "not reproducible"}
+    return ", ".join(f"{int((part.verdict == v).sum())} {words[v]}" for v in VERDICTS if (part.verdict == v).any())
+
+
+def input_name(path: str) -> str:
+    """The short name of an uncertain input's key path ('parameters.M_P.value' -> 'M_P')."""
+    return path.removesuffix(".value").rsplit(".", 1)[-1]
+
+
+def findings_attrs(title: str, defensible: str, paper_model: str, answer: str) -> dict[str, str]:
+    """The attributes every paper's findings carry: which model is defensible, which is the paper's own, the answer."""
+    return {"title": title, "defensible_model": defensible, "paper_model": paper_model, "answer": answer}
 
 
 def scalar(value: float, unit: str, long_name: str) -> tuple:

@@ -57,18 +57,53 @@ def fd_rates(mechanism, theta1: np.ndarray, step: float) -> tuple[np.ndarray, ..
     return tuple(out)
 
 
-def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
-    """Six-bar angles and derivatives on the paper's and a fine grid, dead centres, extremes, typo checks."""
-    mech = six_bar(section["sixbar"])
+def _grids(section: Mapping[str, Any]):
     grids = section["grids"]
-    paper_deg = angle_grid_deg(grids["paper_step_deg"])
-    fine_deg = angle_grid_deg(grids["fine_step_deg"])
+    return angle_grid_deg(grids["paper_step_deg"]), angle_grid_deg(grids["fine_step_deg"])
+
+
+def headline(mech, fine, fine_deg: np.ndarray, numerics: Mapping[str, Any]) -> dict[str, xr.DataArray]:
+    """Dead centres, swing, front-to-back spans and where the sley's speed and acceleration peak (both senses)."""
+    data = {}
+    dc = dead_centres(mech, numerics["scan_points"], numerics["root_xtol_rad"])
+    data["front_dead_centre"] = _scalar(dc.front * DEG, "deg", "crank angle of the front dead centre (theta6 maximum)")
+    data["back_dead_centre"] = _scalar(dc.back * DEG, "deg", "crank angle of the back dead centre (theta6 minimum)")
+    data["swing"] = _scalar(dc.swing * DEG, "deg", "total sley swing")
+    data["span_forward"] = _scalar(dc.span_forward * DEG, "deg", "crank angle front -> back, crank turning towards increasing theta1")
+    data["span_reverse"] = _scalar(dc.span_reverse * DEG, "deg", "crank angle front -> back, crank turning towards decreasing theta1")
+    for sense, tag in ((1, "forward"), (-1, "reverse")):
+        phi = from_front(np.radians(fine_deg), dc.front, sense) * DEG
+        rate = sense * fine.theta6_rate
+        data[f"rate_peak_pos_{tag}"] = _scalar(phi[np.argmax(rate)], "deg", f"crank angle from front dead centre of the largest forward-going sley speed ({tag} sense)")
+        data[f"rate_peak_neg_{tag}"] = _scalar(phi[np.argmin(rate)], "deg", f"crank angle from front dead centre of the largest backward-going sley speed ({tag} sense)")
+        data[f"accel_peak_{tag}"] = _scalar(
+            min(phi[np.argmax(np.abs(fine.theta6_accel))], 360 - phi[np.argmax(np.abs(fine.theta6_accel))]),
+            "deg",
+            f"crank-angle distance of the largest |theta6''| from the front dead centre ({tag} sense)",
+        )
+    data["theta6_accel_abs_max"] = _scalar(np.abs(fine.theta6_accel).max(), "rad rad-2", "largest |theta6''| over a turn")
+    return data
+
+
+def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
+    """Six-bar angles and derivatives on the paper's and the fine grid with the headline numbers: what the
+    published numbers are read from.  Returns (Dataset, mechanism, paper-grid motion)."""
+    mech = six_bar(section["sixbar"])
+    paper_deg, fine_deg = _grids(section)
     paper, fine = (sley_motion(mech, np.radians(g)) for g in (paper_deg, fine_deg))
     coords = {
         "crank_angle": ("crank_angle", paper_deg, {"units": "deg", "long_name": "crank angle theta1 (paper grid)"}),
         "crank_angle_fine": ("crank_angle_fine", fine_deg, {"units": "deg", "long_name": "crank angle theta1 (fine grid)"}),
     }
-    data = {**_motion_vars(paper, "crank_angle"), **_motion_vars(fine, "crank_angle_fine", "_fine")}
+    data = {**_motion_vars(paper, "crank_angle"), **_motion_vars(fine, "crank_angle_fine", "_fine"), **headline(mech, fine, fine_deg, section["numerics"])}
+    return xr.Dataset(data, coords=coords), mech, paper
+
+
+def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
+    """Six-bar angles and derivatives on the paper's and a fine grid, dead centres, extremes, typo checks."""
+    base, mech, paper = motion(section)
+    paper_deg, _ = _grids(section)
+    data = {}
 
     # independent routes on the paper grid: the paper's closed forms (corrected and printed) and finite differences
     signs = section["closed_form_signs"]
@@ -97,7 +132,7 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
             attrs={"units": unit, "long_name": f"{long_name}: worst-case change from rounding the printed parameters"},
         )
     # the same coarse central differences the report applies to the printed columns, applied to ours
-    h = np.radians(grids["paper_step_deg"])
+    h = np.radians(section["grids"]["paper_step_deg"])
     for name, source, is_angle in (
         ("theta3_rate", paper.theta3, True),
         ("theta3_accel", paper.theta3_rate, False),
@@ -110,33 +145,15 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
             dims="crank_angle",
             attrs={"units": unit, "long_name": f"{long_name}: central difference of the column above at the paper's step"},
         )
-
-    dc = dead_centres(mech, section["numerics"]["scan_points"], section["numerics"]["root_xtol_rad"])
-    data["front_dead_centre"] = _scalar(dc.front * DEG, "deg", "crank angle of the front dead centre (theta6 maximum)")
-    data["back_dead_centre"] = _scalar(dc.back * DEG, "deg", "crank angle of the back dead centre (theta6 minimum)")
-    data["swing"] = _scalar(dc.swing * DEG, "deg", "total sley swing")
-    data["span_forward"] = _scalar(dc.span_forward * DEG, "deg", "crank angle front -> back, crank turning towards increasing theta1")
-    data["span_reverse"] = _scalar(dc.span_reverse * DEG, "deg", "crank angle front -> back, crank turning towards decreasing theta1")
-    for sense, tag in ((1, "forward"), (-1, "reverse")):
-        phi = from_front(np.radians(fine_deg), dc.front, sense) * DEG
-        rate = sense * fine.theta6_rate
-        data[f"rate_peak_pos_{tag}"] = _scalar(phi[np.argmax(rate)], "deg", f"crank angle from front dead centre of the largest forward-going sley speed ({tag} sense)")
-        data[f"rate_peak_neg_{tag}"] = _scalar(phi[np.argmin(rate)], "deg", f"crank angle from front dead centre of the largest backward-going sley speed ({tag} sense)")
-        data[f"accel_peak_{tag}"] = _scalar(
-            min(phi[np.argmax(np.abs(fine.theta6_accel))], 360 - phi[np.argmax(np.abs(fine.theta6_accel))]),
-            "deg",
-            f"crank-angle distance of the largest |theta6''| from the front dead centre ({tag} sense)",
-        )
-    data["theta6_accel_abs_max"] = _scalar(np.abs(fine.theta6_accel).max(), "rad rad-2", "largest |theta6''| over a turn")
     # how far the paper's closed forms are from the chain solver (corrected: rounding; printed (7)/(13): their typos)
     for name in MOTION_VARS:
-        diff = np.abs(data[f"{name}_eqs"].values - data[name].values)
+        diff = np.abs(data[f"{name}_eqs"].values - base[name].values)
         unit = MOTION_VARS[name][0]
         data[f"{name}_eqs_max_difference"] = _scalar(diff.max(), unit, f"max |corrected closed form - chain solver| of {name} on the paper grid")
     for name in ("theta3_accel", "theta6_accel"):
-        diff = np.abs(data[f"{name}_eqs_printed"].values - data[name].values)
+        diff = np.abs(data[f"{name}_eqs_printed"].values - base[name].values)
         data[f"{name}_eqs_printed_max_difference"] = _scalar(diff.max(), MOTION_VARS[name][0], f"max |printed eq. (7)/(13) - chain solver| of {name} on the paper grid")
-    ds = xr.Dataset(data, coords=coords)
+    ds = base.assign(data)
     ds.attrs.update(title="GN721 six-bar beating-up mechanism: sley motion", fd_step_deg=section["numerics"]["fd_step_deg"], scan_points=section["numerics"]["scan_points"], root_xtol_rad=section["numerics"]["root_xtol_rad"])
     return ds
 

@@ -22,6 +22,12 @@ def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.nda
     return r.input_force, q_e, q_f, r.singular
 
 
+def growth_fraction(model: str, p: Mapping[str, float], omega: np.ndarray, amplitude: float) -> float:
+    """Fraction of the grid intervals over which |Q_E| and |Q_F| both grow (elastic joints)."""
+    _, q_e, q_f, _ = joint_forces(model, p, "elastic", omega, amplitude)
+    return float(np.mean((np.diff(np.abs(q_e)) > 0) & (np.diff(np.abs(q_f)) > 0)))
+
+
 def claim_measures(model: str, p: Mapping[str, float], omega: np.ndarray, amplitude: float) -> dict[str, float]:
     """The numbers the paper's claims are judged on, for one model and parameter set (elastic joints)."""
     _, q_e, q_f, _ = joint_forces(model, p, "elastic", omega, amplitude)
@@ -30,6 +36,28 @@ def claim_measures(model: str, p: Mapping[str, float], omega: np.ndarray, amplit
     vel, force = resonances(build(model, p, "elastic"))
     first = min([x for x in (*vel, *force) if x > 0], default=np.nan)
     return {"ratio_EF_min": float(ratio.min()), "ratio_EF_max": float(ratio.max()), "growth_fraction": float(growth), "first_resonance": float(first)}
+
+
+MEASURES = {
+    "ratio_EF_min": ("1", "min over the band of |Q_E| / |Q_F| (elastic joints)"),
+    "ratio_EF_max": ("1", "max over the band of |Q_E| / |Q_F| (elastic joints)"),
+    "growth_fraction": ("1", "fraction of the band where |Q_E| and |Q_F| both grow with frequency"),
+    "first_resonance": ("rad s-1", "lowest undamped resonance (velocity or force), elastic joints"),
+}
+
+
+def claims(cfg: Mapping[str, Any]) -> xr.Dataset:
+    """The numbers the paper's claims are judged on, per chain model, at the config's parameters."""
+    p, amp, w = parameters(cfg), amplitude(cfg), omega_grid(cfg["speeds"])
+    models = list(cfg["models"])
+    measures = {m: claim_measures(m, p, w, amp) for m in models}
+    data = {k: ("model", [measures[m][k] for m in models], {"units": unit, "long_name": text}) for k, (unit, text) in MEASURES.items()}
+    data["first_resonance_rpm"] = ("model", [measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models],
+                                   {"units": "min-1", "long_name": "lowest undamped resonance as a shaft speed"})
+    fine = np.linspace(w[0], w[-1], 2 * w.size - 1)  # every interval halved: how much the grid decides the growth measure
+    data["growth_fraction_refinement"] = ("model", [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
+                                          {"units": "1", "long_name": "change of the growth fraction when the frequency grid is halved"})
+    return xr.Dataset(data, coords={"model": ("model", np.array(models, dtype=object), {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"})})
 
 
 def interlaced(zeros: np.ndarray, poles: np.ndarray) -> bool:
@@ -92,19 +120,7 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
     data["eq2_numerator_frequencies"] = xr.DataArray(num_w, dims="numerator_factor", attrs={"units": "rad s-1", "long_name": "w09, w010, w011 of eq. (2) (velocity resonances)"})
     data["eq2_denominator_frequencies"] = xr.DataArray(den_w, dims="denominator_factor", attrs={"units": "rad s-1", "long_name": "w07, w08 of eq. (2) (force resonances)"})
     data["eq2_interlaced"] = xr.DataArray(int(interlaced(num_w, den_w)), attrs={"units": "1", "long_name": "1 if zeros and poles of eq. (2) interlace, starting with a zero"})
-    # claim measures at the configured parameters
-    measures = {m: claim_measures(m, p, w, amp) for m in models}
-    long_names = {
-        "ratio_EF_min": "min over the band of |Q_E| / |Q_F| (elastic joints)",
-        "ratio_EF_max": "max over the band of |Q_E| / |Q_F| (elastic joints)",
-        "growth_fraction": "fraction of the band where |Q_E| and |Q_F| both grow with frequency",
-        "first_resonance": "lowest undamped resonance (velocity or force), elastic joints",
-    }
-    units = {"ratio_EF_min": "1", "ratio_EF_max": "1", "growth_fraction": "1", "first_resonance": "rad s-1"}
-    for key in long_names:
-        data[key] = xr.DataArray([measures[m][key] for m in models], dims="model", attrs={"units": units[key], "long_name": long_names[key]})
-    data["first_resonance_rpm"] = xr.DataArray([measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models], dims="model",
-                                               attrs={"units": "min-1", "long_name": "lowest undamped resonance as a shaft speed"})
+    data.update(claims(cfg).data_vars)
 
     # sweeps: the parameter ranges that support each claim
     sw = cfg["sweeps"]
@@ -118,13 +134,14 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         spec = sw[key]
         values = sweep_values(spec)
         coords[dim] = (dim, values, {"units": unit, "long_name": long_name})
-        table = {k: np.empty((len(models), values.size)) for k in long_names}
+        table = {k: np.empty((len(models), values.size)) for k in MEASURES}
         for i, m in enumerate(models):
             for j, x in enumerate(values):
                 for k, v in claim_measures(m, make(x), w, amp).items():
                     table[k][i, j] = v
         for k, arr in table.items():
-            data[f"{k}_vs_{key}"] = xr.DataArray(arr, dims=("model", dim), attrs={"units": units[k], "long_name": f"{long_names[k]} vs {long_name}"})
+            unit, text = MEASURES[k]
+            data[f"{k}_vs_{key}"] = xr.DataArray(arr, dims=("model", dim), attrs={"units": unit, "long_name": f"{text} vs {long_name}"})
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(_labelled_attrs(cfg), title="Heald motion as mechanical chains")
     ds.attrs.update(displacement_amplitude_m=amp, frequency_points=int(w.size))

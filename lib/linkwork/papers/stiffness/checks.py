@@ -14,9 +14,10 @@ from .adapter import four_bar as linkage_from_config
 
 
 def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
-    """The reference form is computed; the grids divide a turn; the linkage assembles on both grids."""
-    if section["reference_form"] not in section["forms"]:
-        raise ConfigError(f"config key {key}.reference_form: value {section['reference_form']!r} is not one of {key}.forms {section['forms']!r}")
+    """The forms the findings compare are computed; the grids divide a turn; the linkage assembles on both grids."""
+    for needed in ("equilibrium", "tables"):  # the findings compare the defensible form with the paper's own
+        if needed not in section["forms"]:
+            raise ConfigError(f"config key {key}.forms: value {section['forms']!r} lacks {needed!r} (the comparison needs the statics-consistent form and the paper's tables)")
     linkage = section["linkage"]
     try:
         lw = linkage_from_config(linkage, section["numerics"]["assembly_tol"])

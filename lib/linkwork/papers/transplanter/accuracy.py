@@ -13,6 +13,7 @@ from ...pipeline.accuracy import summary_variables
 from ...pipeline.timing import median_time, run_and_time
 from ...units import angle_grid_deg
 from .adapter import discretisation, material, mechanism
+from .adapter import gravity as gravity_of
 from .model import ked_modal
 from .studies import solve
 
@@ -55,7 +56,7 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
             dofs[i, j] = discretisation(cfg, kind=kind, elements=tuple(base * level)).mesh.dof_indices()[0]
     # mode superposition (the paper's route to K^-1 F): modes kept vs error, on the base mesh
     disc = discretisation(cfg)
-    mech, mat, gravity = mechanism(cfg), material(cfg), cfg["fe"]["gravity_m_s2"]
+    mech, mat, gravity = mechanism(cfg), material(cfg), gravity_of(cfg)
     modes = [n for n in acc["modes"] if n <= disc.mesh.dof_indices()[0]]
     full = solve(cfg, d, "quasi-static", theta, disc=disc)
     modal_tip, modal_stress = [], []

@@ -47,6 +47,22 @@ def allowable(cfg: Mapping[str, Any]) -> float:
     return labelled(_properties(cfg)["yield_Pa"]) / float(cfg["material"]["safety_factor"])
 
 
+def gravity(cfg: Mapping[str, Any]) -> float:
+    """Acceleration of gravity on the elastic model (m/s^2; 0 = off)."""
+    return labelled(cfg["fe"]["gravity_m_s2"])
+
+
+def compared_solution(cfg: Mapping[str, Any]) -> str:
+    """'quasi-static' or 'dynamic': the solution whose response is compared with the paper's numbers."""
+    return str(cfg["fe"]["compared_solution"]["value"])
+
+
+def dynamic_settings(cfg: Mapping[str, Any]) -> dict[str, Any]:
+    """Newmark settings of the dynamic solution: Rayleigh damping ratio, revolutions, substeps."""
+    fe = cfg["fe"]
+    return {"damping_ratio": labelled(fe["damping_ratio"]), "revolutions": fe["revolutions"], "substeps": fe["substeps"]}
+
+
 def discretisation(cfg: Mapping[str, Any], kind: str | None = None, elements=None) -> Discretisation:
     """The mesh of ``fe`` (element kind, elements per member), optionally another kind or refinement."""
     fe = cfg["fe"]

@@ -11,16 +11,16 @@ import xarray as xr
 
 from ...engines.optimize import PenaltyProblem, slsqp, sumt
 from ...units import angle_grid_deg
-from .adapter import allowable, discretisation, material, mechanism, member_lengths
+from .adapter import allowable, discretisation, dynamic_settings, material, mechanism, member_lengths
+from .adapter import gravity as gravity_of
 from .model import MEMBERS, ked, rigid_motion, signed_extreme
 
 def solve(cfg, diameters, solution, theta_deg, *, mech=None, mat=None, gravity=None, disc=None):
     """KED over the crank angles ``theta_deg`` (deg) with the config's mesh, gravity and (dynamic) Newmark settings."""
-    fe = cfg["fe"]
-    dynamic = {} if solution == "quasi-static" else {"damping_ratio": fe["damping_ratio"], "revolutions": fe["revolutions"], "substeps": fe["substeps"]}
+    dynamic = {} if solution == "quasi-static" else dynamic_settings(cfg)
     return ked(
         mech or mechanism(cfg), disc or discretisation(cfg), diameters, mat or material(cfg), np.radians(theta_deg),
-        solution=solution, gravity=fe["gravity_m_s2"] if gravity is None else gravity, **dynamic,
+        solution=solution, gravity=gravity_of(cfg) if gravity is None else gravity, **dynamic,
     )
 
 
@@ -29,7 +29,7 @@ def problem(cfg: Mapping[str, Any]) -> PenaltyProblem:
     opt = cfg["optimization"]
     mech, mat, disc = mechanism(cfg), material(cfg), discretisation(cfg)
     theta = np.radians(angle_grid_deg(opt["angle_step_deg"]))
-    gravity = cfg["fe"]["gravity_m_s2"]
+    gravity = gravity_of(cfg)
 
     def stresses(x):
         return ked(mech, disc, x, mat, theta, "quasi-static", gravity=gravity).stress.max(axis=0)

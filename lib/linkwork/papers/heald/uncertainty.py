@@ -1,0 +1,35 @@
+"""Input uncertainty of the heald paper: every assumed chain parameter within its range.
+
+The paper prints no parameter, so every mass, stiffness, damping, clearance, reaction and lever ratio
+is assumed with a range (config).  The drive amplitude is not propagated: the chains are linear, and
+every compared quantity (force ratio, growth, resonance) is independent of it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
+
+
+def inputs(cfg: Mapping[str, Any]) -> list[Input]:
+    """The assumed chain parameters with their ranges."""
+    return list(labelled_inputs(cfg["parameters"], "parameters."))
+
+
+def results(cfg: Mapping[str, Any]) -> list[Any]:
+    """The claims' measures of both chain models at one sample."""
+    from .studies import claims
+
+    return [claims(cfg)]
+
+
+def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
+    """Rule study: one batch of samples."""
+    return run_batch(cfg, published, index, inputs(cfg), results)
+
+
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
+    """Rule study: every batch, with the ranges."""
+    return gathered(inputs(cfg), batches, "Heald: assumed chain parameters, propagated")

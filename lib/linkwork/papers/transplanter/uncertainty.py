@@ -1,0 +1,51 @@
+"""Input uncertainty of the transplanter paper: the material, gravity on the elastic model and [x_S1].
+
+Young's modulus and the density of 5A06 within their data-sheet ranges, gravity off or on, the unprinted
+reference diameter [x_S1] around the initial 8 mm, which solution the paper's numbers are (quasi-static or
+time-integrated) and the Rayleigh damping of the latter.  Each sample evaluates our model at the published
+optimum and our own optimum; the latter by SLSQP on SY + SZ with explicit constraints, which agrees with the
+paper's SUMT to 0.001 mm at the nominal inputs (optim.nc) and costs 40 times fewer evaluations.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
+
+PROPAGATED = ("youngs_modulus_Pa", "density_kg_m3", "gravity_m_s2", "reference_diameter_m", "compared_solution", "damping_ratio")
+
+
+def inputs(cfg: Mapping[str, Any]) -> list[Input]:
+    """The material of the selected name, gravity and [x_S1], with their ranges."""
+    found = list(labelled_inputs(cfg))
+    return [i for i in found if i.path.split(".")[-2] in PROPAGATED]
+
+
+def results(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> list[Any]:
+    """Our optimum (SLSQP) and our model at the published optimum, at one sample."""
+    import numpy as np
+    import xarray as xr
+
+    from ...engines.optimize import slsqp
+    from ...units import angle_grid_deg
+    from .adapter import compared_solution
+    from .model import MEMBERS
+    from .studies import SUMMARY_ATTRS, problem, solve, summary
+
+    x, _ = slsqp(problem(cfg), np.array(cfg["initial_diameters_m"], dtype=float), cfg["optimization"]["slsqp_ftol"])
+    at = summary(solve(cfg, np.array(published["optimum_diameters_mm"], dtype=float) / 1e3, compared_solution(cfg), angle_grid_deg(cfg["fe"]["angle_step_deg"])))
+    data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
+    data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
+    return [xr.Dataset(data, coords={"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object))})]
+
+
+def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
+    """Rule study: one batch of samples."""
+    return run_batch(cfg, published, index, inputs(cfg), lambda c: results(c, published))
+
+
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
+    """Rule study: every batch, with the ranges."""
+    return gathered(inputs(cfg), batches, "Transplanter: material, gravity and [x_S1], propagated")
