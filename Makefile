@@ -33,8 +33,17 @@ readme: $(STAMP)
 	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.pipeline.readme import replace_block; \
 	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
 
-bench: $(STAMP)
+# Every benchmark (about 40 minutes on 2 cores; the pipeline one dominates), then the README's measured figures.
+# BASELINE=<git revision> also times that revision's full reproduction beside ours.
+BASELINE ?=
+bench: $(STAMP) browser
 	PATH="$(BIN):$$PATH" python benchmarks/foundation.py
+	PATH="$(BIN):$$PATH" python benchmarks/chains.py
+	PATH="$(BIN):$$PATH" python benchmarks/transplanter.py
+	PATH="$(BIN):$$PATH" python benchmarks/clearance.py
+	PATH="$(BIN):$$PATH" python benchmarks/tests.py
+	PATH="$(BIN):$$PATH" python benchmarks/pipeline.py $(if $(BASELINE),--baseline $(BASELINE))
+	$(BIN)/python benchmarks/readme.py
 
 clean:
 	rm -rf results .snakemake

@@ -1,4 +1,6 @@
-"""A temporary copy of the project for benchmarks that run Snakemake (shared by the benchmark scripts)."""
+"""Shared by the benchmark scripts: a temporary copy of the project for benchmarks that run Snakemake, and
+where the measured figures go (benchmarks/measured/<name>.json, committed; the README's measured figures
+are rendered from them by benchmarks/readme.py)."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ from collections.abc import Iterator
 from pathlib import Path
 
 PROJECT = Path(__file__).resolve().parent.parent
+MEASURED = PROJECT / "benchmarks" / "measured"
 COPIED = ("Snakefile", "config", "workflow", "lib", "reports", "profiles")
 
 
@@ -27,3 +30,28 @@ def project_copy() -> Iterator[tuple[Path, dict[str, str]]]:
             else:
                 shutil.copy2(src, root / name)
         yield root, env
+
+
+def machine() -> dict[str, object]:
+    """What the figures were measured on: cores, CPU model, Python, date (UTC)."""
+    import datetime
+    import platform
+
+    model = ""
+    with contextlib.suppress(OSError):
+        model = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines() if line.startswith("model name")), "")
+    return {"cpu_count": os.cpu_count(), "cpu_model": model or platform.processor(), "python": platform.python_version(),
+            "date": datetime.datetime.now(datetime.timezone.utc).date().isoformat()}
+
+
+def write_figures(name: str, figures: dict[str, object], method: str) -> Path:
+    """Write a benchmark's figures with its method and the machine to benchmarks/measured/<name>.json."""
+    import json
+
+    MEASURED.mkdir(parents=True, exist_ok=True)
+    out = MEASURED / f"{name}.json"
+    tmp = out.with_suffix(".json.tmp")
+    tmp.write_text(json.dumps({"machine": machine(), "method": " ".join(method.split()), **figures}, indent=2) + "\n")
+    tmp.replace(out)
+    print(f"wrote {out.relative_to(PROJECT)}", flush=True)
+    return out

@@ -5,13 +5,12 @@ Run: python benchmarks/chains.py [--repeats N]
 Method: a chain of 10 springs and 10 masses (20 elements), velocity-driven,
 solved by linkwork.engines.chains.solve_network at 1e4 frequencies; wall clock (time.perf_counter),
 median of N repeats after a warm-up; with and without the per-frequency singularity check.
-Figures go to results/benchmarks/chains.json.
+Figures go to benchmarks/measured/chains.json.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 from pathlib import Path
 
@@ -21,6 +20,9 @@ PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.engines.chains import GROUND, Element, Network, solve_matrices, solve_network  # noqa: E402
 from linkwork.pipeline.timing import median_time  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _project import write_figures  # noqa: E402
 
 TARGET_S = 0.5
 
@@ -50,9 +52,7 @@ def main() -> None:
     }
     for key, value in figures.items():
         print(f"{key}: {value:.4f}" if isinstance(value, float) else f"{key}: {value}")
-    out = PROJECT / "results" / "benchmarks" / "chains.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(figures, indent=2))
+    write_figures("chains", {**figures, "repeats": args.repeats}, __doc__.split("Method:", 1)[1].split("Figures go")[0])
     if figures["network_with_singularity_check_s"] > TARGET_S:
         sys.exit("the chain benchmark missed its target")
 

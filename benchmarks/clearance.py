@@ -8,13 +8,12 @@ kernels executed as plain Python (numba's decorator replaced by the identity), i
 scipy's RK45 solver class (what solve_ivp runs), stepped so that the impact velocity can be latched.  Wall clock,
 time.perf_counter; ours is the median of 5 runs after a warm-up (compilation excluded), the
 baseline one run.  Also reported: the time of every scene of the pipeline and the peak memory (RSS)
-of this process.  Figures go to results/benchmarks/clearance.json.
+of this process.  Figures go to benchmarks/measured/clearance.json.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import resource
 import sys
 import time
@@ -33,6 +32,9 @@ from linkwork.papers.clearance.adapter import parameters, scene_keys  # noqa: E4
 from linkwork.papers.clearance.studies import output_times  # noqa: E402
 from linkwork.papers.clearance.studies import scene as scene_dataset  # noqa: E402
 from linkwork.pipeline.timing import median_time  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _project import write_figures  # noqa: E402
 
 
 def pure_python_rhs(joints, effects, law):
@@ -114,10 +116,10 @@ def main() -> None:
     worst = max(scene_times.values())
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     print(f"slowest pipeline scene: {worst:.2f} s (target <= 10 s); peak RSS of this process {peak_mb:.0f} MB (target <= 1 GB)")
-    out = PROJECT / "results" / "benchmarks" / "clearance.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({"scene": f"{args.variant}/{args.scene}", "ours_time_s": ours_time, "ours_error": ours_err,
-                               "baseline": baseline, "speedup": speedup, "scene_times_s": scene_times, "peak_rss_mb": peak_mb}, indent=2))
+    write_figures("clearance", {"scene": f"{args.variant}/{args.scene}", "ours_time_s": ours_time, "ours_error": ours_err,
+                                "baseline": baseline, "speedup": speedup, "scene_times_s": scene_times, "peak_rss_mb": peak_mb,
+                                "targets": {"speedup": 20, "slowest_scene_s": 10, "peak_rss_mb": 1024}},
+                  __doc__.split("Method:", 1)[1].split("Figures go")[0])
     if speedup < 20 or worst > 10 or peak_mb > 1024:
         sys.exit("a clearance benchmark missed its target")
 

@@ -6,14 +6,12 @@ Method: wall-clock time.perf_counter; each measurement is repeated (after one
 warm-up) and the median is reported with min and max.  The stiffness job and the
 report render are timed as whole subprocesses in a temporary copy of the project
 (imports and Snakemake start-up included), on whatever machine runs the script.
-Figures go to results/benchmarks/foundation.json (a side file, not a result).
+Figures go to benchmarks/measured/foundation.json.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -26,7 +24,7 @@ from linkwork.engines.kinematics import FourBar, four_bar  # noqa: E402
 from linkwork.pipeline.timing import median_time  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _project import project_copy  # noqa: E402
+from _project import project_copy, write_figures  # noqa: E402
 
 TARGETS = {"kinematics_1e6_s": 0.5, "stiffness_job_s": 10.0, "report_render_s": 30.0}
 
@@ -67,10 +65,7 @@ def main() -> None:
     for key, limit in TARGETS.items():
         figures[key]["target"] = limit
         figures[key]["ok"] = figures[key]["median"] <= limit
-    out = PROJECT / "results" / "benchmarks" / "foundation.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({"cpu_count": os.cpu_count(), **figures}, indent=2))
-    print(f"wrote {out.relative_to(PROJECT)}")
+    write_figures("foundation", figures, __doc__.split("Method:", 1)[1].split("Figures go")[0])
     if not all(f["ok"] for f in figures.values() if isinstance(f, dict)):
         sys.exit("a benchmark missed its target")
 

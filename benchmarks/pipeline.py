@@ -1,7 +1,7 @@
 """Benchmark of the whole pipeline: full reproduction (warm and cold compile cache), no-op, a one-key rerun,
 the cost of a job before it computes anything, and byte-identical reruns.
 
-Run: python benchmarks/pipeline.py [--full-repeats N] [--noop-repeats N] [--edit-repeats N]
+Run: python benchmarks/pipeline.py [--full-repeats N] [--noop-repeats N] [--edit-repeats N] [--baseline REV]
 
 Method, in a temporary copy of the project (wall clock of whole `snakemake` processes, time.perf_counter):
 1. warm: `snakemake` from an empty results/ and .snakemake/ with the numba cache of this machine as is;
@@ -14,15 +14,16 @@ Method, in a temporary copy of the project (wall clock of whole `snakemake` proc
    values) followed by `snakemake`, median of --edit-repeats runs;
 5. job overhead: `snakemake --forcerun stiffness_compare` (a job that computes for about 0.2 s) minus
    the no-op time, median of --noop-repeats runs;
-6. `snakemake --forceall` twice: the sha256 of every netCDF and HTML file after each run must agree.
-Figures go to results/benchmarks/pipeline.json.
+6. `snakemake --forceall` twice: the sha256 of every netCDF and HTML file after each run must agree;
+7. with --baseline REV: the warm full reproduction of that git revision (`git archive`), one run after a
+   warm-up run that fills its compile cache, on the same machine and interpreter.
+Figures go to benchmarks/measured/pipeline.json.
 """
 
 from __future__ import annotations
 
 import argparse
 import hashlib
-import json
 import os
 import shutil
 import statistics
@@ -34,7 +35,7 @@ from pathlib import Path
 
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _project import project_copy  # noqa: E402
+from _project import project_copy, write_figures  # noqa: E402
 
 TARGETS = {"full_warm_s": 90.0, "full_cold_s": 120.0, "noop_s": 2.0, "claim_edit_s": 15.0}
 TRIVIAL = 'rule all:\n    input: "x.txt"\nrule x:\n    output: "x.txt"\n    params: cfg={"a": 1}\n    shell: "touch {output}"\n'
@@ -50,8 +51,9 @@ def main() -> None:
     parser.add_argument("--full-repeats", type=int, default=3)
     parser.add_argument("--noop-repeats", type=int, default=7)
     parser.add_argument("--edit-repeats", type=int, default=3)
+    parser.add_argument("--baseline", default="", help="a git revision to time the same way (warm full reproduction)")
     args = parser.parse_args()
-    figures: dict[str, object] = {"cpu_count": os.cpu_count()}
+    figures: dict[str, object] = {"full_repeats": args.full_repeats, "noop_repeats": args.noop_repeats, "edit_repeats": args.edit_repeats}
     with project_copy() as (root, env), tempfile.TemporaryDirectory() as cold_cache:
 
         def sm(*extra, where=root, environment=env) -> float:
@@ -115,14 +117,32 @@ def main() -> None:
         print(f"byte-identical reruns: {len(first) - len(differing)} of {len(first)} netCDF and HTML files identical", flush=True)
         for name in differing:
             print(f"  differs: {name}")
+    if args.baseline:
+        figures["baseline"] = baseline(args.baseline)
     figures["targets"] = TARGETS
-    out = PROJECT / "results" / "benchmarks" / "pipeline.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps(figures, indent=2))
-    print(f"wrote {out.relative_to(PROJECT)}")
+    write_figures("pipeline", figures, __doc__.split("Method,", 1)[1].split("Figures go")[0])
     missed = [k for k, limit in TARGETS.items() if figures[k] > limit]
     if missed:
         print(f"missed targets on this machine: {', '.join(missed)}")
+
+
+def baseline(rev: str) -> dict[str, object]:
+    """The warm full reproduction of git revision ``rev`` (one warm-up run, then one timed run)."""
+    commit = subprocess.run(["git", "rev-parse", "--short", rev], cwd=PROJECT, check=True, capture_output=True, text=True).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp:
+        root = Path(tmp)
+        archive = subprocess.run(["git", "archive", commit], cwd=PROJECT, check=True, capture_output=True).stdout
+        subprocess.run(["tar", "-x"], cwd=root, input=archive, check=True)
+        env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(root / "lib"))
+        runs = []
+        for _ in range(2):
+            shutil.rmtree(root / "results", ignore_errors=True)
+            shutil.rmtree(root / ".snakemake", ignore_errors=True)
+            t0 = time.perf_counter()
+            subprocess.run([sys.executable, "-m", "snakemake"], cwd=root, env=env, check=True, capture_output=True)
+            runs.append(time.perf_counter() - t0)
+    print(f"baseline {commit}: full reproduction, warm compile cache: {runs[1]:.0f} s (warm-up run {runs[0]:.0f} s)", flush=True)
+    return {"revision": commit, "full_warm_s": runs[1], "warm_up_run_s": runs[0]}
 
 
 if __name__ == "__main__":

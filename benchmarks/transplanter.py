@@ -6,13 +6,12 @@ Run: python benchmarks/transplanter.py [--repeats N]
 Method: wall clock (time.perf_counter); the KED pass (quasi-static, the paper's 35-coordinate mesh,
 360 crank angles) is the median of N repeats after a warm-up; the dynamic pass (Newmark, the
 configured revolutions) likewise; the optimisation (SUMT + SLSQP, as the rule runs it) once.
-Figures go to results/benchmarks/transplanter.json.
+Figures go to benchmarks/measured/transplanter.json.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import sys
 import time
 from pathlib import Path
@@ -26,6 +25,9 @@ from linkwork.papers.transplanter.adapter import discretisation, material, mecha
 from linkwork.papers.transplanter.model import ked  # noqa: E402
 from linkwork.papers.transplanter.studies import optim as optim_dataset  # noqa: E402
 from linkwork.pipeline.timing import median_time  # noqa: E402
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _project import write_figures  # noqa: E402
 
 TARGETS = {"ked_quasi_static_360_s": 2.0, "optimisation_s": 60.0}
 
@@ -50,9 +52,7 @@ def main() -> None:
     figures["optimisation_s"] = time.perf_counter() - t0
     for key, value in figures.items():
         print(f"{key}: {value:.3f} s", flush=True)
-    out = PROJECT / "results" / "benchmarks" / "transplanter.json"
-    out.parent.mkdir(parents=True, exist_ok=True)
-    out.write_text(json.dumps({**figures, "targets": TARGETS}, indent=2))
+    write_figures("transplanter", {**figures, "repeats": args.repeats, "targets": TARGETS}, __doc__.split("Method:", 1)[1].split("Figures go")[0])
     if any(figures[k] > v for k, v in TARGETS.items()):
         sys.exit("a transplanter benchmark missed its target")
 

@@ -53,9 +53,14 @@ def _colour_verdict(value: str) -> str:
     return f"background-color: {colour}" if colour else ""
 
 
+_TABLES = 0
+
+
 def table(df: pd.DataFrame, formats: dict[str, str] | None = None, caption: str | None = None, html_columns: tuple[str, ...] = ()) -> None:
     """Show a DataFrame with verdict cells coloured; every cell is escaped except ``html_columns`` (links we build)."""
-    styler = df.style.hide(axis="index").set_properties(**{"text-align": "left", "vertical-align": "top"})
+    global _TABLES
+    _TABLES += 1  # a counter, not pandas' random uuid, names the table's CSS ids: a rerun writes the same HTML
+    styler = df.style.set_uuid(f"t{_TABLES}").hide(axis="index").set_properties(**{"text-align": "left", "vertical-align": "top"})
     styler = styler.set_table_styles([{"selector": "th", "props": [("text-align", "left")]}])
     verdict_cols = [c for c in df.columns if "verdict" in str(c)]
     if verdict_cols:

@@ -193,3 +193,17 @@ def test_reports_only_load_and_format(name):
     for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
         assert reduction not in text, f"reports/{name}.py computes {reduction}"
     textwrap.dedent(text)  # (readable as a script)
+
+
+def test_readme_measured_figures_are_rendered_from_the_benchmark_files():
+    """The README's measured figures are exactly what benchmarks/readme.py renders from benchmarks/measured/
+    (so none is typed by hand), and every benchmark script has its file there."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_readme", PROJECT / "benchmarks" / "readme.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    block = module.render()
+    assert block in (PROJECT / "README.md").read_text(), "run `python benchmarks/readme.py` after a benchmark"
+    for name in module.SECTIONS:
+        assert (PROJECT / "benchmarks" / "measured" / f"{name}.json").exists(), name

@@ -47,6 +47,7 @@ ALL_JOBS = {
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
     "accuracy_summary": 1, "sweep_point": 15, "sweep_gather": 2, "report": 8,
+    "uncertainty_batch": 21, "uncertainty_gather": 4, "readme_findings": 1,
 }
 
 
@@ -157,11 +158,13 @@ def test_second_run_has_nothing_to_do(built):
 
 
 def test_forced_rerun_writes_identical_bytes(clone):
-    path = clone / "results/stiffness/stiffness.nc"
-    before = hashlib.sha256(path.read_bytes()).hexdigest()
-    proc = snakemake(clone, "results/stiffness/stiffness.nc", "--forcerun", "stiffness")
-    assert "1 of 1 steps" in proc.stdout + proc.stderr
-    assert hashlib.sha256(path.read_bytes()).hexdigest() == before
+    """A study, a stiff (BDF) multibody scene and a rendered report: forced again, the same bytes."""
+    targets = {"stiffness": "results/stiffness/stiffness.nc", "clearance_scene_tight": "results/clearance/slender/tight/lubricated_2.nc",
+               "report": "results/reports/stiffness.html"}
+    before = {p: hashlib.sha256((clone / p).read_bytes()).hexdigest() for p in targets.values()}
+    proc = snakemake(clone, *targets.values(), "--forcerun", *targets)
+    assert "3 of 3 steps" in proc.stdout + proc.stderr
+    assert {p: hashlib.sha256((clone / p).read_bytes()).hexdigest() for p in targets.values()} == before
 
 
 # --- reruns at the granularity of a config key --------------------------------------------------------
@@ -169,10 +172,20 @@ def test_forced_rerun_writes_identical_bytes(clone):
 SPEC = yaml.safe_load((Path(__file__).resolve().parent / "rerun_spec.yaml").read_text())
 
 
+def _ranges(pattern: str) -> list[str]:
+    """Expand a numeric range ``{a..b}`` or ``{a..b..step}`` (inclusive) in a spec pattern."""
+    m = re.search(r"\{(\d+)\.\.(\d+)(?:\.\.(\d+))?\}", pattern)
+    if not m:
+        return [pattern]
+    a, b, step = int(m[1]), int(m[2]), int(m[3] or 1)
+    return [q for k in range(a, b + 1, step) for q in _ranges(pattern[: m.start()] + str(k) + pattern[m.end():])]
+
+
 def expected_jobs(patterns: list[str], all_jobs: list[str]) -> set[str]:
-    """The job ids matching the spec's patterns (each pattern must match at least one job), plus 'all'."""
+    """The job ids matching the spec's patterns (each must match at least one job; ``{a..b}`` is a numeric
+    range), plus 'all'."""
     out = {"all"}
-    for pattern in patterns:
+    for pattern in (q for p in patterns for q in _ranges(p)):
         hits = [j for j in all_jobs if fnmatch.fnmatchcase(j, pattern)]
         assert hits, f"spec pattern {pattern!r} matches no job"
         out.update(hits)
@@ -326,7 +339,8 @@ def test_editing_any_lib_module_reruns_exactly_its_dependants(built, declared, t
     users = {rel: {j.split(":")[0] for j, spec in declared.items() if rel in spec["input"]} for rel in LIB_MODULES}
     assert {"stiffness", "beatup_sixbar", "transplanter_optim", "clearance_scene"} <= users["lib/linkwork/engines/kinematics.py"]
     assert not {r for r in users["lib/linkwork/engines/kinematics.py"] if r.startswith("heald")}
-    assert users["lib/linkwork/papers/heald/model.py"] <= {"heald_chain", "heald_accuracy", "heald_compare", "sweep_point"}
+    heald = [j for j, spec in declared.items() if "lib/linkwork/papers/heald/model.py" in spec["input"]]
+    assert heald and all(j.startswith("heald_") or ":heald" in j for j in heald), heald  # its rules, sweep and uncertainty
 
 
 def test_unactivated_environment_runs_the_reports(clone):

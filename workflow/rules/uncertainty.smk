@@ -5,31 +5,58 @@ from linkwork.pipeline.uncertainty import batches as uncertainty_batches
 from linkwork.pipeline.uncertainty import sample_count
 
 UNCERTAIN_PAPERS = ["beatup", "heald", "transplanter", "clearance"]  # stiffness: every input is printed
+CLEARANCE_UNCERTAINTY = importlib.import_module("linkwork.papers.clearance.uncertainty").batch_jobs(CLEARANCE)
 
 
-def uncertainty_cfg(paper):
-    """The config values a batch reads: the paper's model, the ranges and the study's settings."""
+def uncertainty_cfg(paper, index):
+    """The config values batch ``index`` reads: the paper's model, the ranges and the study's settings; for the
+    clearance paper only the keys of the scenes its sample moves."""
     if paper == "beatup":
         return section("beatup", "sixbar", "printed_rounding", "grids", "numerics.scan_points", "numerics.root_xtol_rad", "uncertainty")
     if paper == "heald":
         return section("heald", *HEALD_MODEL, "models", "uncertainty")
     if paper == "transplanter":
         return section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "initial_diameters_m", "fe.angle_step_deg", "optimization.slsqp_ftol", "uncertainty")
-    keys = {k for v in CLEARANCE_VARIANTS for s in CLEARANCE_SCENES for k in clearance_adapter.scene_keys(CLEARANCE, v, s)}
-    return section("clearance", *sorted(keys), "claims", "assumed", "uncertainty")
+    job = CLEARANCE_UNCERTAINTY[index]
+    keys = {k for s in job["scenes"] for k in clearance_adapter.scene_keys(CLEARANCE, job["variant"], s)}
+    return section("clearance", *sorted(keys), "numerics.record_cycles")
+
+
+def uncertainty_args(paper, index):
+    if paper == "clearance":  # the sample's moved values travel as arguments: a range edit reruns its batches
+        job = CLEARANCE_UNCERTAINTY[index]
+        return {"sample": job["sample"], "values": job["values"], "variant": job["variant"]}
+    return {"index": index}
+
+
+def uncertainty_gather_cfg(paper):
+    """The gather step reads the ranges; the clearance paper also judges its claims there (threshold, variants)."""
+    if paper == "clearance":
+        return section("clearance", "claims", "assumed", "uncertainty", *(f"variants.{v}" for v in CLEARANCE_VARIANTS))
+    return uncertainty_cfg(paper, 0)
 
 
 def uncertainty_batch_count(paper):
+    if paper == "clearance":
+        return len(CLEARANCE_UNCERTAINTY)
     study = importlib.import_module(f"linkwork.papers.{paper}.uncertainty")
     settings = config[paper]["uncertainty"]
     return len(uncertainty_batches(sample_count(study.inputs(config[paper]), settings["lhs_points"]), settings["batch_size"]))
 
 
 def uncertainty_inputs(wildcards):
+    code_ = code(f"linkwork.papers.{wildcards.paper}.uncertainty")
+    if wildcards.paper == "clearance":  # the variant's ideal run; a sample reruns only the scenes its input enters
+        return {"ideal": f"results/clearance/{CLEARANCE_UNCERTAINTY[int(wildcards.index)]['variant']}/ideal.nc", "code": code_}
+    return {"published": f"config/published/{wildcards.paper}.yaml", "code": code_}
+
+
+def uncertainty_gather_inputs(wildcards):
+    batches = expand("results/uncertainty/{paper}/batch_{index}.nc", paper=wildcards.paper, index=range(uncertainty_batch_count(wildcards.paper)))
     extra = {}
-    if wildcards.paper == "clearance":  # the nominal runs; a sample reruns only the scenes its input enters
-        extra = {"scenes": rules.clearance_claims.input.scenes, "tight": rules.clearance_claims.input.tight}
-    return {"published": f"config/published/{wildcards.paper}.yaml", "code": code(f"linkwork.papers.{wildcards.paper}.uncertainty"), **extra}
+    if wildcards.paper == "clearance":  # the nominal deviations; the claims are judged here, so a threshold edit reruns no scene
+        extra = {"claims": "results/clearance/claims.nc", "published": "config/published/clearance.yaml"}
+    return {"batches": batches, **extra, "code": code(f"linkwork.papers.{wildcards.paper}.uncertainty")}
 
 
 rule uncertainty_batch:
@@ -42,22 +69,21 @@ rule uncertainty_batch:
         index=r"\d+",
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.paper}.uncertainty:batch",
-        cfg=lambda wildcards: uncertainty_cfg(wildcards.paper),
-        args=lambda wildcards: {"index": int(wildcards.index)},
+        cfg=lambda wildcards: uncertainty_cfg(wildcards.paper, int(wildcards.index)),
+        args=lambda wildcards: uncertainty_args(wildcards.paper, int(wildcards.index)),
     script:
         STUDY
 
 
 rule uncertainty_gather:
     input:
-        batches=lambda wildcards: expand("results/uncertainty/{paper}/batch_{index}.nc", paper=wildcards.paper, index=range(uncertainty_batch_count(wildcards.paper))),
-        code=lambda wildcards: code(f"linkwork.papers.{wildcards.paper}.uncertainty"),
+        unpack(uncertainty_gather_inputs),
     output:
         "results/{paper}/uncertainty.nc",
     wildcard_constraints:
         paper="|".join(UNCERTAIN_PAPERS),
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.paper}.uncertainty:gather",
-        cfg=lambda wildcards: uncertainty_cfg(wildcards.paper),
+        cfg=lambda wildcards: uncertainty_gather_cfg(wildcards.paper),
     script:
         STUDY

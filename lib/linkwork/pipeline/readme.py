@@ -50,9 +50,9 @@ def findings_block(titles: Mapping[str, str], findings: Mapping[str, Any], compa
     return f"{START}\n\n{body}\n\n{END}"
 
 
-def replace_block(readme: str, block: str) -> str:
-    """The README text with its generated block replaced (the markers must be there)."""
-    i, j = readme.index(START), readme.index(END) + len(END)
+def replace_block(readme: str, block: str, start: str = START, end: str = END) -> str:
+    """The README text with a generated block replaced (its markers, ``start`` and ``end``, must be there)."""
+    i, j = readme.index(start), readme.index(end) + len(end)
     return readme[:i] + block + readme[j:]
 
 

@@ -132,10 +132,15 @@ def evaluate(published: Mapping[str, Any], datasets: Sequence[Any]) -> dict[tupl
 def batch_dataset(cfg: Mapping[str, Any], inputs: Sequence[Input], chosen: Sequence[Sample], published: Mapping[str, Any],
                   results: Callable[[Mapping[str, Any]], Sequence[Any]]):
     """Every published quantity at each sample of a batch (dims sample x quantity)."""
+    rows = [evaluate(published, results(apply(cfg, s.values))) for s in chosen]
+    return evaluated_dataset(rows, inputs, chosen)
+
+
+def evaluated_dataset(rows: Sequence[Mapping[tuple[str, str], float]], inputs: Sequence[Input], chosen: Sequence[Sample]):
+    """The published quantities already evaluated at each sample (``evaluate``'s rows) as a batch Dataset."""
     import numpy as np
     import xarray as xr
 
-    rows = [evaluate(published, results(apply(cfg, s.values))) for s in chosen]
     keys = list(rows[0])
     values = np.array([[row.get(k, np.nan) for k in keys] for row in rows])
     inputs_at = np.array([[_numeric(s.values.get(i.path, i.nominal), i) for i in inputs] for s in chosen]).reshape(len(chosen), len(inputs))

@@ -16,6 +16,7 @@ from .adapter import TOLERANCE_SETS, integrator_kind, parameters, scene_effects
 JOINT_IDS = (1, 2)
 DRY = ("dry_1", "dry_2", "dry_both")
 LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
+COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = ("rocker_acceleration", "crank_torque")
 
 
@@ -121,7 +122,7 @@ def order_as_claimed(values: np.ndarray, quantity: str) -> bool:
     return bool(first and both > max(one, two))
 
 
-def _claims_hold(rms: np.ndarray, peak: np.ndarray, ratio: float) -> list[float]:
+def claims_hold(rms: np.ndarray, peak: np.ndarray, ratio: float) -> list[float]:
     """The three claims for one variant and one tolerance set from (quantity, scene, cycle) arrays; a claim
     holds only if it holds on the RMS and on the peak deviation in every recorded cycle."""
     ordered = [all(np.all([order_as_claimed(m[q, :, c], QUANTITIES[q]) for c in range(m.shape[-1])]) for m in (rms, peak)) for q in range(len(QUANTITIES))]
@@ -190,7 +191,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     cycles = cfg["numerics"]["record_cycles"]
     variants = list(cfg["variants"])
     runs, tight_runs = _by_key(scenes), _by_key(tight)
-    compared = DRY + LUBRICATED
+    compared = COMPARED
     rms = np.full((len(variants), len(QUANTITIES), len(compared), 2, cycles), np.nan)  # variant, quantity, scene, tolerance, cycle
     peak = np.full_like(rms, np.nan)
     for v, variant in enumerate(variants):
@@ -202,7 +203,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
                         m = deviation_measures(source[(variant, name)], ideal, qname, cycles)
                         rms[v, qi, s, k], peak[v, qi, s, k] = m["rms"], m["peak"]
     ratio = cfg["claims"]["close_to_ideal_ratio"]
-    holds = np.array([[_claims_hold(rms[v, :, :, k], peak[v, :, :, k], ratio) for k in range(len(TOLERANCE_SETS))] for v in range(len(variants))])
+    holds = np.array([[claims_hold(rms[v, :, :, k], peak[v, :, :, k], ratio) for k in range(len(TOLERANCE_SETS))] for v in range(len(variants))])
     holds = np.moveaxis(holds, 1, 2)  # variant, claim, tolerance set
     measures = np.stack([rms, peak], axis=1)  # variant, measure, quantity, scene, tolerance, cycle
     order = np.zeros(measures.shape[:3] + measures.shape[4:], dtype=int)
