@@ -187,8 +187,11 @@ md(
     f"The first {dry_cfg['numerics']['settle_cycles']} cycles are discarded. The cycle-to-cycle change of the rocker "
     "acceleration falls from the start-up transient to the level of the persistent impact-to-impact variation of the dry "
     "scenes, which never becomes exactly periodic. The recorded cycles therefore show that variation, and the claims "
-    "are judged on each cycle separately. The evaluation counters show that an effect a scene does not name is never "
-    "evaluated: the lubrication count is zero in every dry scene, and friction is zero in every lubricated one."
+    "are judged on each cycle separately. "
+    + ("The evaluation counters show that an effect a scene does not name is never evaluated: the lubrication count is zero "
+       "in every dry scene, and friction is zero in every lubricated one." if not fnd.stray_evaluations.any() else
+       "**The evaluation counters show effects evaluated in scenes that do not name them** (lubrication in a dry scene or "
+       "friction in a lubricated one).")
 )
 
 # %% [markdown]
@@ -204,11 +207,15 @@ ideal_forces = per_run[["variant"]].drop_duplicates().assign(
     B=[float(summary.summary_ideal_force_B.sel(variant=v, run="ideal")) for v in per_run.variant.drop_duplicates()])
 ideal_forces.columns = ["variant", "largest ideal reaction at joint 1 (N)", "largest ideal reaction at joint 2 (N)"]
 table(ideal_forces, {c: "{:.3g}" for c in ideal_forces.columns if c != "variant"})
-md(
-    "With the decoded inertias the dry penetration exceeds the clearance itself, so the Hertz law is well outside "
-    "its range: the decoded parameter set is not physically consistent. The slender-rod variant keeps the penetration "
-    "below the clearance, and its lubricated journals never touch (eccentricity below c)."
-)
+md(" ".join(
+    f"Variant `{v}`: the deepest dry penetration is {float(fnd.dry_penetration_max.sel(variant=v)):.2f} of the clearance, so the "
+    + ("penetration stays below the clearance: the parameter set is physically consistent" if int(fnd.physically_consistent.sel(variant=v))
+       else "Hertz law is used far outside its range: the parameter set is not physically consistent")
+    + "; its lubricated journals "
+    + (f"never touch (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c)." if float(fnd.lubricated_eccentricity_max.sel(variant=v)) < 1
+       else f"reach the bushing (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c).")
+    for v in fnd.variant.values
+))
 
 # %% [markdown]
 # ## 5. Accuracy vs time (work-precision)

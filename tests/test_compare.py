@@ -15,7 +15,7 @@ DS = xr.Dataset(
 
 def test_measures():
     m = lambda reduce, **kw: evaluate_measure(DS, {"variable": "k", "reduce": reduce, "dim": "angle", **kw})  # noqa: E731
-    assert m("max") == 3.0 and m("min") == 1.0 and m("mean") == 2.0 and m("range") == 2.0
+    assert m("max") == 3.0 and m("min") == 1.0 and m("mean") == 2.0 and m("range") == 2.0 and m("max_over_min") == 3.0
     assert m("argmax") == 10.0 and m("argmin") == 0.0
     assert m("at", at={"angle": 20.0}) == 2.0
     assert m("max", scale=2.0) == 6.0

@@ -5,7 +5,6 @@ import copy
 
 import numpy as np
 import pytest
-import xarray as xr
 
 from conftest import load_yaml
 from linkwork.pipeline.uncertainty import Input, apply, batches, labelled_inputs, sample_count, samples

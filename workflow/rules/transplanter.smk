@@ -76,6 +76,6 @@ rule transplanter_compare:
         "results/transplanter/findings.nc",
     params:
         study="linkwork.papers.transplanter.findings:compare",
-        cfg={},
+        cfg=section("transplanter", "minimum_diameter_m"),
     script:
         STUDY

@@ -79,6 +79,8 @@ def evaluate_measure(ds: xr.Dataset, measure: Mapping[str, Any]) -> float:
         value = float(getattr(da, reduce)(dim))
     elif reduce == "range":
         value = float(da.max(dim) - da.min(dim))
+    elif reduce == "max_over_min":
+        value = float(da.max(dim) / da.min(dim))
     elif reduce in ("argmax", "argmin"):
         index = int(getattr(da, reduce)(dim))
         value = float(da[dim][index])
@@ -279,6 +281,17 @@ def count_text(table: pd.DataFrame, model: str, role: str = "headline") -> str:
     words = {"matches": "match", "deviates": "deviate", "undetermined (numerics)": "undetermined by numerics",
              "depends on assumptions": "depend on assumptions", "not reproducible": "not reproducible"}
     return ", ".join(f"{int((part.verdict == v).sum())} {words[v]}" for v in VERDICTS if (part.verdict == v).any())
+
+
+def lead_word(rows: pd.DataFrame) -> str:
+    """The first word of an answer from a set of verdicts: 'Yes.' if every row matches, 'No.' if none
+    matches and none could (no row depends on assumptions or is undetermined), 'Partly.' otherwise."""
+    verdicts = set(rows.verdict)
+    if verdicts == {"matches"}:
+        return "Yes."
+    if "matches" not in verdicts and not verdicts & {"depends on assumptions", "undetermined (numerics)"}:
+        return "No."
+    return "Partly."
 
 
 def input_name(path: str) -> str:

@@ -25,6 +25,13 @@ def _range(low: float, high: float, source: str) -> str:
     return f"{_num(low)} … {_num(high)}"
 
 
+def _published(row: Any) -> str:
+    """'≥ 3', '41.89 rad/s': the published value with its relation and unit (none for a pure number)."""
+    sign = {"ge": "≥ ", "le": "≤ "}.get(str(row.relation), "")
+    unit = "" if str(row.unit) == "1" else f" {row.unit}"
+    return f"{sign}{_num(row.published)}{unit}"
+
+
 def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
     """Markdown for one paper: the answer, then every headline number on the defensible model (and the paper's own)."""
     defensible = findings.attrs["defensible_model"]
@@ -37,7 +44,7 @@ def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
     lines += [head, "|" + "---|" * (head.count("|") - 1)]
     other = comparison[(comparison.role == "headline") & (comparison.model == own)].set_index("id") if own and own != defensible else None
     for row in rows.itertuples():
-        cells = [row.quantity, f"{_num(row.published)} {row.unit}", _num(row.reproduced), _range(row.input_low, row.input_high, row.input_source), row.verdict]
+        cells = [row.quantity, _published(row), _num(row.reproduced), _range(row.input_low, row.input_high, row.input_source), row.verdict]
         if other is not None:
             cells += [_num(other.loc[row.id, "reproduced"]), other.loc[row.id, "verdict"]]
         lines.append("| " + " | ".join(str(c).replace("|", "∣") for c in cells) + " |")

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import compare_datasets, count_text, counts_dataset, expand_tables, findings_attrs, scalar
+from ...pipeline.compare import compare_datasets, count_text, counts_dataset, expand_tables, findings_attrs, lead_word, scalar
 
 STIFFNESS_UNITS = ("N/m", "N m/rad")
 
@@ -82,24 +82,59 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     if "tables" in forms:
         data["implied_youngs_modulus_tables_min"] = scalar(implied.sel(implied_form="tables").min(), "Pa", "smallest modulus implied, paper's own model")
         data["implied_youngs_modulus_tables_max"] = scalar(implied.sel(implied_form="tables").max(), "Pa", "largest modulus implied, paper's own model")
+    jump = float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force")) if PAPER_MODEL in forms else 0.0
+    data["tables_in_equilibrium"] = scalar(jump <= EQUILIBRIUM_JUMP, "1", f"1 if the paper's tables give no moment jump at B above {EQUILIBRIUM_JUMP:g} N m per N")
+    conclusion = headline[headline.id.isin(CONCLUSION)]
+    data["conclusion_holds"] = ("form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
+                                {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"})
+    data["table3_all_match"] = scalar(bool((first.verdict == "matches").all()), "1", "1 if every Table 3 angle is reproduced within half the printed digit")
+    if "implied_youngs_modulus_tables_min" in data:
+        lo, hi = (float(data[k][1]) for k in ("implied_youngs_modulus_tables_min", "implied_youngs_modulus_tables_max"))
+        data["implies_printed_modulus"] = scalar(abs(lo / used - 1) < IMPLIED_MODULUS_RTOL and abs(hi / used - 1) < IMPLIED_MODULUS_RTOL, "1",
+                                                 f"1 if every published stiffness implies the printed modulus within {IMPLIED_MODULUS_RTOL:.0%}")
     findings = xr.Dataset(data, coords={"form": ("form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"})})
     findings = findings.merge(counts_dataset(table))
     findings.attrs.update(findings_attrs("Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result)))
     return table, findings
 
 
+#: The paper's conclusion (both stiffnesses vary too much to be constants), as published claims.
+CONCLUSION = ("K_h_not_constant", "K_c_not_constant")
+#: A moment jump at the rigid joint B above this (N m per N, or per N m) means the tables are not in equilibrium;
+#: the closed forms are exact to float rounding, so any jump above rounding is an error of the printed tables.
+EQUILIBRIUM_JUMP = 1e-9
+#: The published stiffnesses "imply the printed modulus" when each implies it within this relative difference
+#: (3 printed significant figures round by at most 0.5 %).
+IMPLIED_MODULUS_RTOL = 0.01
+
+
 def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str:
-    """Does the paper hold up? One sentence from the comparison and the analysis."""
+    """Does the paper hold up? Sentences chosen and filled from the comparison and the analysis."""
+    headline = table[table.role == "headline"]
+    numbers = headline[~headline.id.isin(CONCLUSION)]
+    conclusion = headline[headline.id.isin(CONCLUSION)]
+    own = numbers[numbers.model == PAPER_MODEL]
+    fair = numbers[numbers.model == DEFENSIBLE]
+    lead = lead_word(pd.concat([fair, conclusion[conclusion.model == DEFENSIBLE]]))
+    jump = float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force"))
+    holds = bool(findings.conclusion_holds.all())
     defensible = result.sel(form=DEFENSIBLE)
     ratios = [float(result[f"{k}_max_over_min_fine"].sel(form=f)) for k in ("K_h", "K_c") for f in result.form.values]
-    published = table[(table.model == PAPER_MODEL) & (table.id == "K_h_argmax")].published.iloc[0]
-    return (
-        f"Partly. The published stiffness numbers follow the paper's own Tables 1–2 (headline numbers: {count_text(table, PAPER_MODEL)}), "
-        f"but those tables are not in equilibrium: the coupler's moment jumps by up to "
-        f"{float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case='unit force')):.3f} N·m per N at the rigid joint B, an erratum in the "
-        f"sign of its l₁ term. With statics-consistent internal forces the headline numbers {count_text(table, DEFENSIBLE)}, and the K_h maximum "
-        f"moves from {published:g}° to {float(defensible.K_h_argmax_fine):.0f}°. The published values imply E = "
-        f"{float(findings.implied_youngs_modulus_tables_min) / 1e6:.1f}–{float(findings.implied_youngs_modulus_tables_max) / 1e6:.1f} MPa, the "
-        f"printed modulus rather than steel's, {float(findings.steel_factor):.0f} times larger (a unit slip). The conclusion that neither stiffness "
-        f"is constant holds in every form (max/min over a turn {min(ratios):.2f}–{max(ratios):.2f})."
-    )
+    published_argmax = table[(table.model == PAPER_MODEL) & (table.id == "K_h_argmax")].published.iloc[0]
+    follows = (own.verdict == "matches").sum() > len(own) / 2
+    out = [f"{lead} The published stiffness numbers {'follow' if follows else 'do not follow'} the paper's own Tables 1–2 "
+           f"(headline numbers: {count_text(own, PAPER_MODEL)})"]
+    if not bool(findings.tables_in_equilibrium):
+        out[-1] += (f", but those tables are not in equilibrium: the coupler's moment jumps by up to {jump:.3f} N·m per N at the "
+                    "rigid joint B, an erratum in the sign of its l₁ term.")
+        out.append(f"With statics-consistent internal forces the headline numbers {count_text(fair, DEFENSIBLE)}, and the K_h maximum "
+                   f"moves from {published_argmax:g}° to {float(defensible.K_h_argmax_fine):.0f}° (1° grid).")
+    else:
+        out[-1] += ", and those tables are in equilibrium."
+    if "implies_printed_modulus" in findings and bool(findings.implies_printed_modulus):
+        lo, hi = float(findings.implied_youngs_modulus_tables_min), float(findings.implied_youngs_modulus_tables_max)
+        out.append(f"The published values imply E = {lo / 1e6:.1f}–{hi / 1e6:.1f} MPa, the printed modulus rather than steel's, "
+                   f"{float(findings.steel_factor):.0f} times larger (a unit slip).")
+    out.append(f"The conclusion that neither stiffness is constant {'holds in every form' if holds else 'does not hold in every form'} "
+               f"(max/min over a turn {min(ratios):.2f}–{max(ratios):.2f}).")
+    return " ".join(out)

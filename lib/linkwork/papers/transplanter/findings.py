@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs, scalar
+from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs, lead_word, scalar
 
 
 def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple[float, str]]:
@@ -43,10 +43,37 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], optim: xr.Data
             "optimum_quasi_static_peak": scalar(quasi, "MPa", "largest quasi-static stress at our optimum"),
             "optimum_dynamic_peak": scalar(dynamic, "MPa", "largest dynamic (Newmark) stress at our optimum"),
             "optimum_dynamic_excess": scalar(dynamic / allowable - 1.0, "1", "dynamic peak at our optimum over the allowable, minus 1"),
-        }
+            **active_bounds(cfg, optim, at_published),
+        },
+        coords={"member": optim.member},
     ).merge(counts_dataset(table))
     findings.attrs.update(findings_attrs("Transplanter paper: comparison findings", "", "", answer(table, findings, optim, at_published)))
     return table, findings
+
+
+#: A constraint is active at a point when it is met within this fraction of its bound (diameters: of the
+#: minimum diameter; stresses: of the allowable).
+ACTIVE_RTOL = 0.01
+#: The published point is stationary in our model when no |dSS/dx| exceeds this (per mm).
+STATIONARY_PER_MM = 0.01
+
+
+def active_bounds(cfg: Mapping[str, Any], optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tuple]:
+    """Which bound holds each member at our optimum (minimum diameter, allowable stress), each member's stress at
+    the published point over the allowable, and whether dSS/dx vanishes there (stationary) or is positive throughout."""
+    d_min = float(cfg["minimum_diameter_m"]) * 1e3
+    allowable = float(optim.allowable)
+    grad = at_published.gradient_SS.values
+    return {
+        "at_minimum_diameter": ("member", (optim.d_opt.values - d_min <= ACTIVE_RTOL * d_min).astype(int),
+                                {"units": "1", "long_name": f"1 if our optimal diameter is within {ACTIVE_RTOL:.0%} of the minimum"}),
+        "at_allowable": ("member", (optim.stress_opt.values >= (1 - ACTIVE_RTOL) * allowable).astype(int),
+                         {"units": "1", "long_name": f"1 if the member's stress at our optimum is within {ACTIVE_RTOL:.0%} of the allowable"}),
+        "published_stress_fraction": ("member", at_published.stress_members.values / allowable,
+                                      {"units": "1", "long_name": "member stress at the published optimum over the allowable"}),
+        "published_point_stationary": scalar(bool(np.all(np.abs(grad) <= STATIONARY_PER_MM)), "1", f"1 if every |dSS/dx| at the published optimum is at most {STATIONARY_PER_MM:g} per mm"),
+        "published_gradient_all_positive": scalar(bool(np.all(grad > 0)), "1", "1 if dSS/dx > 0 in every diameter at the published optimum"),
+    }
 
 
 def answer(table: pd.DataFrame, findings: xr.Dataset, optim: xr.Dataset, at_published: xr.Dataset) -> str:
@@ -55,10 +82,19 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, optim: xr.Dataset, at_publ
     response = [q for q in ("Uy", "distortion", "stress_max") if rows.loc[q, "verdict"] == "depends on assumptions"]
     deciders = sorted({n.strip() for d in rows.loc[response, "decided_by"] for n in d.split("(largest alone: ")[-1].rstrip(")").split(",")}) if response else []
     gradient = ", ".join(f"{v:+.2f}" for v in at_published.gradient_SS.values)
+    diameters = table[table.id.isin(["d1", "d2", "d3", "d4"])]
+    response = table[table.id.isin(["Ux", "Uy", "distortion", "stress_max"])]
+    reproduced = bool((diameters.verdict == "matches").all())
+    excess = float(findings.optimum_dynamic_excess)
+    ss = table[table.id == "SS"].verdict
     return (
-        f"Partly. Our model at the published optimum: {count_text(table[table.id.isin(['Ux', 'Uy', 'distortion', 'stress_max'])], '')}"
+        f"{lead_word(table[table.role == 'headline'])} Our model at the published optimum: {count_text(response, '')}"
         + (f" (the verdict turns on {', '.join(deciders)})" if deciders else "")
-        + f". The optimum itself is not reproduced: ours is ({', '.join(f'{v:.2f}' for v in optim.d_opt.values)}) mm, and the published point is "
-        f"not stationary in our model (dSS/dx = {gradient} per mm). SS cannot be checked ([x_S1] and r(k) are not printed), and the "
-        f"quasi-statically optimal design exceeds the allowable stress dynamically by {float(findings.optimum_dynamic_excess):.0%}."
+        + (". The optimum itself is reproduced" if reproduced else
+           f". The optimum itself is not reproduced: ours is ({', '.join(f'{v:.2f}' for v in optim.d_opt.values)}) mm")
+        + (", and the published point is stationary in our model" if bool(findings.published_point_stationary) else
+           f", and the published point is not stationary in our model (dSS/dx = {gradient} per mm)")
+        + (". SS cannot be checked ([x_S1] and r(k) are not printed)" if (ss == "not reproducible").all() else "")
+        + (f", and the quasi-statically optimal design exceeds the allowable stress dynamically by {excess:.0%}." if excess > 0 else
+           f", and the quasi-statically optimal design stays below the allowable stress dynamically ({excess:+.0%}).")
     )
