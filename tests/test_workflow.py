@@ -358,44 +358,6 @@ def test_unactivated_environment_runs_the_reports(clone):
 # --- bad input and interruptions --------------------------------------------------------------------
 
 
-def _bad_config(tmp_path, edit) -> subprocess.CompletedProcess:
-    root = copy_project(tmp_path / "bad")
-    cfg_path = root / "config/config.yaml"
-    cfg_path.write_text(edit(cfg_path.read_text()))
-    proc = snakemake(root, "--cores", "1", check=False)
-    assert proc.returncode != 0
-    assert not (root / "results").exists(), "a job ran despite the bad config"
-    return proc
-
-
-@pytest.mark.parametrize(
-    ("old", "new", "fragments"),
-    [
-        ("crank_m: 0.015", "crank_m: 0.0", ["stiffness.linkage.crank_m", "0.0"]),
-        ("crank_m: 0.015", "crank_m: -0.015", ["stiffness.linkage.crank_m", "-0.015"]),
-        ("crank_m: 0.015", "crank_m: 0.2", ["stiffness.linkage", "crank_m=0.2", "cannot be assembled"]),
-        ("assembly_tol: 1.0e-9", "assembly_tol: 1e-9", ["stiffness.numerics.assembly_tol", "'1e-9'", "string"]),
-        ("    branch: 1 ", "    branch: 1\n    brnach: 1 ", ["stiffness.linkage.brnach", "unknown key"]),
-        ("l5_m: 0.500", "l5_m: 0.200", ["beatup.sixbar.l1_m", "cannot be assembled", "crank angle"]),
-        ("branch_sley: -1", "branch_sley: 0", ["beatup.sixbar.branch_sley", "0"]),
-        ("value: 0.100, status: assumed", "value: 0.200, status: assumed", ["beatup.fourbar.weft_clearance_m", "0.2", "stroke"]),
-        ("M_P: {value: 8.0", "M_P: {value: -8.0", ["heald.parameters.M_P.value", "-8.0"]),
-        ("eta7: {value: 2.0", "eta7: {value: 0.0", ["heald.parameters.eta7.value", "0.0", "lever ratio"]),
-        ("    restitution: 0.9\n", "    restitution: 0.9\n    restitution: 0.8\n", ["config.yaml, line", "'restitution' is given twice"]),
-        ("  crank_speed_rpm: 300.0", "  crank_speed_rpm: [300.0", ["config.yaml, line", "not valid YAML"]),
-    ],
-    ids=["zero-length", "negative-length", "cannot-assemble", "yaml-string-number", "unknown-key",
-         "sixbar-cannot-assemble", "branch-not-unit", "sw-above-stroke", "negative-mass", "lever-ratio-zero",
-         "duplicate-key", "yaml-syntax"],
-)
-def test_bad_config_stops_before_any_job(tmp_path, old, new, fragments):
-    proc = _bad_config(tmp_path, lambda text: text.replace(old, new, 1))
-    message = proc.stdout + proc.stderr
-    for fragment in fragments:
-        assert fragment in message, message
-    assert "Traceback" not in message
-
-
 def test_dry_run_of_a_fresh_copy_plans_every_rule(tmp_path):
     root = copy_project(tmp_path / "fresh")
     assert planned_jobs(root) == ALL_JOBS

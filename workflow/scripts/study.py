@@ -36,7 +36,10 @@ extra = {f"argument_{k}": json.dumps(v, sort_keys=True) for k, v in args.items()
 for obj, path in zip(outputs, sm.output):
     if hasattr(obj, "to_netcdf"):
         obj.attrs.update(results.provenance(paper, cfg, study=sm.params.study, **extra))
-        results.write(obj, path)
+        try:
+            results.write(obj, path)
+        except results.NonFiniteResult as exc:
+            sys.exit(f"{label}: {exc}")
     elif hasattr(obj, "to_csv"):
         results.write_text(obj.to_csv(index=False, float_format="%.10g"), path)
     elif isinstance(obj, str):

@@ -68,9 +68,32 @@ def check_units(ds) -> None:
         raise ValueError(f"variables without units/long_name: {', '.join(sorted(missing))}")
 
 
+class NonFiniteResult(ValueError):
+    """A result holds inf, or NaN where no NaN is meaningful."""
+
+
+def check_finite(ds, name: str = "result") -> None:
+    """Every floating variable is finite, except NaN where its attributes say what a NaN means (``nan_meaning``,
+    e.g. 'no clearance at this joint in this scene'); inf is never written."""
+    import numpy as np
+
+    for key, var in ds.data_vars.items():
+        if var.dtype.kind not in "fc":
+            continue
+        values = np.asarray(var.values)
+        if np.isinf(values).any():
+            raise NonFiniteResult(f"{name}: variable {key} holds inf at {int(np.isinf(values).sum())} of {values.size} points; not written")
+        nans = int(np.isnan(values).sum())
+        if nans and not var.attrs.get("nan_meaning"):
+            raise NonFiniteResult(f"{name}: variable {key} ({var.attrs.get('long_name', '')}) is NaN at {nans} of {values.size} points, "
+                                  "which the study does not expect; not written (check the inputs of this job)")
+
+
 def write(ds, path: str | os.PathLike[str]) -> Path:
-    """Write ``ds`` to netCDF atomically: a temporary file beside it, then rename."""
+    """Write ``ds`` to netCDF atomically (a temporary file beside it, then rename), after checking units and
+    that it is finite where it must be."""
     check_units(ds)
+    check_finite(ds, str(path))
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(target.name + ".tmp")

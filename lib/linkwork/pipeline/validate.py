@@ -9,6 +9,7 @@ and the offending value.
 from __future__ import annotations
 
 import importlib
+import math
 import os
 import re
 from collections.abc import Mapping
@@ -79,6 +80,11 @@ def _schema_message(error) -> str:
         return f"config key {names}: missing (required in section {key})"
     if error.validator == "type" and isinstance(value, str) and _NUMBERLIKE.match(value):
         return f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed exponent, e.g. 1.0e-6)"
+    guard = error.schema.get("x-size-guard") if isinstance(error.schema, Mapping) else None
+    if guard and error.validator in ("maximum", "minimum"):
+        side = "above the largest" if error.validator == "maximum" else "below the smallest"
+        return (f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({guard}); a size guard "
+                "for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one")
     return f"config key {key}: value {_short(value)}: {error.message if len(error.message) < 200 else error.message[:200] + ' ...'}"
 
 
@@ -92,17 +98,81 @@ def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
         raise ConfigError("invalid config:\n  " + "\n  ".join(dict.fromkeys(_schema_message(e) for e in errors)))
 
 
+#: At most this many sweep points in one grid (each is a job; Snakemake plans every job before it runs one).
+SWEEP_POINTS_LIMIT = 2000
+
+
 def check_sweeps(section: Mapping[str, Any], config: Mapping[str, Any], key: str = "sweeps") -> None:
-    """The swept clearance scene and variant exist."""
+    """The swept clearance scene and variant exist, a swept clearance fits in the bearing, and no grid is too big."""
     spec = section["clearance"]
     if spec["scene"] not in config["clearance"]["scenes"]:
         raise ConfigError(f"config key {key}.clearance.scene: value {spec['scene']!r} is not a scene of clearance.scenes")
     if spec["variant"] not in config["clearance"]["variants"]:
         raise ConfigError(f"config key {key}.clearance.variant: value {spec['variant']!r} is not a variant of clearance.variants")
+    bearing = config["clearance"]["joints"]["bearing_radius_m"]
+    for grid in ("small", "large"):
+        too_wide = [c for c in spec[grid]["clearance_m"] if c >= bearing]
+        if too_wide:
+            raise ConfigError(f"config key {key}.clearance.{grid}.clearance_m: value {too_wide[0]!r} is not smaller than "
+                              f"clearance.joints.bearing_radius_m = {bearing!r} (the journal radius would be <= 0)")
+        for sweep in ("clearance", "heald"):
+            points = math.prod(len(v) for v in section[sweep][grid].values())
+            if points > SWEEP_POINTS_LIMIT:
+                raise ConfigError(f"config key {key}.{sweep}.{grid}: {points} grid points exceed the size guard {SWEEP_POINTS_LIMIT} "
+                                  "(each is a job; raise SWEEP_POINTS_LIMIT in lib/linkwork/pipeline/validate.py for a cluster)")
+
+
+def check_finite(node: Any, path: tuple = ()) -> None:
+    """Every number in the config is finite (YAML's .nan and .inf pass a JSON schema's range checks)."""
+    if isinstance(node, Mapping):
+        for key, value in node.items():
+            check_finite(value, (*path, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            check_finite(value, (*path, i))
+    elif isinstance(node, float) and not math.isfinite(node):
+        raise ConfigError(f"config key {_key(path)}: value {node!r} is not a finite number")
+
+
+#: A name the user chooses (a scene, a variant, a material, ...) becomes part of file paths and Snakemake
+#: wildcards: a letter, then letters, digits or underscores, at most 40 characters.
+SAFE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,39}")
+
+
+def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str, Any]:
+    while isinstance(node, Mapping) and "$ref" in node:
+        target: Any = schema
+        for part in node["$ref"].lstrip("#/").split("/"):
+            target = target[part]
+        node = target
+    return node
+
+
+def check_names(config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] | None = None, path: tuple = ()) -> None:
+    """Every key the schema leaves to the user (``additionalProperties`` with a schema) is a safe name."""
+    node = _resolve(schema, schema if node is None else node)
+    if not isinstance(node, Mapping):
+        return
+    if isinstance(config, Mapping):
+        named = node.get("properties", {})
+        extra = node.get("additionalProperties")
+        for key, value in config.items():
+            if key in named:
+                check_names(value, schema, named[key], (*path, key))
+            elif isinstance(extra, Mapping):
+                if not isinstance(key, str) or not SAFE_NAME.fullmatch(key):
+                    raise ConfigError(f"config key {_key((*path, key))}: name {key!r} is not allowed (names become file paths and "
+                                      "wildcards: a letter, then letters, digits or _, at most 40 characters)")
+                check_names(value, schema, extra, (*path, key))
+    elif isinstance(config, list) and isinstance(node.get("items"), Mapping):
+        for i, value in enumerate(config):
+            check_names(value, schema, node["items"], (*path, i))
 
 
 def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
-    """Schema first, then the physical checks of every paper section present."""
+    """Finite numbers and safe names first, then the schema, then the physical checks of every paper section."""
+    check_finite(config)
+    check_names(config, schema)
     validate_schema(config, schema)
     for paper in PAPERS:
         if paper in config:
@@ -132,7 +202,7 @@ def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path) -> s
 
     from .deps import closure
 
-    digest = hashlib.sha256(json.dumps(config, sort_keys=True, default=str).encode())
+    digest = hashlib.sha256(json.dumps(config, default=str).encode())  # in file order: keys may not be comparable
     digest.update(Path(schema_path).read_bytes())
     checks = tuple(f"linkwork.papers.{p}.checks" for p in PAPERS)
     for file in closure("linkwork.pipeline.validate", lib, extra=checks):

@@ -97,6 +97,8 @@ def evidence_dataset(rows: list[dict[str, Any]]) -> xr.Dataset:
                   "tolerance": "half a unit of the printed last digit", "rounding_bound": "worst-case change from rounding the printed parameters",
                   "printed_column_fd": "15 deg central difference of the printed source column", "our_coarse_fd": "the same difference of ours"}
     data = {k: ("cell", df[k].to_numpy(dtype=float), {"units": units[k], "long_name": long_names[k]}) for k in units}
+    for k in ("printed_column_fd", "our_coarse_fd"):
+        data[k][2]["nan_meaning"] = "computed only for a cell that deviates beyond the parameters' rounding"
     data["column"] = ("cell", df["column"].to_numpy(dtype=object), {"units": "1", "long_name": "Table 1 column (our variable name)"})
     data["cell_class"] = ("cell", df["class"].to_numpy(dtype=object), {"units": "1", "long_name": "why the cell matches or not"})
     return xr.Dataset(data, coords={"cell": ("cell", np.arange(len(df)), {"units": "1", "long_name": "Table 1 cell"})})

@@ -38,8 +38,14 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             missing = [n for n in needed if n not in integ]
             if missing:
                 raise ConfigError(f"config key {key}.{group}.{kind}: method {integ['method']!r} needs {', '.join(missing)}")
-    if section["work_precision"]["variant"] not in section["variants"]:
-        raise ConfigError(f"config key {key}.work_precision.variant: value {section['work_precision']['variant']!r} is not a variant")
+    wp = section["work_precision"]
+    if wp["variant"] not in section["variants"]:
+        raise ConfigError(f"config key {key}.work_precision.variant: value {wp['variant']!r} is not a variant of {key}.variants")
+    for name in [*wp["scenes"], *wp["reference"]]:
+        if name not in section["scenes"]:
+            raise ConfigError(f"config key {key}.work_precision.scenes: scene {name!r} is not a scene of {key}.scenes")
+        if not section["scenes"][name]["clearance_joints"]:
+            raise ConfigError(f"config key {key}.work_precision.scenes: scene {name!r} has no clearance joint (nothing to integrate)")
     b = section["bodies"]
     lw = FourBar(b["crank"]["length_m"], b["coupler"]["length_m"], b["rocker"]["length_m"], section["ground_m"])
     try:

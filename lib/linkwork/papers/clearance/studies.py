@@ -74,13 +74,13 @@ def scene(cfg: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pi
             "crank_torque": (dims, series["torque"], {"units": "N m", "long_name": "crank driving torque"}),
             "energy": (dims, series["energy"], {"units": "J", "long_name": "mechanical energy (kinetic + gravity + contact)"}),
             "constraint_drift": (dims, series["drift"], {"units": "m", "long_name": "|Phi| of the ideal constraints"}),
-            "eccentricity": (jd, pj[:, 0], {"units": "m", "long_name": "journal eccentricity |e|"}),
-            "penetration": (jd, pj[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)"}),
-            "contact_force": (jd, pj[:, 3], {"units": "N", "long_name": "dry normal contact force"}),
-            "film_radial_force": (jd, pj[:, 4], {"units": "N", "long_name": "film force along e (on the journal)"}),
-            "film_tangential_force": (jd, pj[:, 5], {"units": "N", "long_name": "film force across e (on the journal)"}),
-            "ideal_joint_force_A": (dims, series["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A), ideal scene only"}),
-            "ideal_joint_force_B": (dims, series["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B), ideal scene only"}),
+            "eccentricity": (jd, pj[:, 0], {"units": "m", "long_name": "journal eccentricity |e|", "nan_meaning": "the joint has no clearance in this scene"}),
+            "penetration": (jd, pj[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)", "nan_meaning": "the joint has no clearance in this scene"}),
+            "contact_force": (jd, pj[:, 3], {"units": "N", "long_name": "dry normal contact force", "nan_meaning": "the joint has no clearance in this scene"}),
+            "film_radial_force": (jd, pj[:, 4], {"units": "N", "long_name": "film force along e (on the journal)", "nan_meaning": "the joint has no clearance in this scene"}),
+            "film_tangential_force": (jd, pj[:, 5], {"units": "N", "long_name": "film force across e (on the journal)", "nan_meaning": "the joint has no clearance in this scene"}),
+            "ideal_joint_force_A": (dims, series["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A), ideal scene only", "nan_meaning": "a scene with clearance joints has no ideal reaction"}),
+            "ideal_joint_force_B": (dims, series["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B), ideal scene only", "nan_meaning": "a scene with clearance joints has no ideal reaction"}),
             "cycle_change": ("cycle_pair", change, {"units": "1", "long_name": "RMS change of the rocker acceleration from one cycle to the next / RMS of the last cycle"}),
         },
         coords={
@@ -225,7 +225,8 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     }
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
-        data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr, {"units": unit, "long_name": long_name})
+        data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr,
+                                  {"units": unit, "long_name": long_name, "nan_meaning": "does not apply to this scene or joint (the ideal scene integrates nothing; a joint without clearance has no contact)"})
     coords = {
         "variant": ("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
         "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),

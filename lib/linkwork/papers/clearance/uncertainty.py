@@ -66,8 +66,8 @@ def batch(cfg: Mapping[str, Any], sample: str, values: Mapping[str, Any], varian
     dims = ("sample", "variant", "quantity", "scene", "cycle")
     return xr.Dataset(
         {
-            "rms_deviation": (dims, rms, {"units": "SI of the quantity", "long_name": "RMS of (scene - ideal) over a cycle; NaN: scene not moved"}),
-            "peak_deviation": (dims, peak, {"units": "SI of the quantity", "long_name": "peak |scene - ideal| over a cycle; NaN: scene not moved"}),
+            "rms_deviation": (dims, rms, {"units": "SI of the quantity", "long_name": "RMS of (scene - ideal) over a cycle", "nan_meaning": "the sample does not move this scene"}),
+            "peak_deviation": (dims, peak, {"units": "SI of the quantity", "long_name": "peak |scene - ideal| over a cycle", "nan_meaning": "the sample does not move this scene"}),
         },
         coords={
             "sample": ("sample", np.array([sample], dtype=object), {"units": "1", "long_name": "sample"}),

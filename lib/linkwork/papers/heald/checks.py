@@ -27,6 +27,12 @@ def check(section: Mapping[str, Any], key: str = "heald") -> None:
     speeds = section["speeds"]
     if speeds["min_rpm"] >= speeds["max_rpm"]:
         raise ConfigError(f"config key {key}.speeds: min_rpm {speeds['min_rpm']!r} must be below max_rpm {speeds['max_rpm']!r}")
+    band = section["accuracy"]["band_rpm"]
+    if band["start"] >= band["stop"]:
+        raise ConfigError(f"config key {key}.accuracy.band_rpm: start {band['start']!r} must be below stop {band['stop']!r}")
+    for name, sweep in section["sweeps"].items():
+        if sweep["start"] >= sweep["stop"]:
+            raise ConfigError(f"config key {key}.sweeps.{name}: start {sweep['start']!r} must be below stop {sweep['stop']!r}")
     for model in section["models"]:
         try:
             build(model, parameters(section), "elastic")

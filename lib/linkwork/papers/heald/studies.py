@@ -105,8 +105,8 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         "Q_F": xr.DataArray(q_f, dims=dims, attrs={"units": "N", "long_name": "|Q_F|, force in joint F"}),
         "K_abs": xr.DataArray(np.abs(mobility), dims=dims, attrs={"units": "m N-1 s-1", "long_name": "|K|, input mobility V/Q"}),
         "K_phase": xr.DataArray(np.angle(mobility), dims=dims, attrs={"units": "rad", "long_name": "phase of the input mobility"}),
-        "velocity_resonance": xr.DataArray(vel_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "velocity resonances (K = 0), undamped"}),
-        "force_resonance": xr.DataArray(force_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "force resonances (K -> infinity), undamped"}),
+        "velocity_resonance": xr.DataArray(vel_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "velocity resonances (K = 0), undamped", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
+        "force_resonance": xr.DataArray(force_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "force resonances (K -> infinity), undamped", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
         "k_E": xr.DataArray([joint_stiffness(p, "E", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint E"}),
         "k_F": xr.DataArray([joint_stiffness(p, "F", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint F"}),
     }

@@ -1,0 +1,152 @@
+"""Fuzz table of bad configs: every one is refused before any job, in one line per problem naming the key.
+
+Each row is a one-string edit of config/config.yaml as a user might make it (a typo, a unit slip, a
+name that would become a path, a number that is not finite, a grid far too big for this machine).  The
+edited text goes through exactly what the Snakefile runs (``load_yaml`` then ``validate_config``); a
+row passes only if a ``ConfigError`` names the key (no other exception, no traceback, no silent
+acceptance).  A sample of the rows also goes through ``snakemake -n`` on a copy of the project.
+"""
+
+from __future__ import annotations
+
+from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
+
+import pytest
+
+from test_workflow import copy_project, snakemake
+
+from linkwork.pipeline.errors import ConfigError
+from linkwork.pipeline.validate import load_yaml, validate_config
+
+PROJECT = Path(__file__).resolve().parents[1]
+CONFIG_TEXT = (PROJECT / "config" / "config.yaml").read_text(encoding="utf-8")
+
+# (id, old text, new text, fragments the message must contain)
+CASES = [
+    # values out of range, and linkages that cannot be assembled
+    ("zero-length", "crank_m: 0.015", "crank_m: 0.0", ["stiffness.linkage.crank_m", "0.0"]),
+    ("negative-length", "crank_m: 0.015", "crank_m: -0.015", ["stiffness.linkage.crank_m", "-0.015"]),
+    ("cannot-assemble", "crank_m: 0.015", "crank_m: 0.2", ["stiffness.linkage", "crank_m=0.2", "cannot be assembled"]),
+    ("yaml-string-number", "assembly_tol: 1.0e-9", "assembly_tol: 1e-9", ["stiffness.numerics.assembly_tol", "'1e-9'", "string"]),
+    ("unknown-key", "    branch: 1 ", "    branch: 1\n    brnach: 1 ", ["stiffness.linkage.brnach", "unknown key"]),
+    ("sixbar-cannot-assemble", "l5_m: 0.500", "l5_m: 0.200", ["beatup.sixbar.l1_m", "cannot be assembled", "crank angle"]),
+    ("branch-not-unit", "branch_sley: -1", "branch_sley: 0", ["beatup.sixbar.branch_sley", "0"]),
+    ("sw-above-stroke", "value: 0.100, status: assumed", "value: 0.200, status: assumed", ["beatup.fourbar.weft_clearance_m", "0.2", "stroke"]),
+    ("negative-mass", "M_P: {value: 8.0", "M_P: {value: -8.0", ["heald.parameters.M_P.value", "-8.0"]),
+    ("lever-ratio-zero", "eta7: {value: 2.0", "eta7: {value: 0.0", ["heald.parameters.eta7.value", "0.0", "lever ratio"]),
+    # numbers that are not finite
+    ("nan-length", "crank_m: 0.015", "crank_m: .nan", ["stiffness.linkage.crank_m", "nan"]),
+    ("inf-modulus", "OA: {youngs_modulus_Pa: 2.1e+8", "OA: {youngs_modulus_Pa: .inf", ["stiffness.members.OA.youngs_modulus_Pa", "inf"]),
+    ("minus-inf-speed", "crank_speed_rpm: 300.0", "crank_speed_rpm: -.inf", ["transplanter.crank_speed_rpm", "inf"]),
+    ("nan-in-list", "initial_diameters_m: [0.008, 0.008", "initial_diameters_m: [.nan, 0.008", ["transplanter.initial_diameters_m.0", "nan"]),
+    ("nan-in-range", "range: [0.3, 1.2]", "range: [.nan, 1.2]", ["heald.parameters.m_D.range.0", "nan"]),
+    ("nan-sweep-point", "clearance_m: [2.5e-5, 5.0e-5, 1.0e-4]", "clearance_m: [.nan, 5.0e-5, 1.0e-4]", ["sweeps.clearance.small.clearance_m.0", "nan"]),
+    # names that would become paths or wildcards
+    ("scene-parent-dir", "    dry_1: {clearance_joints: [1]", "    ../x: {clearance_joints: [1]", ["clearance.scenes.../x", "not allowed"]),
+    ("scene-slash", "    dry_1: {clearance_joints: [1]", "    a/b: {clearance_joints: [1]", ["clearance.scenes.a/b", "not allowed"]),
+    ("scene-paren", "    dry_1: {clearance_joints: [1]", "    dry(: {clearance_joints: [1]", ["clearance.scenes.dry(", "not allowed"]),
+    ("scene-regex", "    dry_1: {clearance_joints: [1]", "    '.*': {clearance_joints: [1]", ["clearance.scenes..*", "not allowed"]),
+    ("scene-braces", "    dry_1: {clearance_joints: [1]", "    '{scene}': {clearance_joints: [1]", ["clearance.scenes.{scene}", "not allowed"]),
+    ("scene-digit-first", "    dry_1: {clearance_joints: [1]", "    1dry: {clearance_joints: [1]", ["clearance.scenes.1dry", "not allowed"]),
+    ("scene-number", "    dry_1: {clearance_joints: [1]", "    1: {clearance_joints: [1]", ["clearance.scenes.1", "not allowed"]),
+    ("scene-too-long", "    dry_1: {clearance_joints: [1]", "    " + "d" * 41 + ": {clearance_joints: [1]", ["clearance.scenes." + "d" * 41, "40 characters"]),
+    ("variant-space", "    slender: {inertia: slender}", "    'sl ender': {inertia: slender}", ["clearance.variants.sl ender", "not allowed"]),
+    ("material-dots", "  materials:\n    LF6:", "  materials:\n    ..:", ["transplanter.materials...", "not allowed"]),
+    ("scene-home", "    dry_1: {clearance_joints: [1]", "    '~': {clearance_joints: [1]", ["not allowed"]),
+    # integrator and step settings outside what the numerics can honour
+    ("rtol-one", "explicit: {method: dopri5, rtol: 1.0e-6", "explicit: {method: dopri5, rtol: 1.0", ["clearance.integrators.explicit.rtol", "1.0"]),
+    ("rtol-zero", "explicit: {method: dopri5, rtol: 1.0e-6", "explicit: {method: dopri5, rtol: 0.0", ["clearance.integrators.explicit.rtol", "0.0"]),
+    ("rtol-negative", "stiff: {method: bdf, rtol: 1.0e-8", "stiff: {method: bdf, rtol: -1.0e-8", ["clearance.tight_integrators.stiff.rtol", "-1e-08"]),
+    ("unknown-method", "explicit: {method: dopri5, rtol: 1.0e-6", "explicit: {method: euler, rtol: 1.0e-6", ["clearance.integrators.explicit.method", "euler"]),
+    ("fine-step-tiny", "    fine_step_deg: 1.0", "    fine_step_deg: 1.0e-5", ["stiffness.grids.fine_step_deg", "1e-05"]),
+    ("angle-step-huge", "angle_step_deg: 1.0\n", "angle_step_deg: 180.0\n", ["transplanter.fe.angle_step_deg", "180.0"]),
+    ("points-per-cycle-huge", "points_per_cycle: 720", "points_per_cycle: 100000000", ["clearance.numerics.points_per_cycle", "size guard"]),
+    ("record-cycles-huge", "record_cycles: 2  ", "record_cycles: 100000  ", ["clearance.numerics.record_cycles", "size guard"]),
+    ("revolutions-huge", "revolutions: 8 ", "revolutions: 1000000 ", ["transplanter.fe.revolutions", "size guard"]),
+    ("scan-points-huge", "scan_points: 3601", "scan_points: 1000000000", ["beatup.numerics.scan_points", "size guard"]),
+    ("heald-points-huge", "    points: 1200", "    points: 100000000", ["heald.speeds.points", "size guard"]),
+    ("sweep-num-huge", "weft_clearance_m: {start: 0.010, stop: 0.150, num: 57}", "weft_clearance_m: {start: 0.010, stop: 0.150, num: 10000000}", ["beatup.sweep.weft_clearance_m.num", "size guard"]),
+    # physical magnitudes no linkage has
+    ("rpm-astronomical", "crank_speed_rpm: 300.0", "crank_speed_rpm: 1.0e+300", ["transplanter.crank_speed_rpm", "1e+300"]),
+    ("rad-s-astronomical", "crank_speed_rad_s: 62.83185307179586", "crank_speed_rad_s: 1.0e+300", ["clearance.crank_speed_rad_s", "1e+300"]),
+    ("length-subatomic", "crank_m: 0.015", "crank_m: 1.0e-300", ["stiffness.linkage.crank_m", "1e-300"]),
+    ("length-kilometres", "    ground_m: 0.170", "    ground_m: 1.7e+5", ["stiffness.linkage.ground_m", "170000.0"]),
+    ("heald-max-below-min", "max_rpm: 1200.0", "max_rpm: 5.0", ["heald.speeds", "max_rpm"]),
+    ("band-reversed", "band_rpm: {start: 300.0, stop: 700.0}", "band_rpm: {start: 700.0, stop: 300.0}", ["heald.accuracy.band_rpm", "700.0"]),
+    ("heald-sweep-reversed", "heald_mass: {start: 5.0, stop: 12.0", "heald_mass: {start: 12.0, stop: 5.0", ["heald.sweeps.heald_mass", "12.0"]),
+    # cross-references
+    ("wp-unknown-scene", "      dry_2: {rk4:", "      dry_9: {rk4:", ["clearance.work_precision", "dry_9"]),
+    ("wp-ideal-scene", "      dry_2: {rk4:", "      ideal: {rk4:", ["clearance.work_precision", "ideal"]),
+    ("wp-unknown-variant", "    variant: slender\n    cycles: 0.5", "    variant: stiffest\n    cycles: 0.5", ["clearance.work_precision.variant", "stiffest"]),
+    ("sweep-unknown-scene", "    scene: dry_both", "    scene: dry_all", ["sweeps.clearance.scene", "dry_all"]),
+    ("unknown-material", "    name: LF6", "    name: LF7", ["transplanter.material.name", "LF7"]),
+    ("sweep-clearance-exceeds-bearing", "clearance_m: [2.5e-5, 5.0e-5, 1.0e-4]", "clearance_m: [2.5e-5, 5.0e-5, 1.0e-2]", ["sweeps.clearance.small.clearance_m", "0.01", "bearing_radius_m"]),
+    ("sweep-duplicate-values", "heald_mass_kg: [6.0, 8.0, 10.0]", "heald_mass_kg: [6.0, 6.0, 10.0]", ["sweeps.heald.small.heald_mass_kg"]),
+    ("sweep-grid-too-big", "small: {clearance_m: [5.0e-5, 1.0e-4, 2.0e-4], heald_mass_kg: [6.0, 8.0, 10.0]}",
+     "small: {clearance_m: [%s], heald_mass_kg: [%s]}" % (", ".join(f"{1e-5 + i * 1e-6:.3e}" for i in (range(60))),
+                                                          ", ".join(f"{5.0 + i * 0.1:.2f}" for i in range(60))),
+     ["sweeps.heald.small", "3600", "size guard"]),
+    ("journal-bigger-than-bearing", "journal_radius_m: 9.95e-3", "journal_radius_m: 10.05e-3", ["clearance.joints", "journal_radius_m"]),
+    # structure and YAML
+    ("missing-key", "    restitution: 0.9\n", "", ["clearance.joints.restitution", "missing"]),
+    ("missing-section", "  numerics:\n    assembly_tol: 1.0e-9   # relative slack on the triangle inequality at the edge of assembly\n", "",
+     ["stiffness.numerics", "missing"]),
+    ("duplicate-key", "    restitution: 0.9\n", "    restitution: 0.9\n    restitution: 0.8\n", ["line", "'restitution' is given twice"]),
+    ("yaml-syntax", "  crank_speed_rpm: 300.0", "  crank_speed_rpm: [300.0", ["line", "not valid YAML"]),
+    ("yaml-tab", "    restitution: 0.9\n", "\trestitution: 0.9\n", ["line", "not valid YAML"]),
+    ("string-for-number", "restitution: 0.9", "restitution: high", ["clearance.joints.restitution", "'high'"]),
+    ("list-for-number", "restitution: 0.9", "restitution: [0.9]", ["clearance.joints.restitution", "[0.9]"]),
+    ("bool-for-number", "restitution: 0.9", "restitution: true", ["clearance.joints.restitution", "True"]),
+    ("python-tag", "restitution: 0.9", "restitution: !!python/object/apply:os.system ['true']", ["line", "not valid YAML"]),
+    ("empty-scenes", "  scenes:\n    ideal:", "  scenes: {}\n  unused:\n    ideal:", ["clearance"]),
+]
+
+
+def _edit(old: str, new: str) -> str:
+    assert CONFIG_TEXT.count(old) >= 1, f"fuzz row out of date: {old!r} is not in config/config.yaml"
+    return CONFIG_TEXT.replace(old, new, 1)
+
+
+def test_the_table_is_large_and_names_are_unique():
+    ids = [c[0] for c in CASES]
+    assert len(ids) >= 40 and len(set(ids)) == len(ids)
+
+
+@pytest.mark.parametrize(("old", "new", "fragments"), [c[1:] for c in CASES], ids=[c[0] for c in CASES])
+def test_bad_config_is_refused_naming_the_key(tmp_path, schema, old, new, fragments):
+    path = tmp_path / "config.yaml"
+    path.write_text(_edit(old, new), encoding="utf-8")
+    with pytest.raises(ConfigError) as info:
+        validate_config(load_yaml(path), schema)
+    message = str(info.value)
+    for fragment in fragments:
+        assert fragment in message, message
+    lines = message.splitlines()
+    assert all(len(line) < 400 for line in lines), message
+    assert "Traceback" not in message
+
+
+@pytest.mark.workflow
+def test_snakemake_stops_every_row_before_any_job(tmp_path):
+    """Every row through ``snakemake -n`` on its own copy of the project (two at a time): exit non-zero,
+    the message names the key in a line starting ``linkwork:``, no job planned, nothing in results/."""
+
+    def run(case):
+        name, old, new, fragments = case
+        root = copy_project(tmp_path / name)
+        (root / "config" / "config.yaml").write_text(_edit(old, new), encoding="utf-8")
+        proc = snakemake(root, "-n", check=False)
+        return name, root, proc, fragments
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        runs = list(pool.map(run, CASES))
+    for name, root, proc, fragments in runs:
+        message = proc.stdout + proc.stderr
+        assert proc.returncode != 0, f"{name}: snakemake accepted the config\n{message[-2000:]}"
+        line = next((text for text in message.splitlines() if text.startswith("linkwork: ")), "")
+        for fragment in fragments:
+            assert fragment in message, f"{name}: {fragment!r} not in\n{message[-2000:]}"
+        assert line and (fragments[0] in line or "invalid config" in line), f"{name}: no one-line message\n{message[-2000:]}"
+        assert "Traceback" not in message and "Job stats" not in message, f"{name}\n{message[-2000:]}"
+        assert not (root / "results").exists() and not (root / ".snakemake" / "linkwork-validated").exists(), name
