@@ -218,6 +218,25 @@ md(" ".join(
 ))
 
 # %% [markdown]
+# ### Where a scene leaves its models
+#
+# Each scene records how deep its dry contact penetrates (over the radial clearance) and, when lubricated, how long its
+# journals run beyond the film cap. A penetration beyond the stated limit puts the Hertz law outside its range; time
+# beyond the cap means the dry contact, not the film, carries the journal there.
+
+# %%
+validity = pd.DataFrame([
+    {"variant": v, "scene": s, "max penetration / c": ds.attrs.get("validity_penetration_over_clearance", np.nan),
+     "time beyond the film cap (%)": 100 * ds.attrs.get("validity_beyond_film_cap_fraction", np.nan),
+     "warning": ds.attrs["validity_warnings"] or "inside both models"}
+    for (v, s), ds in sorted(scenes.items()) if s != "ideal"])
+table(validity, {"max penetration / c": "{:.3g}", "time beyond the film cap (%)": "{:.3g}"},
+      caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:g} c)")
+outside = validity[validity.warning != "inside both models"]
+md("**Scenes outside the model's validity:** " + ", ".join(f"`{esc(v)}/{esc(s)}`" for v, s in zip(outside.variant, outside.scene)) + "."
+   if len(outside) else "Every scene stays inside the range of its contact and film models.")
+
+# %% [markdown]
 # ## 5. Accuracy vs time (work-precision)
 
 # %%

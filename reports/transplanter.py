@@ -165,7 +165,10 @@ md(
     f"and {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='optimal').values)} rad/s (optimal), against a crank speed "
     f"of {float(ked.crank_speed):.1f} rad/s. Resonance warning: {esc(ked.attrs['resonance_warning'])}. "
     f"The dynamic solution runs {json.loads(ked.attrs['config_json'])['fe']['revolutions']} revolutions; the last two differ by "
-    f"{', '.join(f'{v:.1e}' for v in ked.periodicity.values)} of the tip response range."
+    f"{', '.join(f'{v:.1e}' for v in ked.periodicity.values)} of the tip response range. "
+    + (f"**Warning: {esc(ked.attrs['validity_warnings'])}.**" if ked.attrs["validity_warnings"] else
+       f"The largest elastic tip deflection is {ked.attrs['validity_tip_deflection_over_arm']:.2g} of the arm length, inside "
+       f"small-deflection beam theory (limit {ked.attrs['validity_deflection_limit']:g}).")
 )
 md(
     ("**The optimum found on the quasi-static model is not safe dynamically.**" if float(fnd.optimum_dynamic_excess) > 0 else

@@ -163,3 +163,30 @@ def test_small_linear_solve_equals_lapack():
         a[[0, -1]] = a[[-1, 0]]  # needs pivoting
         b = rng.normal(size=n)
         assert np.allclose(gauss_solve(a.copy(), b.copy()), np.linalg.solve(a, b), rtol=1e-10, atol=1e-12)
+
+
+def test_validity_measures_against_hand_values():
+    from linkwork.papers.clearance import validity
+
+    c = 5e-5
+    pen = np.array([[np.nan] * 4, [-1e-5, 0.0, 2e-5, 1e-4]])  # joint 1 without clearance, joint 2 down to 2 c
+    assert validity.penetration_ratio(pen, c) == pytest.approx(2.0)
+    assert np.isnan(validity.penetration_ratio(np.full((2, 3), np.nan), c))
+    ecc = np.array([[4e-5, 4.9e-5, 1e-5, np.nan], [0.0, 0.0, 4.8e-5, 1e-5]])  # |e|/c: 0.8, 0.98 | 0.96
+    assert validity.beyond_cap_fraction(ecc, c, cap=0.95) == pytest.approx(0.5)
+    assert validity.warnings(0.5, 0.0) == ""
+    assert "outside Hertz contact" in validity.warnings(2.0, None)
+    assert "beyond the film cap during 50 %" in validity.warnings(0.5, 0.5)
+
+
+def test_crank_speed_times_hundred_is_flagged_outside_hertz():
+    """Real run of the issue's case: crank speed x100 drives the dry journals far into their bushings; the scene
+    records the depth and warns (it used to be written as a plain success)."""
+    section = copy.deepcopy(SECTION)
+    section["crank_speed_rad_s"] *= 100
+    section["numerics"] = {**section["numerics"], "settle_cycles": 0, "record_cycles": 1, "points_per_cycle": 72}
+    ds = scene_dataset(section, "slender", "dry_both")
+    assert ds.attrs["validity_penetration_over_clearance"] > ds.attrs["validity_penetration_limit"]
+    assert "outside Hertz contact" in ds.attrs["validity_warnings"]
+    nominal = scene_dataset({**SECTION, "numerics": section["numerics"]}, "slender", "lubricated_1")
+    assert nominal.attrs["validity_warnings"] == "" and nominal.attrs["validity_beyond_film_cap_fraction"] == 0.0

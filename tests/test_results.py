@@ -39,3 +39,18 @@ def test_variables_without_units_are_refused(tmp_path):
     with pytest.raises(ValueError, match="bare"):
         results.write(ds, tmp_path / "out.nc")
     assert not (tmp_path / "out.nc").exists()
+
+
+def test_a_result_with_unexplained_nan_or_any_inf_is_not_written(tmp_path):
+    """NaN is written only where the variable says what it means; inf never; a refused result leaves no file."""
+    ds = _ds()
+    ds["k"][1] = np.nan
+    with pytest.raises(results.NonFiniteResult, match=r"variable k \(stiffness\) is NaN at 1 of 3 points"):
+        results.write(ds, tmp_path / "out.nc")
+    assert list(tmp_path.iterdir()) == []
+    ds["k"].attrs["nan_meaning"] = "no stiffness at a dead centre"
+    results.write(ds, tmp_path / "out.nc")
+    ds["k"][2] = np.inf
+    with pytest.raises(results.NonFiniteResult, match="variable k holds inf at 1 of 3 points"):
+        results.write(ds, tmp_path / "other.nc")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]

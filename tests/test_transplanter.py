@@ -128,3 +128,21 @@ def test_sumt_and_slsqp_agree():
     xs, info = slsqp(prob, x0)
     assert info["success"]
     assert np.allclose(res.x, xs, atol=5e-5)  # within 0.05 mm
+
+
+def test_deflection_beyond_small_deflection_theory_is_flagged():
+    """Real runs: the nominal mechanism stays inside small-deflection theory; with the modulus divided by 1e4 the
+    tip deflection passes the limit and the result says so (never a silent success)."""
+    from linkwork.papers.transplanter.studies import SMALL_DEFLECTION_LIMIT
+
+    section = copy.deepcopy(SECTION)
+    section["fe"]["angle_step_deg"] = 10.0
+    section["fe"]["revolutions"] = 2
+    optim = xr.Dataset({"d_opt": ("member", np.full(4, 8.0))})
+    nominal = ked_responses(section, optim)
+    assert nominal.attrs["validity_warnings"] == ""
+    assert 0 < nominal.attrs["validity_tip_deflection_over_arm"] < SMALL_DEFLECTION_LIMIT
+    section["materials"][section["material"]["name"]]["youngs_modulus_Pa"]["value"] /= 1e4
+    soft = ked_responses(section, optim)
+    assert soft.attrs["validity_tip_deflection_over_arm"] > SMALL_DEFLECTION_LIMIT
+    assert "outside small-deflection beam theory" in soft.attrs["validity_warnings"]

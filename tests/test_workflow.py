@@ -117,10 +117,16 @@ def clone_of(built: Path, dest: Path) -> Path:
     return dest
 
 
+#: Put in front of every ``reason`` of the built copy's config: config text that reaches a report must arrive escaped.
+POISON = "<script>alert('linkwork')</script><b>"
+
+
 @pytest.fixture(scope="module")
 def built(tmp_path_factory) -> Path:
     """A copy of the project on which bare `snakemake` (profiles/default) has run once, imports traced."""
     root = copy_project(tmp_path_factory.mktemp("built"))
+    cfg = root / "config/config.yaml"
+    cfg.write_text(cfg.read_text().replace('reason: "', f'reason: "{POISON} '), encoding="utf-8")
     assert planned_jobs(root) == ALL_JOBS
     trace = root / "trace"
     trace.mkdir()
@@ -138,6 +144,30 @@ def declared(built) -> dict[str, dict[str, list[str]]]:
 def clone(built, tmp_path) -> Path:
     """An independent copy of the built project (results and .snakemake metadata included)."""
     return clone_of(built, tmp_path / "clone")
+
+
+def test_config_text_reaches_the_reports_escaped(built):
+    """Every reason in the built copy's config starts with a <script> tag: no report carries it live, and the
+    reports that show the reasons carry it escaped (so the test sees the text arrive)."""
+    shown = []
+    for name in REPORTS:
+        html = (built / f"results/reports/{name}.html").read_text()
+        assert "<script>alert(" not in html and "<b>" not in html, name
+        shown += [name] if "&lt;script&gt;alert(" in html else []
+    assert {"beatup", "heald", "transplanter", "clearance"} <= set(shown), shown
+
+
+def test_a_corrupted_result_names_the_file_and_the_command_that_rebuilds_it(clone):
+    """A truncated result makes the next rule stop with one line naming the file and the rebuild command, which works."""
+    target = "results/stiffness/stiffness.nc"
+    (clone / target).write_bytes((clone / target).read_bytes()[:2000])
+    proc = snakemake(clone, "--cores", "1", "results/reports/stiffness.html", check=False)
+    assert proc.returncode != 0
+    lines = [line for line in (proc.stdout + proc.stderr).splitlines() if "cannot read" in line]
+    assert lines and target in lines[0] and f"snakemake --force {target}" in lines[0], proc.stderr[-3000:]
+    assert "HDF5-DIAG" not in proc.stdout + proc.stderr
+    snakemake(clone, "--cores", "1", "--force", target)
+    snakemake(clone, "--cores", "1", "results/reports/stiffness.html")
 
 
 def test_real_run_builds_every_output(built):

@@ -60,6 +60,8 @@ def execute(nb, folder: Path) -> None:
         cell.outputs = _outputs(captured, nbformat)
         if not result.success:
             error = result.error_in_exec or result.error_before_exec
+            if type(error).__name__ == "UnreadableResult":  # a corrupted input: its one line says how to rebuild it
+                raise CellError(str(error))
             head = "\n".join(cell.source.splitlines()[:5])
             raise CellError(f"cell {index} failed:\n{head}\n...\n{type(error).__name__}: {error}")
 

@@ -9,14 +9,12 @@ import pandas as pd
 import xarray as xr
 
 from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs
+from .validity import PENETRATION_LIMIT
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
 #: penetration exceeds the clearance itself (``answer`` states by how much).
 DEFENSIBLE, PAPER_MODEL = "slender", "decoded"
-#: A dry penetration deeper than this fraction of the radial clearance puts the Hertz law far outside its range:
-#: the parameter set is not physically consistent.
-PENETRATION_LIMIT = 1.0
 DRY_SCENES = ("dry_1", "dry_2", "dry_both")
 LUBRICATED_SCENES = ("lubricated_1", "lubricated_2", "lubricated_both")
 

@@ -11,6 +11,7 @@ import xarray as xr
 
 from ...engines.multibody.model import inverse_dynamics, start_angle
 from ...engines.multibody.simulate import integrate
+from . import validity
 from .adapter import TOLERANCE_SETS, integrator_kind, parameters, scene_effects
 
 JOINT_IDS = (1, 2)
@@ -98,6 +99,8 @@ def scene(cfg: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pi
         settle_cycles=numerics["settle_cycles"], record_cycles=numerics["record_cycles"],
         **({"hertz_stiffness": p.hertz_stiffness, "clearance": p.clearance} if joints else {}),
         **({"film_eccentricity_cap": 1.0 - p.e0 / p.clearance} if "lubrication" in effects else {}),
+        **(validity.attributes(ds.penetration.values, ds.eccentricity.values, p.clearance,
+                               1.0 - p.e0 / p.clearance if "lubrication" in effects else None) if joints else {"validity_warnings": ""}),
         **{f"integrator_{k}": v for k, v in integ.items()},
     )
     return ds

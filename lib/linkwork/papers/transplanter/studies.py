@@ -87,6 +87,11 @@ SUMMARY_ATTRS = {
 SNAPSHOT_ANGLES_DEG = (0.0, 90.0, 180.0, 270.0)
 
 
+#: Linear (small-deflection) beam theory: an elastic tip deflection beyond this fraction of the arm length
+#: (the longest member) makes the neglected geometric terms, of order (deflection / length)^2, exceed 1 % of the response.
+SMALL_DEFLECTION_LIMIT = 0.1
+
+
 def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
     """Tip path, tip deformation and member stresses over crank angle for the initial and our optimal
     diameters, quasi-static and dynamic; natural frequencies; a resonance warning; the linkage drawn
@@ -142,8 +147,12 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
         },
     )
     warn = fe["resonance_warning_ratio"]
+    deflection = float(np.hypot(tip[..., 0], tip[..., 1]).max() / cfg["geometry"]["arm_m"])
     ds.attrs.update(
         title="Kineto-elastodynamics of the transplanter",
+        validity_tip_deflection_over_arm=deflection, validity_deflection_limit=SMALL_DEFLECTION_LIMIT,
+        validity_warnings=(f"elastic tip deflection reaches {deflection:.3g} of the arm length (limit {SMALL_DEFLECTION_LIMIT:g}): "
+                           "outside small-deflection beam theory" if deflection > SMALL_DEFLECTION_LIMIT else ""),
         first_frequency_over_crank_speed=ratio,
         resonance_warning=(f"crank speed within a factor {warn:g} of the first natural frequency ({ratio:.2f})" if ratio < warn else "none"),
         element=fe["element"], elements_per_member=str(fe["elements_per_member"]),
