@@ -112,7 +112,7 @@ md(
 # why:
 #
 # * **parameter rounding**: within the tolerance plus the worst-case effect of rounding l4, l7, θ4 and θ7 to their
-#   printed 0.01 (a linear bound from central differences);
+#   printed last digit (`beatup.printed_rounding` in the config; a linear bound from central differences);
 # * **printed cell inconsistent**: the printed derivative disagrees with ours, whereas the paper's own *neighbouring*
 #   cells agree with ours. We take the central difference, at the 15° step, of the printed column the derivative comes
 #   from (θ for θ', θ' for θ''). We then set it beside the same difference of our values. Both agree within the
@@ -195,7 +195,7 @@ caption("Sley angle θ6, rate θ6' and acceleration θ6'' (per unit crank angle)
 # | (3) | … − 2l₁l₄cos(θ1 − θ4) = 2l₁l₃cos(θ1 − θ3) | … − 2l₁l₄cos(θ1 − θ4) − 2l₁l₃cos(θ1 − θ3) (line-break garble of the extraction or the print) |
 # | (4) | A₁ sin θ1 + B₁ cos θ1 = C₁ | A₁ sin **θ3** + B₁ cos **θ3** = C₁ (θ3 is the unknown; (5) solves for it) |
 # | (7) | numerator (l₄/l₃)θ1''cos(θ1−θ4) − (l₄/l₁)θ1''cos(θ3−θ4) + … | (l₄/l₃)**θ1'²**cos(θ1−θ4) − (l₄/l₁)**θ3'²**cos(θ3−θ4) + (θ1'−θ3')²cos(θ1−θ3) |
-# | text before (12) | "θ7 = 0" | θ7' = 0 (θ7 = 195.08°) |
+# | text before (12) | "θ7 = 0" | θ7' = 0 (θ7, the frame angle of DF, is constant and not zero) |
 # | (13) | … + (l₇/l₆)θ3'cos(θ3−θ7) − (l₇/l₃)θ3'cos(θ6−θ7) … | … + (l₇/l₆)**θ3'²**cos(θ3−θ7) − (l₇/l₃)**θ6'²**cos(θ6−θ7) … |
 # | Table 1 headers | θ3''(θ1''), θ6''(θ1'') | units of θ1'² |
 #

@@ -207,7 +207,8 @@ md(
 #   Q_E and Q_F by joint, not by number.
 # * **"M_P — mass of the rubber"** (масса резинки) is read as the heald frame (ремизка), the only heavy body on the output.
 # * **The loom type** is "Sulzer-СТБ" in the introduction and "Sulzer-СБТ" in the conclusions; STB is meant.
-# * **400 min⁻¹ = 41.89 s⁻¹**: 400 · 2π / 60 = 41.888, so the conversion is right.
+# * **The speed limit is printed in two units**, min⁻¹ and s⁻¹ (meaning rad/s); the two printed values agree through
+#   the factor 2π/60, so the conversion is right.
 
 # %% [markdown]
 # ## 6. Accuracy vs cost: frequency-grid resolution near a resonance

@@ -98,7 +98,7 @@ table(pd.DataFrame(rows, columns=["parameter", "value", "unit", "source"]))
 # %% [markdown]
 # ### Which assembly: arm side and four-bar branch
 #
-# The paper draws the mechanism but gives neither the assembly branch nor the side of BC on which the 161.17° is
+# The paper draws the mechanism but gives neither the assembly branch nor the side of BC on which the printed arm angle is
 # measured. Here are the four combinations, evaluated at the published optimum:
 
 # %%
