@@ -54,3 +54,26 @@ def test_a_result_with_unexplained_nan_or_any_inf_is_not_written(tmp_path):
     with pytest.raises(results.NonFiniteResult, match="variable k holds inf at 1 of 3 points"):
         results.write(ds, tmp_path / "other.nc")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]
+
+
+def test_ctrl_c_during_a_write_is_held_until_the_file_is_complete(tmp_path, monkeypatch):
+    """SIGINT arriving inside to_netcdf (where xarray's HDF5 lock can deadlock a KeyboardInterrupt) is delivered
+    only after the atomic rename: the file is whole, no temporary is left, and the interrupt still stops the job."""
+    import os
+    import signal
+
+    ds = _ds()
+    original = xr.Dataset.to_netcdf
+
+    def interrupted(self, *args, **kwargs):
+        os.kill(os.getpid(), signal.SIGINT)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        results.write(ds, tmp_path / "out.nc")
+    monkeypatch.undo()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]
+    with xr.open_dataset(tmp_path / "out.nc") as back:
+        assert back.k.values.tolist() == [0.0, 1.0, 2.0]
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

@@ -8,6 +8,7 @@ rerun with the same config and code produces byte-identical files.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
@@ -89,6 +90,30 @@ def check_finite(ds, name: str = "result") -> None:
                                   "which the study does not expect; not written (check the inputs of this job)")
 
 
+@contextlib.contextmanager
+def _uninterrupted():
+    """Hold Ctrl-C (SIGINT) until the block ends, then raise it.
+
+    A KeyboardInterrupt inside ``Dataset.to_netcdf`` can leave xarray's HDF5 lock held and the job hung in its
+    own cleanup (seen: Ctrl-C of a run while a job wrote its netCDF).  A write takes well under a second, so
+    the interrupt is held that long and then delivered; the write is complete or not begun.
+    """
+    import signal
+    import threading
+
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught: list[int] = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    if caught:
+        raise KeyboardInterrupt
+
+
 def write(ds, path: str | os.PathLike[str]) -> Path:
     """Write ``ds`` to netCDF atomically (a temporary file beside it, then rename), after checking units and
     that it is finite where it must be."""
@@ -97,12 +122,13 @@ def write(ds, path: str | os.PathLike[str]) -> Path:
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(target.name + ".tmp")
-    try:
-        ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
-        os.replace(tmp, target)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
+    with _uninterrupted():
+        try:
+            ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
+            os.replace(tmp, target)
+        finally:
+            if tmp.exists():
+                tmp.unlink()
     return target
 
 
