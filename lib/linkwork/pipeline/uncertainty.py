@@ -41,6 +41,14 @@ class Input:
         return " / ".join(map(str, self.choices)) if self.choices else f"{self.low:g}–{self.high:g}"
 
 
+#: Attributes of a per-quantity value: NaN for a quantity the paper gives too little to compute.
+NOT_REPRODUCIBLE = {"nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}
+
+
+#: Attributes of an input's range end: NaN for a discrete choice.
+NO_RANGE = {"nan_meaning": "a discrete choice has no numeric range"}
+
+
 def labelled_inputs(section: Mapping[str, Any], prefix: str = "") -> Iterator[Input]:
     """Every labelled entry of a section with a range (status assumed or inferred), depth first, in order."""
     for key, value in section.items():
@@ -146,7 +154,7 @@ def evaluated_dataset(rows: Sequence[Mapping[tuple[str, str], float]], inputs: S
     inputs_at = np.array([[_numeric(s.values.get(i.path, i.nominal), i) for i in inputs] for s in chosen]).reshape(len(chosen), len(inputs))
     return xr.Dataset(
         {
-            "value": (("sample", "quantity"), values, {"units": "unit of the published quantity", "long_name": "our value at the sample", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
+            "value": (("sample", "quantity"), values, {"units": "unit of the published quantity", "long_name": "our value at the sample", **NOT_REPRODUCIBLE}),
             "input_value": (("sample", "input"), inputs_at, {"units": "SI of the input", "long_name": "value of each uncertain input at the sample (a choice: its index)"}),
         },
         coords={
@@ -179,13 +187,13 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
         low, high = np.nanmin(values, axis=0), np.nanmax(values, axis=0)
     out = xr.Dataset(
         {
-            "nominal": ("quantity", nominal, {"units": "unit of the published quantity", "long_name": "our value at the nominal inputs", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
-            "low": ("quantity", low, {"units": "unit of the published quantity", "long_name": "smallest value over every sample", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
-            "high": ("quantity", high, {"units": "unit of the published quantity", "long_name": "largest value over every sample", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
-            "oat_low": (("input", "quantity"), oat_low, {"units": "unit of the published quantity", "long_name": "smallest value moving this input alone", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
-            "oat_high": (("input", "quantity"), oat_high, {"units": "unit of the published quantity", "long_name": "largest value moving this input alone", "nan_meaning": "the quantity is not reproducible (the paper lacks what it needs)"}),
-            "input_low": ("input", [i.low for i in inputs], {"units": "SI of the input", "long_name": "lower end of the input's range (NaN for a choice)", "nan_meaning": "a discrete choice has no numeric range"}),
-            "input_high": ("input", [i.high for i in inputs], {"units": "SI of the input", "long_name": "upper end of the input's range (NaN for a choice)", "nan_meaning": "a discrete choice has no numeric range"}),
+            "nominal": ("quantity", nominal, {"units": "unit of the published quantity", "long_name": "our value at the nominal inputs", **NOT_REPRODUCIBLE}),
+            "low": ("quantity", low, {"units": "unit of the published quantity", "long_name": "smallest value over every sample", **NOT_REPRODUCIBLE}),
+            "high": ("quantity", high, {"units": "unit of the published quantity", "long_name": "largest value over every sample", **NOT_REPRODUCIBLE}),
+            "oat_low": (("input", "quantity"), oat_low, {"units": "unit of the published quantity", "long_name": "smallest value moving this input alone", **NOT_REPRODUCIBLE}),
+            "oat_high": (("input", "quantity"), oat_high, {"units": "unit of the published quantity", "long_name": "largest value moving this input alone", **NOT_REPRODUCIBLE}),
+            "input_low": ("input", [i.low for i in inputs], {"units": "SI of the input", "long_name": "lower end of the input's range (NaN for a choice)", **NO_RANGE}),
+            "input_high": ("input", [i.high for i in inputs], {"units": "SI of the input", "long_name": "upper end of the input's range (NaN for a choice)", **NO_RANGE}),
             "input_nominal": ("input", np.array([str(i.nominal) for i in inputs], dtype=object), {"units": "SI of the input", "long_name": "nominal value"}),
             "input_range": ("input", np.array([i.describe() for i in inputs], dtype=object), {"units": "SI of the input", "long_name": "range or alternatives"}),
             "input_reason": ("input", np.array([i.reason for i in inputs], dtype=object), {"units": "1", "long_name": "why this range"}),

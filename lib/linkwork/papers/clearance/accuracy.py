@@ -16,6 +16,10 @@ from .adapter import integrator_kind, parameters, scene_effects
 from .studies import cycle
 
 
+#: Attributes of a per-setting variable: NaN where the setting is not run for the scene.
+NOT_RUN = {"nan_meaning": "the setting is not run for this scene"}
+
+
 def _setting(method: str, value: float, wp: Mapping[str, Any]) -> dict[str, Any]:
     if method == "rk4":
         return {"method": "rk4", "step_s": value}
@@ -80,9 +84,9 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     ds = xr.Dataset(
         {
             **summary_variables("clearance integrators", summary_settings, summary_errors, pipeline),
-            "error": (("scene", "setting"), error, {"units": "1", "long_name": "relative error of the RMS deviation of the rocker acceleration from the ideal (the claims' measure)", "nan_meaning": "the setting is not run for this scene"}),
-            "pointwise_error": (("scene", "setting"), pointwise, {"units": "1", "long_name": "max |rocker acceleration - reference| / max |reference|", "nan_meaning": "the setting is not run for this scene"}),
-            "steps": (("scene", "setting"), steps, {"units": "1", "long_name": "accepted steps", "nan_meaning": "the setting is not run for this scene"}),
+            "error": (("scene", "setting"), error, {"units": "1", "long_name": "relative error of the RMS deviation of the rocker acceleration from the ideal (the claims' measure)", **NOT_RUN}),
+            "pointwise_error": (("scene", "setting"), pointwise, {"units": "1", "long_name": "max |rocker acceleration - reference| / max |reference|", **NOT_RUN}),
+            "steps": (("scene", "setting"), steps, {"units": "1", "long_name": "accepted steps", **NOT_RUN}),
             "best_error": (("scene", "wp_method_name"), best_error, {"units": "1", "long_name": "smallest error of each integrator over its settings", "nan_meaning": "the integrator is not run for this scene"}),
             "best_setting": (("scene", "wp_method_name"), best_setting, {"units": "1", "long_name": "the setting with the smallest error"}),
             "pointwise_error_min": ("scene", np.nanmin(pointwise, axis=1), {"units": "1", "long_name": "smallest pointwise error over the settings"}),

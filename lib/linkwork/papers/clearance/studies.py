@@ -21,6 +21,14 @@ COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = ("rocker_acceleration", "crank_torque")
 
 
+#: Attributes of a per-joint variable: NaN where the scene gives the joint no clearance.
+NO_CLEARANCE = {"nan_meaning": "the joint has no clearance in this scene"}
+
+
+#: Attributes of an ideal-joint reaction: NaN in scenes with clearance joints.
+NOT_IDEAL = {"nan_meaning": "a scene with clearance joints has no ideal reaction"}
+
+
 def cycle(p) -> float:
     """Period of one crank revolution (s)."""
     return 2 * np.pi / p.crank_speed
@@ -75,13 +83,13 @@ def scene(cfg: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pi
             "crank_torque": (dims, series["torque"], {"units": "N m", "long_name": "crank driving torque"}),
             "energy": (dims, series["energy"], {"units": "J", "long_name": "mechanical energy (kinetic + gravity + contact)"}),
             "constraint_drift": (dims, series["drift"], {"units": "m", "long_name": "|Phi| of the ideal constraints"}),
-            "eccentricity": (jd, pj[:, 0], {"units": "m", "long_name": "journal eccentricity |e|", "nan_meaning": "the joint has no clearance in this scene"}),
-            "penetration": (jd, pj[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)", "nan_meaning": "the joint has no clearance in this scene"}),
-            "contact_force": (jd, pj[:, 3], {"units": "N", "long_name": "dry normal contact force", "nan_meaning": "the joint has no clearance in this scene"}),
-            "film_radial_force": (jd, pj[:, 4], {"units": "N", "long_name": "film force along e (on the journal)", "nan_meaning": "the joint has no clearance in this scene"}),
-            "film_tangential_force": (jd, pj[:, 5], {"units": "N", "long_name": "film force across e (on the journal)", "nan_meaning": "the joint has no clearance in this scene"}),
-            "ideal_joint_force_A": (dims, series["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A), ideal scene only", "nan_meaning": "a scene with clearance joints has no ideal reaction"}),
-            "ideal_joint_force_B": (dims, series["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B), ideal scene only", "nan_meaning": "a scene with clearance joints has no ideal reaction"}),
+            "eccentricity": (jd, pj[:, 0], {"units": "m", "long_name": "journal eccentricity |e|", **NO_CLEARANCE}),
+            "penetration": (jd, pj[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)", **NO_CLEARANCE}),
+            "contact_force": (jd, pj[:, 3], {"units": "N", "long_name": "dry normal contact force", **NO_CLEARANCE}),
+            "film_radial_force": (jd, pj[:, 4], {"units": "N", "long_name": "film force along e (on the journal)", **NO_CLEARANCE}),
+            "film_tangential_force": (jd, pj[:, 5], {"units": "N", "long_name": "film force across e (on the journal)", **NO_CLEARANCE}),
+            "ideal_joint_force_A": (dims, series["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A), ideal scene only", **NOT_IDEAL}),
+            "ideal_joint_force_B": (dims, series["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B), ideal scene only", **NOT_IDEAL}),
             "cycle_change": ("cycle_pair", change, {"units": "1", "long_name": "RMS change of the rocker acceleration from one cycle to the next / RMS of the last cycle"}),
         },
         coords={
