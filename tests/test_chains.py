@@ -14,6 +14,7 @@ from linkwork.engines.chains import (
     Network,
     Parallel,
     Series,
+    near_singular,
     resonances,
     series_parallel_mobility,
     solve_matrices,
@@ -128,6 +129,26 @@ def test_exactly_at_a_resonance():
     assert np.isnan(r.input_force[0]) and np.isfinite(r.input_force[1])
     damped = solve_network(model_b(P), np.array([vel[0]]), 1.0)  # c_O > 0: finite
     assert not damped.singular[0] and np.isfinite(damped.input_force[0])
+
+
+def test_near_singular_agrees_with_the_svd_condition_number():
+    """Second route: matrices built from chosen singular values; the Frobenius check flags every one whose
+    2-norm reciprocal condition is far below rcond and none far above it (the two differ by at most n)."""
+    rng = np.random.default_rng(7)
+    n, count, rcond = 7, 400, 1e-13
+
+    def unitary():
+        q, _ = np.linalg.qr(rng.normal(size=(n, n)) + 1j * rng.normal(size=(n, n)))
+        return q
+
+    exponents = rng.uniform(-18, -8, count)
+    a = np.array([unitary() @ np.diag(np.r_[1.0, rng.uniform(1e-3, 1, n - 2), 10.0**e]) @ unitary() for e in exponents])
+    s = np.linalg.svd(a, compute_uv=False)
+    svd_rcond = s[:, -1] / s[:, 0]
+    flagged = near_singular(a, rcond)
+    assert np.all(flagged[svd_rcond < rcond / (10 * n)])
+    assert not np.any(flagged[svd_rcond > 10 * n * rcond])
+    assert near_singular(np.zeros((1, n, n), dtype=complex), rcond).tolist() == [True]
 
 
 @pytest.mark.hard

@@ -176,6 +176,32 @@ def _batched_solve(a: ComplexArray, b: ComplexArray) -> tuple[ComplexArray, NDAr
         return x, flags
 
 
+def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
+    """True where a[k], row- and column-equilibrated (so that units do not matter), has a reciprocal
+    condition number below ``rcond``.  The condition number is the Frobenius one, |A|_F |A^-1|_F, which
+    lies between the 2-norm condition and n times it, at the price of one batched inverse instead of a
+    batched SVD (benchmarks/chains.py times the solve with and without this check).  An exactly singular
+    matrix, or one with a zero row or column, is flagged."""
+    mag = np.abs(a)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        row = mag.max(axis=2, keepdims=True)
+        col = (mag / row).max(axis=1, keepdims=True)
+        scaled = np.nan_to_num(a / row / col, nan=0.0, posinf=0.0, neginf=0.0)
+    bad = np.zeros(a.shape[0], dtype=bool)
+    try:
+        inverse = np.linalg.inv(scaled)
+    except np.linalg.LinAlgError:  # an exactly singular member: invert one by one
+        inverse = np.full_like(scaled, np.nan)
+        for k in range(a.shape[0]):
+            try:
+                inverse[k] = np.linalg.inv(scaled[k])
+            except np.linalg.LinAlgError:
+                bad[k] = True
+    norm = np.sqrt(np.sum(np.abs(scaled) ** 2, axis=(1, 2)) * np.sum(np.abs(inverse) ** 2, axis=(1, 2)))
+    with np.errstate(invalid="ignore"):
+        return bad | ~(norm * rcond < 1.0)
+
+
 def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0, singular_rcond: float = 1.0e-13) -> ChainResponse:
     """Route 1: node velocities and constraint forces at every w (rad/s, > 0).
 
@@ -218,14 +244,8 @@ def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1
     else:
         rhs[:, d] = amp
     x, flags = _batched_solve(a, rhs)
-    # flag near-singular solves too (an undamped resonance hit to rounding)
-    cond_bad = np.zeros(w.size, dtype=bool)
-    if singular_rcond > 0:  # on the row- and column-equilibrated matrix, so that units do not matter
-        scaled = a / np.abs(a).max(axis=2, keepdims=True)
-        scaled = scaled / np.abs(scaled).max(axis=1, keepdims=True)
-        s = np.linalg.svd(scaled, compute_uv=False)
-        cond_bad = s[:, -1] <= singular_rcond * s[:, 0]
-    flags = flags | cond_bad
+    if singular_rcond > 0:  # flag near-singular solves too (an undamped resonance hit to rounding)
+        flags = flags | near_singular(a, singular_rcond)
     x = np.where(flags[:, None], np.nan + 0j, x)
     v = x[:, :n]
     forces = {}

@@ -46,17 +46,19 @@ MEASURES = {
 }
 
 
-def claims(cfg: Mapping[str, Any]) -> xr.Dataset:
-    """The numbers the paper's claims are judged on, per chain model, at the config's parameters."""
+def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
+    """The numbers the paper's claims are judged on, per chain model, at the config's parameters; with
+    ``refinement`` also how much halving the frequency grid changes the growth measure (its error bar)."""
     p, amp, w = parameters(cfg), amplitude(cfg), omega_grid(cfg["speeds"])
     models = list(cfg["models"])
     measures = {m: claim_measures(m, p, w, amp) for m in models}
     data = {k: ("model", [measures[m][k] for m in models], {"units": unit, "long_name": text}) for k, (unit, text) in MEASURES.items()}
     data["first_resonance_rpm"] = ("model", [measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models],
                                    {"units": "min-1", "long_name": "lowest undamped resonance as a shaft speed"})
-    fine = np.linspace(w[0], w[-1], 2 * w.size - 1)  # every interval halved: how much the grid decides the growth measure
-    data["growth_fraction_refinement"] = ("model", [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
-                                          {"units": "1", "long_name": "change of the growth fraction when the frequency grid is halved"})
+    if refinement:
+        fine = np.linspace(w[0], w[-1], 2 * w.size - 1)  # every interval halved: how much the grid decides the growth measure
+        data["growth_fraction_refinement"] = ("model", [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
+                                              {"units": "1", "long_name": "change of the growth fraction when the frequency grid is halved"})
     return xr.Dataset(data, coords={"model": ("model", np.array(models, dtype=object), {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"})})
 
 
