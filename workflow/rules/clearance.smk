@@ -58,6 +58,7 @@ rule clearance_claims:
 
 
 rule clearance_work_precision:
+    priority: LONG_JOB_PRIORITY
     input:
         code=code("linkwork.papers.clearance.accuracy"),
     output:

@@ -11,6 +11,9 @@ ROOT = Path(workflow.basedir)
 LIB = ROOT / "lib"
 STUDY = "../scripts/study.py"
 RENDERER = "workflow/scripts/render_report.py"
+# The longest jobs (work-precision, optimisation, uncertainty batches) start first: left to the end, one of
+# them runs alone on a core while its report waits (job times: .snakemake/metadata, benchmarks/pipeline.py).
+LONG_JOB_PRIORITY = 10
 # The interpreter Snakemake runs on: shell rules use it, so an unactivated .venv/bin/snakemake works.
 PYTHON = sys.executable
 

@@ -10,6 +10,7 @@ TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLA
 
 
 rule transplanter_optim:
+    priority: LONG_JOB_PRIORITY
     input:
         code=code("linkwork.papers.transplanter.studies"),
     output:
@@ -50,6 +51,7 @@ rule transplanter_at_published:
 
 
 rule transplanter_accuracy:
+    priority: LONG_JOB_PRIORITY
     input:
         code=code("linkwork.papers.transplanter.accuracy"),
     output:

@@ -48,7 +48,8 @@ def uncertainty_inputs(wildcards):
     code_ = code(f"linkwork.papers.{wildcards.paper}.uncertainty")
     if wildcards.paper == "clearance":  # the variant's ideal run; a sample reruns only the scenes its input enters
         return {"ideal": f"results/clearance/{CLEARANCE_UNCERTAINTY[int(wildcards.index)]['variant']}/ideal.nc", "code": code_}
-    return {"published": f"config/published/{wildcards.paper}.yaml", "code": code_}
+    extra = {"optim": "results/transplanter/optim.nc"} if wildcards.paper == "transplanter" else {}  # its samples start from our optimum
+    return {"published": f"config/published/{wildcards.paper}.yaml", **extra, "code": code_}
 
 
 def uncertainty_gather_inputs(wildcards):
@@ -60,6 +61,7 @@ def uncertainty_gather_inputs(wildcards):
 
 
 rule uncertainty_batch:
+    priority: LONG_JOB_PRIORITY
     input:
         unpack(uncertainty_inputs),
     output:
