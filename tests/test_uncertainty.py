@@ -61,11 +61,14 @@ def small_clearance():
 def test_a_clearance_batch_moves_only_the_scenes_that_read_its_input():
     from linkwork.papers.clearance.uncertainty import batch_jobs
 
-    jobs = {(j["sample"], j["variant"]): j["scenes"] for j in batch_jobs(SECTION)}
+    found = batch_jobs(SECTION)
+    jobs = {(s["label"], j["variant"]): j["scenes"] for j in found for s in j["samples"]}
     assert len(jobs) == 8 * len(SECTION["variants"])  # four inputs at two ends; the nominal sample reruns nothing
     for variant in SECTION["variants"]:
         assert jobs[("assumed.e0_m.value low", variant)] == ["lubricated_1", "lubricated_2", "lubricated_both"]
         assert jobs[("assumed.v1_m_s.value high", variant)] == ["dry_1", "dry_2", "dry_both"]
+    # one batch per variant and set of moved scenes: joint length and e0 share the lubricated one, v0 and v1 the dry one
+    assert [(j["variant"], len(j["samples"])) for j in found] == [(v, 4) for v in SECTION["variants"] for _ in range(2)]
 
 
 def test_two_stage_claims_equal_claims_judged_on_rerun_scenes(small_clearance):
@@ -79,17 +82,18 @@ def test_two_stage_claims_equal_claims_judged_on_rerun_scenes(small_clearance):
     nominal_runs = [scene(cfg, "decoded", n) for n in names]
     nominal = claims(cfg, nominal_runs, [])
     label = "assumed.e0_m.value high"
-    job = next(j for j in uncertainty.batch_jobs(cfg) if j["sample"] == label)
+    job = next(j for j in uncertainty.batch_jobs(cfg) if label in [s["label"] for s in j["samples"]])
+    values = next(s["values"] for s in job["samples"] if s["label"] == label)
     keys = sorted({k for s in job["scenes"] for k in scene_keys(cfg, "decoded", s)}) + ["numerics.record_cycles"]
     narrow = pick(cfg, keys)  # the batch's config as the rule passes it: only the moved scenes' keys
-    part = uncertainty.batch(narrow, job["sample"], job["values"], job["variant"], nominal_runs[0])
-    moved = part.rms_deviation.isel(sample=0, variant=0)
+    part = uncertainty.batch(narrow, job["samples"], job["variant"], nominal_runs[0])
+    moved = part.rms_deviation.sel(sample=label).isel(variant=0)
     assert np.isfinite(moved.sel(scene=["lubricated_1", "lubricated_2", "lubricated_both"])).all()
     assert np.isnan(moved.sel(scene=["dry_1", "dry_2", "dry_both"])).all()  # e0 does not enter a dry scene
     gathered = uncertainty.gather(cfg, [part], nominal, PUBLISHED)
 
     # the direct route: every scene at the moved value, the claims judged by the claims study itself
-    at = apply(cfg, job["values"])
+    at = apply(cfg, values)
     direct = claims(at, [scene(at, "decoded", n) for n in names], [])
     for claim in direct.claim.values:
         ours = float(gathered.value.sel(sample=label, quantity=f"decoded|{claim}"))

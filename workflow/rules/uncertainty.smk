@@ -25,7 +25,7 @@ def uncertainty_cfg(paper, index):
 def uncertainty_args(paper, index):
     if paper == "clearance":  # the sample's moved values travel as arguments: a range edit reruns its batches
         job = CLEARANCE_UNCERTAINTY[index]
-        return {"sample": job["sample"], "values": job["values"], "variant": job["variant"]}
+        return {"samples": job["samples"], "variant": job["variant"]}
     return {"index": index}
 
 

@@ -1,10 +1,10 @@
 """Input uncertainty of the clearance paper: the assumed joint length, friction thresholds and film cap.
 
-Each input is moved alone to both ends of its range.  A batch is one sample in one parameter variant; it
-reruns only the scenes whose model reads a moved input (the pipeline's tolerance) and keeps their
-deviation from the ideal curve (RMS and peak per recorded cycle).  Its config holds only those scenes'
-keys and the moved values come as arguments, so an edit reruns only the batches whose scenes read the
-edited key.  The gather step judges the claims for every sample, taking the nominal runs' deviations for
+Each input is moved alone to both ends of its range.  A batch is one parameter variant's samples that move
+the same scenes (the dry ones or the lubricated ones); it reruns only those scenes (the pipeline's tolerance)
+and keeps their deviation from the ideal curve (RMS and peak per recorded cycle).  Its config holds only
+those scenes' keys and the samples' moved values come as arguments, so an edit reruns only the batches whose
+scenes read the edited key; samples that move the same scenes share one process (and its compiled scenes).  The gather step judges the claims for every sample, taking the nominal runs' deviations for
 every other scene, so an edit of a claim's threshold reruns no scene.  The joint length and the film cap e0 enter the lubricated scenes, the friction thresholds v0 and v1 the
 dry ones.
 """
@@ -30,39 +30,41 @@ def _design(cfg: Mapping[str, Any]):
 
 
 def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
-    """The batches of the whole clearance section ``cfg``: one per sample (but the nominal one) and parameter
-    variant, with the sample's label and moved values and the compared scenes whose model reads a moved
-    input.  A batch's config holds only those scenes' keys."""
+    """The batches of the whole clearance section ``cfg``: per parameter variant, the samples (but the nominal
+    one) grouped by the compared scenes whose model reads a moved input; each with its samples' labels and
+    moved values and those scenes.  A batch's config holds only those scenes' keys."""
     from .adapter import model_keys
     from .studies import COMPARED
 
-    jobs = []
-    for sample in _design(cfg)[1:]:
-        moved = [path.removesuffix(".value") for path in sample.values]
-        for variant in cfg["variants"]:
-            scenes = [name for name in COMPARED if any(m in model_keys(cfg, variant, name) for m in moved)]
-            jobs.append({"sample": sample.label, "values": dict(sample.values), "variant": variant, "scenes": scenes})
-    return jobs
+    groups: dict[tuple[str, tuple[str, ...]], list[dict[str, Any]]] = {}
+    for variant in cfg["variants"]:
+        for sample in _design(cfg)[1:]:
+            moved = [path.removesuffix(".value") for path in sample.values]
+            scenes = tuple(name for name in COMPARED if any(m in model_keys(cfg, variant, name) for m in moved))
+            groups.setdefault((variant, scenes), []).append({"label": sample.label, "values": dict(sample.values)})
+    return [{"variant": variant, "scenes": list(scenes), "samples": members} for (variant, scenes), members in groups.items()]
 
 
-def batch(cfg: Mapping[str, Any], sample: str, values: Mapping[str, Any], variant: str, ideal: Any):
-    """Rule study: one sample (its label and moved values) in one variant: the deviations from the ideal run
-    of the scenes it moves (``cfg['scenes']`` holds exactly those; the gather step takes the nominal
-    deviations of the others)."""
+def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, ideal: Any):
+    """Rule study: the samples (each a label and its moved values) of one variant that move the same scenes:
+    the deviations from the ideal run of those scenes (``cfg['scenes']`` holds exactly them; the gather step
+    takes the nominal deviations of the others)."""
     import xarray as xr
 
     from .studies import COMPARED, QUANTITIES, deviation_measures, scene
 
     cycles = cfg["numerics"]["record_cycles"]
-    local = apply(cfg, values)
-    rms = np.full((1, 1, len(QUANTITIES), len(COMPARED), cycles), np.nan)
+    rms = np.full((len(samples), 1, len(QUANTITIES), len(COMPARED), cycles), np.nan)
     peak = np.full_like(rms, np.nan)
-    for k, name in enumerate(COMPARED):
-        if name in cfg.get("scenes", {}):
-            run = scene(local, variant, name, "pipeline")
-            for q, quantity in enumerate(QUANTITIES):
-                m = deviation_measures(run, ideal, quantity, cycles)
-                rms[0, 0, q, k], peak[0, 0, q, k] = m["rms"], m["peak"]
+    for i, sample in enumerate(samples):
+        local = apply(cfg, sample["values"])
+        for k, name in enumerate(COMPARED):
+            if name in cfg.get("scenes", {}):
+                run = scene(local, variant, name, "pipeline")
+                for q, quantity in enumerate(QUANTITIES):
+                    m = deviation_measures(run, ideal, quantity, cycles)
+                    rms[i, 0, q, k], peak[i, 0, q, k] = m["rms"], m["peak"]
+    labels = [sample["label"] for sample in samples]
     dims = ("sample", "variant", "quantity", "scene", "cycle")
     return xr.Dataset(
         {
@@ -70,13 +72,13 @@ def batch(cfg: Mapping[str, Any], sample: str, values: Mapping[str, Any], varian
             "peak_deviation": (dims, peak, {"units": "SI of the quantity", "long_name": "peak |scene - ideal| over a cycle", "nan_meaning": "the sample does not move this scene"}),
         },
         coords={
-            "sample": ("sample", np.array([sample], dtype=object), {"units": "1", "long_name": "sample"}),
+            "sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "sample"}),
             "variant": ("variant", np.array([variant], dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
             "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
             "cycle": ("cycle", np.arange(1, cycles + 1), {"units": "1", "long_name": "recorded cycle"}),
         },
-        attrs={"title": f"clearance input uncertainty: {sample}, variant {variant}, deviations of the moved scenes"},
+        attrs={"title": f"clearance input uncertainty: variant {variant}, {len(labels)} samples, deviations of the moved scenes"},
     )
 
 
@@ -90,7 +92,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
 
     ratio = cfg["claims"]["close_to_ideal_ratio"]
     nominal = claims.sel(tolerance_set="pipeline")
-    moved = {(str(b.sample.values[0]), str(b.variant.values[0])): b.isel(sample=0, variant=0) for b in batches}
+    moved = {(str(label), str(b.variant.values[0])): b.isel(sample=i, variant=0) for b in batches for i, label in enumerate(b.sample.values)}
     variants = [str(v) for v in nominal.variant.values]
     ins = inputs(cfg)
     design = _design(cfg)
