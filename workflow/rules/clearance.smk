@@ -18,6 +18,7 @@ wildcard_constraints:
 
 
 rule clearance_scene:
+    priority: CHAIN_HEAD_PRIORITY
     input:
         code=code("linkwork.papers.clearance.studies"),
     output:
@@ -31,6 +32,7 @@ rule clearance_scene:
 
 
 rule clearance_scene_tight:
+    priority: CHAIN_HEAD_PRIORITY
     input:
         code=code("linkwork.papers.clearance.studies"),
     output:

@@ -14,6 +14,8 @@ RENDERER = "workflow/scripts/render_report.py"
 # The longest jobs (work-precision, optimisation, uncertainty batches) start first: left to the end, one of
 # them runs alone on a core while its report waits (job times: .snakemake/metadata, benchmarks/pipeline.py).
 LONG_JOB_PRIORITY = 10
+# Then the clearance scenes: they feed the longest report, which should not be the last job left.
+CHAIN_HEAD_PRIORITY = 5
 # The interpreter Snakemake runs on: shell rules use it, so an unactivated .venv/bin/snakemake works.
 PYTHON = sys.executable
 
