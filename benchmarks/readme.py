@@ -62,7 +62,7 @@ def pipeline(f: dict) -> list[str]:
                  "all but those showing run timings" + (": met" if set(html_differ) <= TIMED_REPORTS else ": **missed**")))
     if "baseline" in f:
         b = f["baseline"]
-        rows.insert(1, (f"the same, code of revision `{b['revision']}` (before the narrow params and one room per paper)",
+        rows.insert(1, (f"the same, code of revision `{b['revision']}` (the baseline the benchmark was given)",
                         f"{_s(b['full_warm_s'])} (1 run); ours takes {f['full_warm_s'] / b['full_warm_s']:.2f} of it", ""))
     out = [f"`python benchmarks/pipeline.py` on {_machine(f['machine'])}. Method: {f['method']}", "",
            "| what | median | target |", "|---|---|---|"]
