@@ -6,7 +6,7 @@ VENV   ?= .venv
 BIN    := $(abspath $(VENV))/bin
 STAMP  := $(VENV)/.installed
 
-.PHONY: setup reproduce test browser bench readme clean
+.PHONY: setup reproduce test browser bench readme crosscheck clean
 
 setup: $(STAMP)
 
@@ -27,6 +27,12 @@ browser:
 	@command -v chromium >/dev/null || command -v chromium-browser >/dev/null || \
 	  { command -v apt-get >/dev/null && (apt-get update -qq && apt-get install -y -qq chromium >/dev/null) ; } || \
 	  { echo "make test needs Chromium for the report test: install Debian's chromium (apt-get install chromium)"; exit 1; }
+
+# Exudyn beside linkwork: the optional extra (also in the test extra), then the reproduction with the cross-check
+# in the clearance report (results/clearance/crosscheck.nc).  A later bare `snakemake` renders the report without it.
+crosscheck: $(STAMP)
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[crosscheck]'
+	PATH="$(BIN):$$PATH" snakemake --config crosscheck=True
 
 readme: $(STAMP)
 	$(BIN)/snakemake results/readme_findings.md

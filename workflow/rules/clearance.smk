@@ -1,4 +1,5 @@
 # Paper "clearance": four-bar with clearance joints and lubrication (multibody engine, scenes).
+import importlib.util
 from linkwork.papers.clearance import adapter as clearance_adapter
 
 CLEARANCE = config["clearance"]
@@ -86,5 +87,22 @@ rule clearance_compare:
     params:
         study="linkwork.papers.clearance.findings:compare",
         cfg={},
+    script:
+        STUDY
+
+
+# Exudyn beside linkwork (the optional extra `crosscheck`): only with `crosscheck: true` (`make crosscheck`).
+if config["crosscheck"] and not importlib.util.find_spec("exudyn"):
+    sys.exit("linkwork: crosscheck: true needs Exudyn, the optional extra: pip install -c constraints.txt -e '.[crosscheck]' (or make crosscheck)")
+
+
+rule clearance_crosscheck:
+    input:
+        code=code("linkwork.papers.clearance.crosscheck"),
+    output:
+        "results/clearance/crosscheck.nc",
+    params:
+        study="linkwork.papers.clearance.crosscheck:ideal",
+        cfg=section("clearance", "ground_m", "crank_speed_rad_s", "bodies", "variants", "scenes.ideal", "crosscheck"),
     script:
         STUDY

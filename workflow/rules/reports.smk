@@ -24,6 +24,7 @@ REPORT_INPUTS = {
         "clearance", result="results/clearance/claims.nc", accuracy="results/clearance/accuracy.nc",
         timings="results/clearance/accuracy_timings.json",
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
+        **({"crosscheck": "results/clearance/crosscheck.nc"} if config["crosscheck"] else {}),
     ),
     "accuracy": {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json"},
     "sweeps": {"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"},
