@@ -130,6 +130,18 @@ def caption(text: str) -> None:
     md(f"*Figure: {esc(text)}*")
 
 
+def show_log_log(ax, xlabel: str, ylabel: str, text: str) -> None:
+    """Label a log-log panel, grid it, show its legend and the figure, then its caption."""
+    import matplotlib.pyplot as plt
+
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    plt.show()
+    caption(text)
+
+
 def verdict_figure(rows: pd.DataFrame, title: str) -> None:
     """Each published number's acceptance band (grey, |ours - published| <= tolerance) against our nominal value (dot),
     our numerical error bar (black whisker) and our range over the assumed inputs (blue bar), all in units of the

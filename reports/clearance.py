@@ -37,7 +37,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, table
+from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
 files = inputs()
 claims = load(files["result"])
@@ -281,37 +281,85 @@ md(
 #
 # The same ideal four-bar (bodies, joints, gravity, constant-speed driver, initial state at the dead point) integrated
 # forward in time by Exudyn, a C++ multibody engine, against our inverse dynamics at the same instants. It runs with
-# the optional extra (`make crosscheck`); the dry and lubricated scenes are not yet modelled there.
+# the optional extra (`make crosscheck`); the dry scenes follow below, the lubricated ones are not modelled there.
 
 # %%
-if "crosscheck" in files:
-    xc = load(files["crosscheck"])
+if "crosscheck_ideal" in files:
+    xc = load(files["crosscheck_ideal"])
     fig, ax = plt.subplots(figsize=(7, 4.2), constrained_layout=True)
     labels = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
     for v in xc.variant.values:
         for q, marker in zip(xc.quantity.values, ("o", "s")):
             ax.loglog(xc.step.values, xc.relative_difference.sel(variant=v, quantity=q).values, marker + "-", label=f"{v}: {labels[str(q)]}")
     ax.axhline(xc.attrs["agreement"], color="k", ls=":", lw=1, label="agreement bound (our choice)")
-    ax.set_xlabel("Exudyn's time step (s)")
-    ax.set_ylabel("max |Exudyn − linkwork| / max |linkwork|")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=8)
-    plt.show()
-    caption(f"Ideal scene, {xc.attrs['cycles']} crank turns from the dead point: largest difference between Exudyn ({xc.attrs['engine']}) "
-            "and linkwork's inverse dynamics, relative to linkwork's largest value, against Exudyn's step. The crank torque is "
-            "linkwork's (minus the driver's multiplier); Exudyn's driver force is taken with the opposite sign, its convention.")
-    orders = xc.observed_order.values
-    agree = bool(xc.agree.values.all())
+    show_log_log(ax, "Exudyn's time step (s)", "max |Exudyn − linkwork| / max |linkwork|",
+                 f"Ideal scene, {xc.attrs['cycles']} crank turns from the dead point: largest difference between Exudyn ({xc.attrs['engine']}) "
+                 "and linkwork's inverse dynamics, relative to linkwork's largest value, against Exudyn's step. The crank torque is "
+                 "linkwork's (minus the driver's multiplier); Exudyn's driver force is taken with the opposite sign, its convention.")
     md(
         f"At the finest step ({xc.step.values[-1]:.0e} s) the largest relative difference is "
-        f"{float(xc.relative_difference.isel(step=-1).max()):.1e}; it falls with the step at an observed order of "
-        f"{orders.min():.2f}–{orders.max():.2f}, the order of Exudyn's integrator, so what remains is Exudyn's discretisation error, "
+        f"{float(xc.finest_difference):.1e}; it falls with the step at an observed order of "
+        f"{float(xc.order_low):.2f}–{float(xc.order_high):.2f}, the order of Exudyn's integrator, so what remains is Exudyn's discretisation error, "
         "not a difference of the models. "
-        + ("**The two engines agree** on the ideal scene for every variant and quantity." if agree else
+        + ("**The two engines agree** on the ideal scene for every variant and quantity." if bool(xc.all_agree) else
            "**The two engines do not agree** on every variant and quantity: see the figure.")
     )
 else:
     md("This render ran without the cross-check (the default reproduction does not need Exudyn): run `make crosscheck` to add it.")
+
+# %% [markdown]
+# ### The dry scenes in both engines
+#
+# In Exudyn each dry clearance joint is a force element whose user function applies the same contact law as ours
+# (Hertz stiffness, Lankarani–Nikravesh damping on the latched impact velocity, Ambrosio's friction with its moment).
+# The ideal joints and the driver are exact constraints there, while ours are Baumgarte-stabilised as in the paper.
+# Both start from the same state and settle for the same cycles; the response does not repeat, so each recorded
+# cycle gives one value of the claims' measure and the engines are compared by the mean over the cycles. The
+# margin of a comparison is our change from the pipeline to the tight tolerance, plus Exudyn's change between its
+# two steps, plus twice the standard error of the difference of the means.
+
+# %%
+if "crosscheck_dry" in files:
+    dry_xc = {(d.attrs["variant"], d.attrs["scene"]): d for d in (load(f) for f in files["crosscheck_dry"])}
+    names = {"rocker_acceleration": "rocker acceleration (rad/s²)", "crank_torque": "crank torque (N·m)"}
+    rows = []
+    for (v, sc), d in dry_xc.items():
+        for q in d.quantity.values:
+            m, se = d["mean"].sel(quantity=q).values, d.standard_error.sel(quantity=q).values
+            rows.append((v, sc, names[str(q)], *(f"{a:.4g} ± {b:.2g}" for a, b in zip(m, se)), f"{float(d.relative_difference.sel(quantity=q)):+.1%}",
+                         f"{float(d.margin.sel(quantity=q)):.3g}", "agree" if bool(d.agree.sel(quantity=q)) else "differ"))
+    settings = list(next(iter(dry_xc.values())).setting.values)
+    table(pd.DataFrame(rows, columns=["variant", "scene", "RMS deviation from ideal of", *settings, "Exudyn − linkwork (of the means)", "margin", "verdict"]), {})
+    caption_cycles = next(iter(dry_xc.values())).attrs
+    md(f"*Table: the claims' measure, mean ± standard error over {caption_cycles['record_cycles']} recorded cycles after "
+       f"{caption_cycles['settle_cycles']} settle cycles, per engine and setting.*")
+    fig, axes = plt.subplots(1, 2, figsize=(13, 4.5), constrained_layout=True)
+    keys = list(dry_xc)
+    for ax, q in zip(axes, ("rocker_acceleration", "crank_torque")):
+        for i, key in enumerate(keys):
+            d = dry_xc[key]
+            for k, (setting, colour) in enumerate(zip(d.setting.values, ("C0", "C1", "C2", "C3"))):
+                vals = d.cycle_rms_deviation.sel(quantity=q).values[k]
+                ax.plot(np.full(vals.size, i + (k - 1.5) * 0.12), vals, "o", ms=3, color=colour, label=setting if i == 0 else None)
+        ax.set_xticks(range(len(keys)), [f"{v}\n{sc}" for v, sc in keys], fontsize=8)
+        ax.set_ylabel(f"RMS deviation from ideal per cycle, {names[q]}")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    plt.show()
+    caption("Each recorded cycle's RMS deviation from the ideal curve, per scene and engine setting (left: rocker acceleration; "
+            "right: crank torque); points of one scene are spread sideways by setting.")
+    summ = load(files["crosscheck_summary"])
+    md(f"Neither engine is converged on these measures: Exudyn's mean changes by up to {float(summ.exudyn_change):.0%} between its two steps, "
+       f"ours by up to {float(summ.linkwork_change):.0%} between the pipeline and the tight tolerance; both changes are in the margin.")
+    held = [f"{v}, {label}: the claimed order holds in linkwork's means: {'yes' if bool(summ.order_holds.sel(variant=v, quantity=q, engine='linkwork')) else 'no'}; "
+            f"in Exudyn's: {'yes' if bool(summ.order_holds.sel(variant=v, quantity=q, engine='Exudyn')) else 'no'}"
+            for v in summ.variant.values for q, label in (("rocker_acceleration", "acceleration"), ("crank_torque", "torque"))]
+    md(("**The engines agree on every dry scene within the numerical margin.** " if bool(summ.all_agree) else
+        "**The engines differ beyond the numerical margin on some dry scenes** (table), so the dry response is not yet "
+        "engine-independent at these settings: candidates are the constraint treatment (Baumgarte against exact), the "
+        "latching of the impact velocity (after our adaptive steps against before Exudyn's fixed ones) and the sensitivity "
+        "of the impact sequence, which can settle on different repeating patterns.")
+       + " Claims on these means (the mean over the cycles, not the every-cycle test of the verdicts above):\n\n" + "\n".join(f"* {h}" for h in held))
 
 # %% [markdown]
 # ## Provenance

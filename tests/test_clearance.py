@@ -190,3 +190,14 @@ def test_crank_speed_times_hundred_is_flagged_outside_hertz():
     assert "outside Hertz contact" in ds.attrs["validity_warnings"]
     nominal = scene_dataset({**SECTION, "numerics": section["numerics"]}, "slender", "lubricated_1")
     assert nominal.attrs["validity_warnings"] == "" and nominal.attrs["validity_beyond_film_cap_fraction"] == 0.0
+
+
+@pytest.mark.parametrize("method", ["rk45", "dop853", "lsoda"])
+def test_scipys_integrators_on_the_compiled_right_hand_side_agree_with_dormand_prince(method):
+    """Second route for the scipy path added for the side-by-side study: on the ideal linkage, forward
+    integration by each scipy integrator around the compiled right-hand side equals inverse dynamics."""
+    integ = {"method": method, "rtol": 1e-10, "atol": 1e-13, "first_step_s": 1e-6, "max_step_s": 1e-3}
+    t, _, diags, _ = run(SLENDER, (), ("gravity",), cycles=0.5, integ=integ)
+    ideal = inverse_dynamics(SLENDER, t, gravity=True)
+    scale = np.abs(ideal["rocker_acceleration"]).max()
+    assert np.abs(diags[:, 0] - ideal["rocker_acceleration"]).max() < 1e-5 * scale

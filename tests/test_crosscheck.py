@@ -9,7 +9,7 @@ from conftest import load_yaml
 from linkwork.engines.multibody.exudyn_route import ideal_run
 from linkwork.engines.multibody.model import inverse_dynamics
 from linkwork.papers.clearance.adapter import parameters
-from linkwork.papers.clearance.crosscheck import ideal, observed_orders, relative_difference
+from linkwork.papers.clearance.crosscheck import dry, ideal, observed_orders, relative_difference
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
 
@@ -51,3 +51,52 @@ def test_the_study_records_agreement_and_the_observed_order():
     assert bool(ds.agree.all())
     assert np.all(np.abs(ds.observed_order.values - 2.0) < 0.3)
     assert "Exudyn" in ds.attrs["engine"]
+
+
+def test_exudyns_dry_contact_force_is_linkworks_law():
+    """Second route for the contact law: the Exudyn route's Python force against linkwork's compiled kernels
+    (Hertz with Lankarani-Nikravesh damping, Ambrosio's friction) on random joint states."""
+    from linkwork.engines.multibody.exudyn_route import contact_force
+    from linkwork.engines.multibody.kernels import friction_coefficient, hertz_damping_factor
+
+    p = parameters(SECTION, "slender", "dry_both")
+    rng = np.random.default_rng(11)
+    checked = 0
+    for _ in range(300):
+        angle = rng.uniform(0, 2 * np.pi)
+        e = p.clearance * rng.uniform(0.98, 1.02)  # about half of them in contact
+        u = [e * np.cos(angle), e * np.sin(angle), 0.0]
+        v = list(rng.normal(0, 0.05, 2)) + [0.0]
+        w_j, w_b = rng.normal(0, 5, 2)
+        latched = abs(rng.normal(0, 0.05))
+        f, ft = contact_force(p, latched, u, v, w_j, w_b)
+        n = np.array(u[:2]) / e
+        t = np.array([-n[1], n[0]])
+        if e <= p.clearance:
+            assert f == [0.0, 0.0, 0.0] and ft == 0.0
+            continue
+        delta_dot = float(np.dot(v[:2], n))
+        fn = p.hertz_stiffness * (e - p.clearance) ** 1.5 * hertz_damping_factor(0, p.restitution, delta_dot, max(latched, p.impact_velocity_floor))
+        v_t = float(np.dot(v[:2], t)) + w_j * p.journal_radius - w_b * p.bearing_radius
+        ft_ref = friction_coefficient(v_t, p.friction, p.v0, p.v1) * fn
+        on_journal = -np.array(f[:2])
+        np.testing.assert_allclose(on_journal, -fn * n + ft_ref * t, rtol=1e-12, atol=1e-9 * max(fn, 1.0))
+        assert abs(ft - ft_ref) <= 1e-12 * abs(ft_ref)
+        checked += 1
+    assert checked > 50  # enough states in contact
+
+
+def test_the_dry_study_compares_per_cycle_means_against_its_margin():
+    """A short dry run in both engines (one settle cycle, two recorded): shapes, the margin's definition, and
+    Exudyn's clearance joint acting as a joint (its deviation from ideal within a factor 2 of ours)."""
+    cfg = copy.deepcopy(SECTION)
+    cfg["numerics"].update(settle_cycles=1, points_per_cycle=360)
+    cfg["crosscheck"].update(record_cycles=2, dry_steps_s=[2e-5, 4e-5])
+    ds = dry(cfg, "slender", "dry_2")
+    assert ds.sizes == {"setting": 4, "quantity": 2, "cycle": 2}
+    assert list(ds.setting.values[2:]) == ["Exudyn step 4e-05 s", "Exudyn step 2e-05 s"]  # coarse to fine
+    assert np.all(ds.cycle_rms_deviation.values > 0)
+    mean = ds["mean"].values
+    np.testing.assert_allclose(ds.relative_difference.values, (mean[-1] - mean[0]) / mean[0])
+    assert np.array_equal(ds.agree.values, np.abs(mean[-1] - mean[0]) <= ds.margin.values)
+    assert np.all((mean[-1] / mean[0] > 0.5) & (mean[-1] / mean[0] < 2.0))

@@ -94,15 +94,73 @@ rule clearance_compare:
 # Exudyn beside linkwork (the optional extra `crosscheck`): only with `crosscheck: true` (`make crosscheck`).
 if config["crosscheck"] and not importlib.util.find_spec("exudyn"):
     sys.exit("linkwork: crosscheck: true needs Exudyn, the optional extra: pip install -c constraints.txt -e '.[crosscheck]' (or make crosscheck)")
+CROSSCHECK_DRY = CLEARANCE["crosscheck"]["dry_scenes"]
+for _scene in CROSSCHECK_DRY:
+    _spec = CLEARANCE["scenes"].get(_scene, {})
+    if not _spec.get("clearance_joints") or "lubrication" in _spec.get("effects", []):
+        sys.exit(f"linkwork: clearance.crosscheck.dry_scenes: {_scene!r} is not a dry clearance scene of clearance.scenes")
+CROSSCHECK_WP = {"crosscheck_wp": "results/clearance/crosscheck/work_precision.nc",
+                 "crosscheck_wp_timings": "results/clearance/crosscheck/work_precision_timings.json"}  # the accuracy report's
+CROSSCHECK_RESULTS = {
+    "crosscheck_ideal": "results/clearance/crosscheck/ideal.nc",
+    "crosscheck_summary": "results/clearance/crosscheck/dry_summary.nc",
+    "crosscheck_dry": expand("results/clearance/crosscheck/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CROSSCHECK_DRY),
+}
 
 
 rule clearance_crosscheck:
     input:
         code=code("linkwork.papers.clearance.crosscheck"),
     output:
-        "results/clearance/crosscheck.nc",
+        "results/clearance/crosscheck/ideal.nc",
     params:
         study="linkwork.papers.clearance.crosscheck:ideal",
         cfg=section("clearance", "ground_m", "crank_speed_rad_s", "bodies", "variants", "scenes.ideal", "crosscheck"),
+    script:
+        STUDY
+
+
+rule clearance_crosscheck_dry:
+    input:
+        code=code("linkwork.papers.clearance.crosscheck"),
+    output:
+        "results/clearance/crosscheck/{variant}/{scene}.nc",
+    wildcard_constraints:
+        variant="|".join(CLEARANCE_VARIANTS),
+        scene="|".join(CROSSCHECK_DRY),
+    params:
+        study="linkwork.papers.clearance.crosscheck:dry",
+        cfg=lambda wildcards: section("clearance", *sorted(set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "pipeline"))
+                                                          | set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "tight"))),
+                                      "scenes.ideal", "crosscheck"),
+        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene},
+    script:
+        STUDY
+
+
+rule clearance_crosscheck_work_precision:
+    input:
+        code=code("linkwork.papers.clearance.crosscheck"),
+    output:
+        result="results/clearance/crosscheck/work_precision.nc",
+        timings="results/clearance/crosscheck/work_precision_timings.json",
+    params:
+        study="linkwork.papers.clearance.crosscheck:work_precision",
+        cfg=lambda wildcards: section("clearance", *sorted(set(clearance_adapter.scene_keys(CLEARANCE, CLEARANCE["work_precision"]["variant"],
+                                                                                              CLEARANCE["crosscheck"]["work_precision"]["scene"]))),
+                                      "scenes.ideal", "work_precision", "integrators", "crosscheck"),
+    script:
+        STUDY
+
+
+rule clearance_crosscheck_summary:
+    input:
+        dry=CROSSCHECK_RESULTS["crosscheck_dry"],
+        code=code("linkwork.papers.clearance.crosscheck"),
+    output:
+        "results/clearance/crosscheck/dry_summary.nc",
+    params:
+        study="linkwork.papers.clearance.crosscheck:dry_summary",
+        cfg=section("clearance", "variants"),
     script:
         STUDY

@@ -24,9 +24,9 @@ REPORT_INPUTS = {
         "clearance", result="results/clearance/claims.nc", accuracy="results/clearance/accuracy.nc",
         timings="results/clearance/accuracy_timings.json",
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
-        **({"crosscheck": "results/clearance/crosscheck.nc"} if config["crosscheck"] else {}),
+        **(CROSSCHECK_RESULTS if config["crosscheck"] else {}),
     ),
-    "accuracy": {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json"},
+    "accuracy": {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json", **(CROSSCHECK_WP if config["crosscheck"] else {})},
     "sweeps": {"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"},
     # the index links to the paper reports but reads only their comparison files: it renders beside them
     "index": {

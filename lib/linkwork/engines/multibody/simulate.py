@@ -1,8 +1,9 @@
 """Time integration of a compiled scene: explicit RK4 / Dormand-Prince (compiled, in the scene
-module) or an implicit scipy BDF / Radau stepped from Python around the compiled right-hand side.
+module) or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853) stepped from
+Python around the compiled right-hand side.
 
 An integrator setting is a mapping ``{method, step_s}`` (rk4) or ``{method, rtol, atol, first_step_s,
-max_step_s}`` (dopri5, bdf, radau); times in s.
+max_step_s}`` (the others); times in s.
 """
 
 from __future__ import annotations
@@ -14,7 +15,8 @@ import numpy as np
 
 from .model import FourBarParameters, compile_scene, initial_state, pack
 
-METHODS = ("rk4", "dopri5", "bdf", "radau")
+SCIPY = ("bdf", "radau", "lsoda", "rk45", "dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
+METHODS = ("rk4", "dopri5", *SCIPY)
 
 
 def integrate(p: FourBarParameters, joints, effects, t_out, integrator: Mapping[str, Any], y0=None):
@@ -37,22 +39,23 @@ def integrate(p: FourBarParameters, joints, effects, t_out, integrator: Mapping[
         ys, diags, steps, rejected = module.dopri5(
             y0, 0.0, t_out, params, latched, counts, integrator["rtol"], integrator["atol"], integrator["first_step_s"], integrator["max_step_s"]
         )
-    elif method in ("bdf", "radau"):
-        ys, diags, steps, rejected = _stiff(module, y0, t_out, params, latched, counts, integrator)
+    elif method in SCIPY:
+        ys, diags, steps, rejected = _scipy(module, y0, t_out, params, latched, counts, integrator)
     else:
         raise ValueError(f"unknown integrator {method!r}; known: {', '.join(METHODS)}")
     return ys, diags, int(steps), int(rejected), counts, phi0
 
 
-def _stiff(module, y0, t_out, params, latched, counts, integrator):
-    """scipy BDF or Radau stepped from Python around the compiled right-hand side and its compiled
-    finite-difference Jacobian, with the impact velocity latched at accepted steps and dense output at t_out."""
-    from scipy.integrate import BDF, Radau
+def _scipy(module, y0, t_out, params, latched, counts, integrator):
+    """A scipy integrator stepped from Python around the compiled right-hand side (the implicit ones with its
+    compiled finite-difference Jacobian), with the impact velocity latched at accepted steps and dense output
+    at t_out."""
+    from scipy import integrate as si
 
     diag = np.zeros(module.N_DIAG)
     scratch = np.zeros(module.N_DIAG)
     was = np.zeros(max(len(module.JOINTS), 1), dtype=bool)
-    solver_cls = BDF if integrator["method"] == "bdf" else Radau
+    solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "dop853": si.DOP853}[integrator["method"]]
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
     jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
     ys = np.empty((t_out.size, y0.size))
@@ -62,7 +65,8 @@ def _stiff(module, y0, t_out, params, latched, counts, integrator):
     ys[0], diags[0] = y0, diag
     i = 1
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
-        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"], jac=jac)
+        implicit = {"jac": jac} if integrator["method"] in ("bdf", "radau", "lsoda") else {}
+        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"], **implicit)
         steps = 0
         while solver.status == "running":
             solver.step()
