@@ -223,7 +223,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     elif medians[best] <= threshold:
         decision = f"use scipy's {compared[best]}: {medians[best]:.1f} times linkwork's time at equal error, within the {threshold:g}x rule"
     else:
-        decision = f"keep the hand-written integrator: the fastest scipy integrator, {compared[best]}, needs {medians[best]:.0f} times its time at equal error"
+        decision = f"keep the hand-written integrator: the fastest scipy integrator, {compared[best]}, needs {medians[best]:.1f} times its time at equal error"
     out = xr.Dataset(
         {
             "median_time_ratio": (("compared_method",), medians, {"units": "1", "long_name": "median over linkwork's error levels of the time ratio",
