@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.signal import freqresp
 
@@ -15,6 +15,7 @@ from linkwork.engines.chains import (
     Parallel,
     Series,
     near_singular,
+    network_system,
     resonances,
     series_parallel_mobility,
     solve_matrices,
@@ -88,17 +89,29 @@ def random_chains(draw):
     return Network(nodes, tuple(els), (), "n0", draw(st.sampled_from(["velocity", "force"])))
 
 
+HYPOTHESIS_FOUND = Network(("n0", "n1"), (Element("k0", "spring", "n0", "n1", 9999960.0), Element("c0", "damper", "n0", "n1", 1.0),
+                                          Element("m0", "mass", "n0", GROUND, 0.109375), Element("m1", "mass", "n1", GROUND, 0.1),
+                                          Element("anchor", "spring", "n1", GROUND, 1000.0)), (), "n0", "force")
+
+
 @settings(max_examples=40, deadline=None)
 @given(random_chains())
+@example(HYPOTHESIS_FOUND)
 def test_routes_agree_on_random_chains(net):
-    """1e-8 here: random chains reach damping ratios of 0.005 next to stiffness ratios of 1e4, where the
-    condition number near a resonance is about 1e8 (the paper's mechanisms above meet 1e-9)."""
+    """The routes agree to within the conditioning of the case: random chains reach damping ratios below 1e-4
+    next to stiffness ratios of 1e4, where route 1's matrix has a condition number of 1e8 or more near a
+    resonance.  The bound is 10 eps times the largest (Frobenius) condition number over the grid, or 1e-8 where
+    that is smaller (the paper's mechanisms, better conditioned, meet 1e-9 above).  Hypothesis found a chain
+    with k = 1e7 N/m, c = 1 N s/m on 0.1 kg (condition 2.3e8) whose routes differ by 2.0e-8."""
     r = solve_network(net, W, 1.0)
     q, v = solve_matrices(net, W, 1.0)
+    a, _ = network_system(net, W, np.ones(W.size, dtype=complex))
+    condition = max(np.linalg.cond(m, "fro") for m in a)
+    bound = max(1e-8, 10 * np.finfo(float).eps * condition)
     if net.drive == "velocity":
-        assert _rel(q, r.input_force) < 1e-8
+        assert _rel(q, r.input_force) < bound
     else:
-        assert _rel(q, r.input_velocity) < 1e-8
+        assert _rel(q, r.input_velocity) < bound
 
 
 def test_series_parallel_reduction_with_a_lever():

@@ -202,21 +202,12 @@ def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
         return bad | ~(norm * rcond < 1.0)
 
 
-def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0, singular_rcond: float = 1.0e-13) -> ChainResponse:
-    """Route 1: node velocities and constraint forces at every w (rad/s, > 0).
-
-    The unknowns are the node velocities and one multiplier per constraint
-    (each lever, and the drive for a velocity drive).  For a velocity drive the
-    drive multiplier is the input force.
-    """
-    w = np.atleast_1d(np.asarray(omega, dtype=float))
-    if np.any(w <= 0):
-        raise ValueError("frequencies must be > 0 (a spring's mobility is infinite at w = 0)")
-    amp = np.broadcast_to(np.asarray(drive_amplitude, dtype=complex), w.shape)
+def network_system(net: Network, w: NDArray[np.float64], amp: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
+    """(A, b) of route 1 at every w (rad/s): node impedance rows, one row per lever and, for a velocity
+    drive, the drive row; unknowns are the node velocities, then the multipliers."""
     n = len(net.nodes)
     ix = net.index
-    n_con = len(net.levers) + (1 if net.drive == "velocity" else 0)
-    size = n + n_con
+    size = n + len(net.levers) + (1 if net.drive == "velocity" else 0)
     a = np.zeros((w.size, size, size), dtype=complex)
     rhs = np.zeros((w.size, size), dtype=complex)
     for e in net.elements:
@@ -237,12 +228,30 @@ def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1
         a[:, ib, row] = -1.0
     d = ix[net.drive_node]
     if net.drive == "velocity":
-        row = size - 1
-        a[:, row, d] = 1.0
-        a[:, d, row] = -1.0  # multiplier = force applied at the drive node
-        rhs[:, row] = amp
+        a[:, size - 1, d] = 1.0
+        a[:, d, size - 1] = -1.0  # multiplier = force applied at the drive node
+        rhs[:, size - 1] = amp
     else:
         rhs[:, d] = amp
+    return a, rhs
+
+
+def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0, singular_rcond: float = 1.0e-13) -> ChainResponse:
+    """Route 1: node velocities and constraint forces at every w (rad/s, > 0).
+
+    The unknowns are the node velocities and one multiplier per constraint
+    (each lever, and the drive for a velocity drive).  For a velocity drive the
+    drive multiplier is the input force.
+    """
+    w = np.atleast_1d(np.asarray(omega, dtype=float))
+    if np.any(w <= 0):
+        raise ValueError("frequencies must be > 0 (a spring's mobility is infinite at w = 0)")
+    amp = np.broadcast_to(np.asarray(drive_amplitude, dtype=complex), w.shape)
+    n = len(net.nodes)
+    ix = net.index
+    size = n + len(net.levers) + (1 if net.drive == "velocity" else 0)
+    d = ix[net.drive_node]
+    a, rhs = network_system(net, w, amp)
     x, flags = _batched_solve(a, rhs)
     if singular_rcond > 0:  # flag near-singular solves too (an undamped resonance hit to rounding)
         flags = flags | near_singular(a, singular_rcond)
