@@ -9,7 +9,7 @@ from conftest import load_yaml
 from linkwork.engines.multibody.exudyn_route import ideal_run
 from linkwork.engines.multibody.model import inverse_dynamics
 from linkwork.papers.clearance.adapter import parameters
-from linkwork.papers.clearance.crosscheck import dry, ideal, observed_orders, relative_difference
+from linkwork.papers.clearance.crosscheck import dry, ideal, observed_orders, relative_difference, time_to_reach
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
 
@@ -100,3 +100,11 @@ def test_the_dry_study_compares_per_cycle_means_against_its_margin():
     np.testing.assert_allclose(ds.relative_difference.values, (mean[-1] - mean[0]) / mean[0])
     assert np.array_equal(ds.agree.values, np.abs(mean[-1] - mean[0]) <= ds.margin.values)
     assert np.all((mean[-1] / mean[0] > 0.5) & (mean[-1] / mean[0] < 2.0))
+
+
+def test_time_to_reach_reads_the_work_precision_front():
+    """The least time over the settings at least as accurate as the target; NaN if none is."""
+    errors, times = np.array([0.3, 0.05, 0.06, 0.001]), np.array([1.0, 2.0, 3.0, 4.0])
+    assert time_to_reach(errors, times, 0.055) == 2.0  # not 3.0: the front, not the setting order
+    assert time_to_reach(errors, times, 0.3) == 1.0
+    assert np.isnan(time_to_reach(errors, times, 1e-4))

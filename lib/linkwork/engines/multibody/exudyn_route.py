@@ -26,13 +26,6 @@ import numpy as np
 from .model import FourBarParameters, joint_points, kinematic_state, start_angle
 
 
-def available() -> bool:
-    """True if the optional extra (Exudyn) is installed."""
-    import importlib.util
-
-    return importlib.util.find_spec("exudyn") is not None
-
-
 def _build(p: FourBarParameters, gravity: bool, clearance_joints: tuple[int, ...] = ()):
     """(system container, main system, sensor of the rocker's coordinates_tt, sensor of the driver force); the
     joints in ``clearance_joints`` (1: crank-coupler, 2: coupler-rocker) are dry clearance joints."""
