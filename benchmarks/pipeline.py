@@ -23,7 +23,6 @@ Figures go to benchmarks/measured/pipeline.json.
 from __future__ import annotations
 
 import argparse
-import hashlib
 import os
 import shutil
 import statistics
@@ -37,13 +36,11 @@ PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _project import project_copy, write_figures  # noqa: E402
 
+sys.path.insert(0, str(PROJECT / "lib"))
+from linkwork.pipeline.fingerprint import compare, fingerprints  # noqa: E402
+
 TARGETS = {"full_warm_s": 90.0, "full_cold_s": 120.0, "noop_s": 2.0, "claim_edit_s": 15.0}
 TRIVIAL = 'rule all:\n    input: "x.txt"\nrule x:\n    output: "x.txt"\n    params: cfg={"a": 1}\n    shell: "touch {output}"\n'
-
-
-def digests(root: Path) -> dict[str, str]:
-    files = sorted([*(root / "results").rglob("*.nc"), *(root / "results/reports").glob("*.html")])
-    return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest() for p in files}
 
 
 def main() -> None:
@@ -109,13 +106,15 @@ def main() -> None:
               f"{figures['job_overhead_s']:.2f} s beyond a no-op", flush=True)
 
         sm("--forceall")
-        first = digests(root)
+        first = fingerprints(root)
         sm("--forceall")
-        second = digests(root)
-        differing = sorted(k for k in first if first[k] != second.get(k))
-        figures.update(identical_files=len(first) - len(differing), compared_files=len(first), differing=differing)
-        print(f"byte-identical reruns: {len(first) - len(differing)} of {len(first)} netCDF and HTML files identical", flush=True)
-        for name in differing:
+        split = compare(first, fingerprints(root))
+        figures.update(identical_files=len(split["identical"]), compared_files=len(first), differing=split["differing"] + split["missing"],
+                       measured=split["measured"])
+        print(f"byte-identical reruns: {len(split['identical'])} of {len(first)} netCDF and HTML files identical", flush=True)
+        for name in split["measured"]:
+            print(f"  differs (shows wall times, declared in linkwork.pipeline.fingerprint): {name}")
+        for name in split["differing"] + split["missing"]:
             print(f"  differs: {name}")
     if args.baseline:
         figures["baseline"] = baseline(args.baseline)

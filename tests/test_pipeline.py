@@ -195,6 +195,40 @@ def test_reports_only_load_and_format(name):
     textwrap.dedent(text)  # (readable as a script)
 
 
+@pytest.mark.parametrize("name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"])
+def test_only_the_declared_reports_show_wall_times(name):
+    """Wall times reach a report only through a timings side file: a report outside MEASURED_REPORTS neither
+    names one in its rule inputs nor reads one, so it renders to the same bytes on every rerun."""
+    from linkwork.pipeline.fingerprint import MEASURED_REPORTS
+
+    script = (PROJECT / "reports" / f"{name}.py").read_text()
+    rules = (PROJECT / "workflow" / "rules" / "reports.smk").read_text()
+    entry = next(line for line in rules.splitlines() if line.lstrip().startswith((f'"{name}": ', f'"{name}":')))
+    block = rules[rules.index(entry):].split("\n    \"", 1)[0]  # the entry up to the next report's key
+    reads = "timings" in script or "time_s" in script or "timings" in block
+    assert reads == (name in MEASURED_REPORTS), f"reports/{name}.py: reads wall times {reads}, declared {name in MEASURED_REPORTS}"
+
+
+def test_fingerprints_split_measured_reports_from_results(tmp_path):
+    """A changed netCDF file is a difference that must not happen; a changed measured report is allowed; a file
+    present in one run only is named."""
+    from linkwork.pipeline.fingerprint import compare, fingerprints
+
+    (tmp_path / "results/reports").mkdir(parents=True)
+    (tmp_path / "results/a").mkdir()
+    for rel, text in {"results/a/x.nc": "1", "results/reports/accuracy.html": "t=1", "results/reports/beatup.html": "b"}.items():
+        (tmp_path / rel).write_text(text)
+    first = fingerprints(tmp_path)
+    assert sorted(first) == ["results/a/x.nc", "results/reports/accuracy.html", "results/reports/beatup.html"]
+    (tmp_path / "results/reports/accuracy.html").write_text("t=2")
+    assert compare(first, fingerprints(tmp_path)) == {"identical": ["results/a/x.nc", "results/reports/beatup.html"],
+                                                      "measured": ["results/reports/accuracy.html"], "differing": [], "missing": []}
+    (tmp_path / "results/reports/beatup.html").write_text("c")
+    (tmp_path / "results/a/x.nc").unlink()
+    split = compare(first, fingerprints(tmp_path))
+    assert split["differing"] == ["results/reports/beatup.html"] and split["missing"] == ["results/a/x.nc"]
+
+
 def test_readme_measured_figures_are_rendered_from_the_benchmark_files():
     """The README's measured figures are exactly what benchmarks/readme.py renders from benchmarks/measured/
     (so none is typed by hand), and every benchmark script has its file there."""
