@@ -34,8 +34,7 @@ def _machine(m: dict) -> str:
     return f"{m['cpu_count']} cores ({m['cpu_model']}), Python {m['python']}, {m['date']}"
 
 
-#: The HTML reports (results/reports/) and those that show wall-clock timings measured during the run (their rules
-#: read an accuracy_timings.json): a rerun cannot reproduce those to the byte.
+#: The HTML reports (results/reports/).
 REPORTS = 8
 #: The verdict issue's bound on the full reproduction ("at most 3 minutes on the 2-core machine").
 FULL_REPRODUCTION_BOUND_S = 180.0
@@ -132,7 +131,36 @@ def tests(f: dict) -> list[str]:
     ]
 
 
-SECTIONS = {"pipeline": pipeline, "foundation": foundation, "clearance": clearance, "transplanter": transplanter, "chains": chains, "tests": tests}
+def slurm(f: dict) -> list[str]:
+    edited = f.get("tracked_files_edited", [])
+    rows = [
+        ("full reproduction, local (`snakemake`), empty compile cache", _s(f["local_s"]) + " (1 run)", ""),
+        ("the same on a single-node SLURM (`snakemake --profile profiles/slurm`), empty compile cache", _s(f["slurm_s"]) + " (1 run)", ""),
+        ("SLURM over local", f"{f['ratio']:.2f}", _target(f["ratio"], f["ratio_target"], unit="")),
+        ("submissions (sbatch calls; an array counts once)", str(f["submissions"]), _target(f["submissions"], f["submission_target"], unit="")),
+        ("netCDF files and reports byte-identical to the local run", f"{f['identical_files']} of {f['compared_files']}",
+         "all but the declared wall-time report" + (": met" if not f["differing"] else ": **missed**")),
+        ("tracked files edited by the run", str(len(edited)), "none: " + ("met" if not edited else "**missed**")),
+    ]
+    out = [f"`benchmarks/slurm_single_node.py` (revision `{f['revision']}`) on {_machine(f['machine'])}. Method: {f['method']}", "",
+           "| what | figure | target |", "|---|---|---|", *(f"| {a} | {b} | {c} |" for a, b, c in rows)]
+    if f["measured"]:
+        out += ["", "Differed as declared (wall times measured during each run): " + ", ".join(f"`{d}`" for d in f["measured"]) + "."]
+    if f["differing"]:
+        out += ["", "Differed and must not: " + ", ".join(f"`{d}`" for d in f["differing"]) + "."]
+    return out
+
+
+def job_resources(f: dict) -> list[str]:
+    rules = f["rules"]
+    return [
+        f"`python benchmarks/job_resources.py` on {_machine(f['machine'])}. Method: {f['method']}", "",
+        "| rule | jobs | peak memory | longest job |", "|---|---|---|---|",
+        *(f"| `{r}` | {v['jobs']} | {v['max_rss_mb']:.0f} MB | {_s(v['max_wall_s'])} |" for r, v in rules.items()),
+    ]
+
+
+SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "transplanter": transplanter, "chains": chains, "tests": tests}
 
 
 def render(measured: Path = MEASURED) -> str:

@@ -11,7 +11,7 @@ benchmarks/slurm_single_node.py` (or `make slurm-proof`). What it does, in order
 3. makes two fresh clones of this checkout's HEAD, each with an empty compile cache, and runs in one the
    README's local command (`snakemake`) and in the other the README's cluster command (`snakemake --profile
    profiles/slurm`), both timed as whole processes (time.perf_counter);
-4. counts the SLURM submissions (the plugin's log folders), compares every netCDF file and every report of
+4. counts the SLURM submissions (sbatch calls, through a counting sbatch first on PATH), compares every netCDF file and every report of
    the two runs byte for byte (linkwork.pipeline.fingerprint: only the reports that show wall times may
    differ), and stops the daemons it started by their process ids;
 5. writes benchmarks/measured/slurm.json (the README's cluster figures: `python benchmarks/readme.py`).
@@ -41,6 +41,7 @@ from _project import write_figures  # noqa: E402
 from linkwork.pipeline.fingerprint import compare, fingerprints  # noqa: E402
 
 DAEMONS = ("munged", "slurmctld", "slurmd")
+MUNGE_SOCKET = Path("/run/munge/munge.socket.2")
 RATIO_TARGET = 2.0
 SUBMISSION_TARGET = 20
 
@@ -81,18 +82,20 @@ def node_line() -> tuple[str, int, int]:
     return fields["NodeName"], int(fields["CPUs"]), int(int(fields["RealMemory"]) * 0.9)
 
 
-def slurm_conf(folder: Path, socket_path: Path) -> Path:
+def slurm_conf(folder: Path) -> tuple[Path, int]:
+    """slurm.conf in ``folder`` and slurmctld's port. Configless: slurmd fetches the config from slurmctld and
+    caches it where client commands inside a job look (the job step plugin clears SLURM_CONF)."""
     node, cpus, memory = node_line()
-    conf = folder / "slurm.conf"
+    conf, port = folder / "slurm.conf", free_port()
     conf.write_text("\n".join([
         "ClusterName=linkwork-single-node",
         f"SlurmctldHost={node}(127.0.0.1)",
-        f"SlurmctldPort={free_port()}",
+        f"SlurmctldPort={port}",
+        "SlurmctldParameters=enable_configless",
         f"SlurmdPort={free_port()}",
         "SlurmUser=root",
         "AuthType=auth/munge",
         "CredType=cred/munge",
-        f"AuthInfo=socket={socket_path}",
         f"StateSaveLocation={folder / 'state'}",
         f"SlurmdSpoolDir={folder / 'spool'}",
         f"SlurmctldPidFile={folder / 'slurmctld.pid'}",
@@ -115,13 +118,13 @@ def slurm_conf(folder: Path, socket_path: Path) -> Path:
     ]))
     for sub in ("state", "spool"):
         (folder / sub).mkdir()
-    return conf
+    return conf, port
 
 
 def pid_of(path: Path, timeout: float = 20.0) -> int:
     end = time.monotonic() + timeout
     while time.monotonic() < end:
-        with contextlib.suppress(OSError, ValueError):
+        with contextlib.suppress(OSError, ValueError, IndexError):
             return int(path.read_text().split()[0])
         time.sleep(0.1)
     raise RuntimeError(f"no pid file {path}")
@@ -134,17 +137,21 @@ def single_node() -> Iterator[dict[str, str]]:
     folder = Path(tempfile.mkdtemp(prefix="linkwork-slurm-"))
     started: dict[str, int] = {}
     try:
-        key, sock = folder / "munge.key", folder / "munge.socket"
-        key.write_bytes(os.urandom(1024))
-        key.chmod(0o400)
-        run(["munged", "--force", f"--key-file={key}", f"--socket={sock}", f"--pid-file={folder / 'munged.pid'}",
-             f"--log-file={folder / 'munged.log'}", f"--seed-file={folder / 'munged.seed'}"])
-        started["munged"] = pid_of(folder / "munged.pid")
-        conf = slurm_conf(folder, sock)
+        if MUNGE_SOCKET.exists() and subprocess.run(["munge", "-n"], capture_output=True).returncode == 0:
+            say(f"using the munged already running at {MUNGE_SOCKET}")
+        else:  # its default socket: slurmd fetches its config (configless) before it could read another
+            key = folder / "munge.key"
+            key.write_bytes(os.urandom(1024))
+            key.chmod(0o400)
+            MUNGE_SOCKET.parent.mkdir(parents=True, exist_ok=True)
+            run(["munged", "--force", f"--key-file={key}", f"--socket={MUNGE_SOCKET}", f"--pid-file={folder / 'munged.pid'}",
+                 f"--log-file={folder / 'munged.log'}", f"--seed-file={folder / 'munged.seed'}"])
+            started["munged"] = pid_of(folder / "munged.pid")
+        conf, port = slurm_conf(folder)
         env = {**os.environ, "SLURM_CONF": str(conf)}
         run(["slurmctld", "-f", str(conf)], env=env)
         started["slurmctld"] = pid_of(folder / "slurmctld.pid")
-        run(["slurmd", "-f", str(conf)], env=env)
+        run(["slurmd", "--conf-server", f"127.0.0.1:{port}"], env={k: v for k, v in env.items() if k != "SLURM_CONF"})
         started["slurmd"] = pid_of(folder / "slurmd.pid")
         end = time.monotonic() + 60
         while "idle" not in subprocess.run(["sinfo", "-h", "-o", "%T"], env=env, capture_output=True, text=True).stdout:
@@ -162,7 +169,22 @@ def single_node() -> Iterator[dict[str, str]]:
             while time.monotonic() < end and Path(f"/proc/{pid}").exists():
                 time.sleep(0.1)
             say(f"stopped {name} (pid {pid})")
+        cache_link = Path("/run/slurm/conf")  # slurmd's link to its config cache, inside our folder
+        if cache_link.is_symlink() and str(folder) in os.readlink(cache_link):
+            cache_link.unlink()
         shutil.rmtree(folder, ignore_errors=True)
+
+
+def counting_sbatch(folder: Path) -> tuple[Path, Path]:
+    """A folder with an ``sbatch`` that appends a line to a tally file, then runs the real one (put it first on
+    PATH): the number of submissions, arrays counted once, as the scheduler received them."""
+    real, tally = shutil.which("sbatch") or "/usr/bin/sbatch", folder / "submissions.txt"
+    (folder / "bin").mkdir()
+    wrapper = folder / "bin" / "sbatch"
+    wrapper.write_text(f'#!/bin/sh\necho "$*" >> {tally}\nexec {real} "$@"\n')
+    wrapper.chmod(0o755)
+    tally.write_text("")
+    return wrapper.parent, tally
 
 
 def clone(dest: Path) -> Path:
@@ -196,15 +218,18 @@ def main() -> None:
     local, cluster = clone(work / "local"), clone(work / "slurm")
     env_local = {**base, "PYTHONPATH": str(local / "lib"), "LINKWORK_CACHE": str(work / "cache-local")}
     local_s = timed([sys.executable, "-m", "snakemake"], local, env_local, work / "local.log")
+    wrapper, tally = counting_sbatch(work)
     with single_node() as slurm_env:
-        env_cluster = {**base, **slurm_env, "PYTHONPATH": str(cluster / "lib"), "LINKWORK_CACHE": str(work / "cache-slurm")}
+        env_cluster = {**base, **slurm_env, "PATH": f"{wrapper}{os.pathsep}{base['PATH']}", "PYTHONPATH": str(cluster / "lib"),
+                       "LINKWORK_CACHE": str(work / "cache-slurm")}
         cluster_s = timed([sys.executable, "-m", "snakemake", "--profile", "profiles/slurm"], cluster, env_cluster, work / "slurm.log")
-    logs = cluster / ".snakemake" / "slurm_logs"
-    submissions = sum(1 for p in logs.rglob("*.log")) if logs.exists() else 0
+    submissions = len(tally.read_text().splitlines())
+    edited = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=cluster, capture_output=True, text=True).stdout.split("\n")
+    edited = [line for line in edited if line.strip()]
     split = compare(fingerprints(local), fingerprints(cluster))
     figures = {
         "revision": head, "local_s": local_s, "slurm_s": cluster_s, "ratio": cluster_s / local_s, "ratio_target": RATIO_TARGET,
-        "submissions": submissions, "submission_target": SUBMISSION_TARGET, "identical_files": len(split["identical"]),
+        "submissions": submissions, "submission_target": SUBMISSION_TARGET, "tracked_files_edited": edited, "identical_files": len(split["identical"]),
         "compared_files": sum(len(v) for v in split.values()), "measured": split["measured"], "differing": split["differing"] + split["missing"],
     }
     say(f"local {local_s:.0f} s, SLURM {cluster_s:.0f} s (ratio {figures['ratio']:.2f}); {submissions} submissions; "
@@ -218,7 +243,9 @@ def main() -> None:
         say(f"kept {local} and {cluster}")
     else:
         shutil.rmtree(work, ignore_errors=True)
-    if figures["differing"]:
+    if edited:
+        say(f"  tracked files edited by the run: {edited}")
+    if figures["differing"] or edited:
         sys.exit(1)
 
 

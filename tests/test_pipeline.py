@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+import yaml
 
 from conftest import PROJECT, load_yaml
 from linkwork.configformat import get_path, labelled, pick
@@ -241,3 +242,43 @@ def test_readme_measured_figures_are_rendered_from_the_benchmark_files():
     assert block in (PROJECT / "README.md").read_text(), "run `python benchmarks/readme.py` after a benchmark"
     for name in module.SECTIONS:
         assert (PROJECT / "benchmarks" / "measured" / f"{name}.json").exists(), name
+
+
+def _workflow_rules() -> tuple[set[str], set[str]]:
+    """(every rule of the workflow, the rules declared local), read from the rule files."""
+    import re
+
+    text = "\n".join(p.read_text() for p in sorted((PROJECT / "workflow" / "rules").glob("*.smk")))
+    rules = set(re.findall(r"^rule (\w+):", text, flags=re.M))
+    block = re.search(r"^localrules:\n((?:    .*\n?)+)", text, flags=re.M)
+    local = {name.strip() for name in block.group(1).replace("\n", " ").split(",") if name.strip()} if block else set()
+    return rules | {"all"}, local
+
+
+def test_slurm_profile_requests_cover_the_measured_jobs():
+    """Every rule that is submitted (not local) has a memory, run-time and core request in profiles/slurm, and
+    the requests leave room over the measured peak memory (1.5x) and longest wall time (5x) of its jobs in a
+    full run (benchmarks/measured/job_resources.json); the local rules exist and each measured one is short."""
+    import json
+
+    profile = yaml.safe_load((PROJECT / "profiles" / "slurm" / "config.yaml").read_text())
+    measured = json.loads((PROJECT / "benchmarks" / "measured" / "job_resources.json").read_text())["rules"]
+    rules, local = _workflow_rules()
+    assert local <= rules, local - rules
+    requests = profile["set-resources"]
+    assert set(requests) == rules - local, (set(requests) ^ (rules - local))
+    for rule, req in requests.items():
+        assert {"mem_mb", "runtime", "cpus_per_task"} <= set(req), rule
+        if rule in measured:
+            assert req["mem_mb"] >= 1.5 * measured[rule]["max_rss_mb"], rule
+            assert req["runtime"] * 60 >= 5 * measured[rule]["max_wall_s"], rule
+    for rule in local & set(measured):
+        assert measured[rule]["max_wall_s"] < 5.0, f"{rule} runs on the submitting host but took {measured[rule]['max_wall_s']:.1f} s"
+    assert not set(profile.get("default-resources", [])), "site settings (partition, account) belong to a profile of the user's"
+
+
+def test_slurm_profile_sets_no_site():
+    """The shipped profile names no partition, account or cluster: the cluster's defaults apply."""
+    text = (PROJECT / "profiles" / "slurm" / "config.yaml").read_text()
+    for key in ("slurm_partition", "slurm_account", "clusters", "slurm_cluster"):
+        assert all(key not in line.split("#")[0] for line in text.splitlines()), key
