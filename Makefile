@@ -39,13 +39,15 @@ crosscheck: $(STAMP)
 SITE_PROFILE ?=
 slurm: $(STAMP)
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[slurm]'
-	PATH="$(BIN):$$PATH" snakemake --profile profiles/slurm $(if $(SITE_PROFILE),--profile $(SITE_PROFILE))
+	PATH="$(BIN):$$PATH" snakemake --profile profiles/slurm $(if $(SITE_PROFILE),--profile $(SITE_PROFILE)) --cores 1
 
 # Proof on a real scheduler (root, Debian): a single-node SLURM stood up and torn down by the script, the full DAG
-# through profiles/slurm beside a local run, byte for byte; figures in benchmarks/measured/slurm.json.
+# through profiles/slurm beside a local run, byte for byte; it prints the figures (RECORD=1: also into
+# benchmarks/measured/slurm.json and the README).
+RECORD ?=
 slurm-proof: $(STAMP)
-	$(BIN)/python benchmarks/slurm_single_node.py
-	$(BIN)/python benchmarks/readme.py
+	$(BIN)/python benchmarks/slurm_single_node.py $(if $(RECORD),--record)
+	$(if $(RECORD),$(BIN)/python benchmarks/readme.py)
 
 readme: $(STAMP)
 	$(BIN)/snakemake results/readme_findings.md

@@ -10,11 +10,12 @@ benchmarks/slurm_single_node.py` (or `make slurm-proof`). What it does, in order
    accounting storage), one default partition holding this machine's CPUs and 90 % of its memory;
 3. makes two fresh clones of this checkout's HEAD, each with an empty compile cache, and runs in one the
    README's local command (`snakemake`) and in the other the README's cluster command (`snakemake --profile
-   profiles/slurm`), both timed as whole processes (time.perf_counter);
+   profiles/slurm --cores 1`, what `make slurm` runs), both timed as whole processes (time.perf_counter);
 4. counts the SLURM submissions (sbatch calls, through a counting sbatch first on PATH), compares every netCDF file and every report of
    the two runs byte for byte (linkwork.pipeline.fingerprint: only the reports that show wall times may
    differ), and stops the daemons it started by their process ids;
-5. writes benchmarks/measured/slurm.json (the README's cluster figures: `python benchmarks/readme.py`).
+5. prints the figures; with --record also writes them to benchmarks/measured/slurm.json (the README's cluster
+   figures: `python benchmarks/readme.py`), so that a plain run edits no tracked file.
 
 Exit status 1 if a file differs that must not, or if a run fails.
 """
@@ -208,6 +209,7 @@ def timed(cmd: list[str], cwd: Path, env: dict[str, str], log: Path) -> float:
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--keep", action="store_true", help="keep the two clones (their paths are printed)")
+    parser.add_argument("--record", action="store_true", help="write the figures to benchmarks/measured/slurm.json")
     args = parser.parse_args()
     install()
     if subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=PROJECT, capture_output=True, text=True).stdout.strip():
@@ -222,7 +224,7 @@ def main() -> None:
     with single_node() as slurm_env:
         env_cluster = {**base, **slurm_env, "PATH": f"{wrapper}{os.pathsep}{base['PATH']}", "PYTHONPATH": str(cluster / "lib"),
                        "LINKWORK_CACHE": str(work / "cache-slurm")}
-        cluster_s = timed([sys.executable, "-m", "snakemake", "--profile", "profiles/slurm"], cluster, env_cluster, work / "slurm.log")
+        cluster_s = timed([sys.executable, "-m", "snakemake", "--profile", "profiles/slurm", "--cores", "1"], cluster, env_cluster, work / "slurm.log")
     submissions = len(tally.read_text().splitlines())
     edited = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=cluster, capture_output=True, text=True).stdout.split("\n")
     edited = [line for line in edited if line.strip()]
@@ -238,7 +240,8 @@ def main() -> None:
         say(f"  differs (shows wall times, declared): {name}")
     for name in figures["differing"]:
         say(f"  DIFFERS: {name}")
-    write_figures("slurm", figures, __doc__.split("What it does, in order:", 1)[1].split("Exit status")[0])
+    if args.record:
+        write_figures("slurm", figures, __doc__.split("What it does, in order:", 1)[1].split("Exit status")[0])
     if args.keep:
         say(f"kept {local} and {cluster}")
     else:
