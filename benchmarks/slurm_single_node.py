@@ -5,8 +5,9 @@ benchmarks/slurm_single_node.py` (or `make slurm-proof`). What it does, in order
 
 1. installs Debian's slurm-wlm and munge if they are missing, and the project's `slurm` extra
    (snakemake-executor-plugin-slurm) into the running interpreter's environment;
-2. stands up a single-node SLURM in a temporary folder: munged with its own key and socket, slurmctld and
-   slurmd on free ports (proctrack/linuxproc, task/none, select/cons_tres with cores and memory, no
+2. stands up a single-node SLURM in a temporary folder: munged with its own key on munge's default socket
+   (or the munged already answering there), slurmctld on a free port and a configless slurmd
+   (proctrack/linuxproc, task/none, select/cons_tres with cores and memory, no
    accounting storage), one default partition holding this machine's CPUs and 90 % of its memory;
 3. makes two fresh clones of this checkout's HEAD, each with an empty compile cache, and runs in one the
    README's local command (`snakemake`) and in the other the README's cluster command (`snakemake --profile
