@@ -6,7 +6,8 @@ TRANSPLANTER_MODEL = ["crank_speed_rpm", "geometry", "material.name", *TRANSPLAN
 TRANSPLANTER_DYNAMIC = ["fe.damping_ratio", "fe.revolutions", "fe.substeps"]
 TRANSPLANTER_COMPARED = ["fe.compared_solution", *TRANSPLANTER_DYNAMIC]  # the solution compared with the paper's numbers
 TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLANTER_MATERIAL("yield_Pa"), "minimum_diameter_m",
-                        "optimization.angle_step_deg", "optimization.reference_diameter_m"]
+                        "fe.angle_step_deg", "optimization.angle_step_deg", "optimization.peak_spread_steps", "optimization.exchange_rounds",
+                        "optimization.reference_diameter_m"]
 
 
 rule transplanter_optim:
@@ -30,7 +31,8 @@ rule transplanter_ked:
         "results/transplanter/ked.nc",
     params:
         study="linkwork.papers.transplanter.studies:ked_responses",
-        cfg=section("transplanter", *TRANSPLANTER_MODEL, *TRANSPLANTER_DYNAMIC, "initial_diameters_m", "fe.angle_step_deg", "fe.resonance_warning_ratio"),
+        cfg=section("transplanter", *TRANSPLANTER_MODEL, *TRANSPLANTER_DYNAMIC, "initial_diameters_m", "fe.angle_step_deg", "fe.resonance_warning_ratio",
+                    "fe.newmark_study", "fe.damping_study"),
     script:
         STUDY
 
@@ -44,7 +46,7 @@ rule transplanter_at_published:
         "results/transplanter/at_published.nc",
     params:
         study="linkwork.papers.transplanter.published_point:at_published",
-        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "fe.angle_step_deg", "numerical_checks",
+        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "numerical_checks",
                     "optimization.r0", "optimization.r_factor", "optimization.iterations", "optimization.gradient_step_m"),
     script:
         STUDY

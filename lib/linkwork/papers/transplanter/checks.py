@@ -28,6 +28,19 @@ def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance
         step = section[group][field]
         if not divides_turn(step):
             raise ConfigError(f"config key {key}.{group}.{field}: value {step!r} does not divide 360 deg")
+    fine, coarse = section["fe"]["angle_step_deg"], section["optimization"]["angle_step_deg"]
+    if not _multiple(coarse, fine):
+        raise ConfigError(f"config key {key}.optimization.angle_step_deg: value {coarse!r} is not a multiple of fe.angle_step_deg ({fine!r}): "
+                          "the optimiser's crank angles must be points of the report grid")
+    study = section["fe"]["newmark_study"]
+    largest = max(study["steps_deg"])
+    if not divides_turn(largest):
+        raise ConfigError(f"config key {key}.fe.newmark_study.steps_deg: the largest step {largest!r} does not divide 360 deg")
+    for step in [*study["steps_deg"], study["reference_step_deg"]]:
+        if not _multiple(largest, step):
+            raise ConfigError(f"config key {key}.fe.newmark_study: step {step!r} does not divide the largest step {largest!r} (the output grid)")
+    if study["reference_step_deg"] >= min(study["steps_deg"]):
+        raise ConfigError(f"config key {key}.fe.newmark_study.reference_step_deg: value {study['reference_step_deg']!r} is not finer than every studied step")
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
     geometry = section["geometry"]
     try:
@@ -44,3 +57,9 @@ def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance
                 f"config key {key}.geometry.arm_angle_deg: value {geometry['arm_angle_deg']!r} sweeps the arm BE "
                 f"within {dist.min() * 1e3:.1f} mm of pivot {label} (crank angle {np.degrees(theta[np.argmin(dist)]):.0f} deg)"
             )
+
+
+def _multiple(big: float, small: float, tol: float = 1e-9) -> bool:
+    """True if ``big`` is a whole multiple of ``small``."""
+    n = big / small
+    return round(n) >= 1 and abs(n - round(n)) <= tol

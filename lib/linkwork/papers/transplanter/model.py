@@ -175,6 +175,7 @@ class KedResult:
     dofs: FloatArray
     first_frequencies: FloatArray
     periodicity: float
+    rayleigh: tuple[float, float] = (0.0, 0.0)  # dynamic: C = alpha M + beta K, (alpha in s^-1, beta in s)
 
 
 def _element_geometry(mech, disc, motion, diameters):
@@ -193,8 +194,11 @@ def _element_geometry(mech, disc, motion, diameters):
     return el_len, node_pos, node_acc, el_dir
 
 
-def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0):
-    """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element."""
+def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0, mass: str = "all"):
+    """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element.
+
+    ``mass``: "all" assembles the global M at every crank angle, "first" only at the first (the quasi-static
+    solution needs it only for the natural frequencies; the loads use the element matrices)."""
     motion = rigid_motion(mech, theta)
     el_len, node_pos, node_acc, el_dir = _element_geometry(mech, disc, motion, diameters)
     kind = disc.mesh.kind
@@ -206,7 +210,7 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
         k_loc.append(k_e)
         m_loc.append(m_e)
     k = assemble(disc.mesh, k_loc, el_dir)
-    m = assemble(disc.mesh, m_loc, el_dir)
+    m = assemble(disc.mesh, m_loc, el_dir if mass == "all" else el_dir[:1])
     # element loads
     n_dof, table = disc.mesh.dof_indices()
     f = np.zeros((len(motion.theta), n_dof))
@@ -272,21 +276,23 @@ def ked(
     """
     theta = np.asarray(theta, dtype=float)
     if solution == "quasi-static":
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity)
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first")
         u = np.linalg.solve(k, f[..., None])[..., 0]
         freqs = natural_frequencies(k[0], m[0])
-        periodicity = 0.0
+        periodicity, rayleigh = 0.0, (0.0, 0.0)
     elif solution == "dynamic":
         n = theta.size * substeps
         fine = theta[0] + np.arange(n) * (2 * np.pi / n)
         k, m, f, (el_len_f, el_dir_f, motion_f) = system_matrices(mech, disc, diameters, material, fine, gravity)
         freqs = natural_frequencies(k[0], m[0])
         w1, w2 = freqs[0], freqs[1]
-        a0 = 2 * damping_ratio * w1 * w2 / (w1 + w2)
-        a1 = 2 * damping_ratio / (w1 + w2)
+        a0, a1 = rayleigh_coefficients(damping_ratio, w1, w2)
+        rayleigh = (a0, a1)
         c = a0 * m + a1 * k
         dt = (2 * np.pi / n) / mech.crank_speed
         beta, gamma = 0.25, 0.5
+        # the step matrix of every angle, inverted once and reused in every revolution
+        step_inverse = np.linalg.inv(m + gamma * dt * c + beta * dt**2 * k)
         ud = np.linalg.solve(k[0], f[0])
         vd = np.zeros_like(ud)
         ad = np.linalg.solve(m[0], f[0] - k[0] @ ud)
@@ -295,8 +301,7 @@ def ked(
             s = (step + 1) % n
             pred_u = ud + dt * vd + (0.5 - beta) * dt**2 * ad
             pred_v = vd + (1 - gamma) * dt * ad
-            lhs = m[s] + gamma * dt * c[s] + beta * dt**2 * k[s]
-            ad = np.linalg.solve(lhs, f[s] - c[s] @ pred_v - k[s] @ pred_u)
+            ad = step_inverse[s] @ (f[s] - c[s] @ pred_v - k[s] @ pred_u)
             ud = pred_u + beta * dt**2 * ad
             vd = pred_v + gamma * dt * ad
             history[step] = ud
@@ -304,7 +309,7 @@ def ked(
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
         u = last
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity)
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first")
         tip_l, *_ = _postprocess(mech, disc, diameters, material, last, el_len, el_dir, motion)
         tip_p, *_ = _postprocess(mech, disc, diameters, material, prev, el_len, el_dir, motion)
         scale = max(np.ptp(tip_l, axis=0).max(), 1e-30)
@@ -312,7 +317,13 @@ def ked(
     else:
         raise ValueError(f"unknown solution {solution!r}; expected 'quasi-static' or 'dynamic'")
     tip, tip_axial, tip_transverse, stress = _postprocess(mech, disc, diameters, material, u, el_len, el_dir, motion)
-    return KedResult(theta, tip, tip_axial, tip_transverse, stress, u, freqs, periodicity)
+    return KedResult(theta, tip, tip_axial, tip_transverse, stress, u, freqs, periodicity, rayleigh)
+
+
+def rayleigh_coefficients(damping_ratio: float, w1: float, w2: float) -> tuple[float, float]:
+    """(alpha, beta) of C = alpha M + beta K giving the damping ratio ``damping_ratio`` at the natural
+    frequencies w1 and w2 (rad/s): zeta(w) = alpha / (2 w) + beta w / 2."""
+    return 2 * damping_ratio * w1 * w2 / (w1 + w2), 2 * damping_ratio / (w1 + w2)
 
 
 def signed_extreme(values: FloatArray) -> float:

@@ -11,8 +11,8 @@ import xarray as xr
 from ...engines.optimize import gradient
 from ...units import angle_grid_deg
 from .adapter import compared_solution, discretisation, mechanism
-from .model import MEMBERS
-from .studies import SUMMARY_ATTRS, problem, solve, summary
+from .model import MEMBERS, signed_extreme
+from .studies import SUMMARY_ATTRS, problem, report_grid, solve, summary
 
 
 def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dataset:
@@ -24,7 +24,7 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
     published_mm = np.array(published["optimum_diameters_mm"], dtype=float)
     published_ss = float(next(q["value"] for q in published["quantities"] if q["id"] == "SS"))
     d = published_mm / 1e3
-    theta = angle_grid_deg(cfg["fe"]["angle_step_deg"])
+    theta = report_grid(cfg)
     checks = cfg["numerical_checks"]
     compared = compared_solution(cfg)
     # the baseline (the compared solution), the other solution, and two numerical choices (the assumed inputs
@@ -35,12 +35,17 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
         f"{checks['coarse_angle_step_deg']:g} deg crank sampling": {"theta": angle_grid_deg(checks["coarse_angle_step_deg"]), "solution": compared},
         "frame6 elements": {"disc": discretisation(cfg, kind="frame6"), "solution": compared},
     }
-    rows = []
+    rows, curves = [], {}
     for spec in cases.values():
         spec = dict(spec)
         sol = spec.pop("solution", "quasi-static")
         th = spec.pop("theta", theta)
-        rows.append(summary(solve(cfg, d, sol, th, **spec)))
+        r = solve(cfg, d, sol, th, **spec)
+        rows.append(summary(r))
+        if th is theta and not spec:
+            curves[sol] = r  # the two solutions on the report grid, for the figures
+    base = curves[compared]
+    solutions = ("quasi-static", "dynamic")
     combos = [(s, b) for s in (1, -1) for b in (1, -1)]  # which assembly reproduces the published deformation pattern
     combo_rows = []
     for s, b in combos:
@@ -48,7 +53,7 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
             combo_rows.append(summary(solve(cfg, d, "quasi-static", theta, mech=mechanism(cfg, arm_side=s, branch=b))))
         except ValueError:
             combo_rows.append({k: np.nan for k in SUMMARY_ATTRS})
-    prob = problem(cfg)
+    prob = problem(cfg)  # the report grid
     opt = cfg["optimization"]
     r_last = opt["r0"] * opt["r_factor"] ** (opt["iterations"] - 1)
     parts = prob.parts(d, r_last)
@@ -60,7 +65,13 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
     data.update({f"{k}_assembly": ("assembly", np.array([r[k] for r in combo_rows]), {"units": u, "long_name": f"{n}, by assembly"}) for k, (u, n) in SUMMARY_ATTRS.items()})
     data.update(
         {
-            "stress_members": ("member", prob.stresses(d) / 1e6, {"units": "MPa", "long_name": f"largest stress per member ({opt['angle_step_deg']:g} deg sampling)"}),
+            "stress_members": ("member", prob.stresses(d) / 1e6, {"units": "MPa", "long_name": f"largest stress per member ({cfg['fe']['angle_step_deg']:g} deg grid)"}),
+            "U_along_arm": ((), signed_extreme(base.tip_axial), {"units": "m", "long_name": "signed extreme of the tip's elastic displacement along the arm BE (compared solution)"}),
+            "U_across_arm": ((), signed_extreme(base.tip_transverse), {"units": "m", "long_name": "signed extreme of the tip's elastic displacement across the arm BE (compared solution)"}),
+            "Ux_curve": (("solution", "crank_angle"), np.array([curves[s].tip[:, 0] for s in solutions]), {"units": "m", "long_name": "elastic tip displacement x at the published optimum"}),
+            "Uy_curve": (("solution", "crank_angle"), np.array([curves[s].tip[:, 1] for s in solutions]), {"units": "m", "long_name": "elastic tip displacement y at the published optimum"}),
+            "stress_curve": (("solution", "crank_angle", "member"), np.array([curves[s].stress for s in solutions]) / 1e6,
+                             {"units": "MPa", "long_name": "largest eq. (8) stress in the member at the published optimum"}),
             "SY_at_published": ((), parts["SY"], {"units": "1", "long_name": "SY at the published optimum"}),
             "SZ_at_published": ((), parts["SZ"], {"units": "1", "long_name": "SZ at the published optimum ([x_S1] from config)"}),
             "SY_SZ_at_published": ((), parts["SY"] + parts["SZ"], {"units": "1", "long_name": "SY + SZ at the published optimum"}),
@@ -78,6 +89,8 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
             "case": ("case", np.array(list(cases), dtype=object), {"units": "1", "long_name": "model choice"}),
             "assembly": ("assembly", np.array([f"arm side {s:+d}, branch {b:+d}" for s, b in combos], dtype=object), {"units": "1", "long_name": "arm side and assembly branch"}),
             "member": ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member"}),
+            "solution": ("solution", np.array(solutions, dtype=object), {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"}),
+            "crank_angle": ("crank_angle", theta, {"units": "deg", "long_name": "crank angle"}),
         },
         attrs={"title": "Our model at the published optimum (comparison)", "r_last": r_last},
     )

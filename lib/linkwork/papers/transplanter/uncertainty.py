@@ -31,13 +31,13 @@ def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Seque
     import xarray as xr
 
     from ...engines.optimize import slsqp
-    from ...units import angle_grid_deg
     from .adapter import compared_solution
     from .model import MEMBERS
-    from .studies import SUMMARY_ATTRS, problem, solve, summary
+    from .studies import SUMMARY_ATTRS, optimise_on_report_grid, report_grid, solve, summary
 
-    x, _ = slsqp(problem(cfg), np.array(start_m, dtype=float), cfg["optimization"]["slsqp_ftol"])
-    at = summary(solve(cfg, np.array(published["optimum_diameters_mm"], dtype=float) / 1e3, compared_solution(cfg), angle_grid_deg(cfg["fe"]["angle_step_deg"])))
+    run = lambda prob, x: slsqp(prob, x, cfg["optimization"]["slsqp_ftol"])  # noqa: E731
+    x, _, _ = optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)
+    at = summary(solve(cfg, np.array(published["optimum_diameters_mm"], dtype=float) / 1e3, compared_solution(cfg), report_grid(cfg)))
     data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
     data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
     return [xr.Dataset(data, coords={"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object))})]
