@@ -277,7 +277,8 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
             "damping_peak": ("damping", damping["peaks"], {"units": "MPa", "long_name": "dynamic peak stress at our optimum (report grid)"}),
             "damping_periodicity": ("damping", damping["periodicity"], {"units": "1", "long_name": "change of the tip response between the last two revolutions / its range"}),
             "damping_revolutions": ("damping", damping["revolutions"], {"units": "1", "long_name": "Newmark revolutions (grow as 1/damping below the nominal)"}),
-            "damping_threshold": ((), damping["threshold"], {"units": "1", "long_name": "damping ratio at which the dynamic peak at our optimum equals the allowable (NaN: none in the range)"}),
+            "damping_threshold": ((), damping["threshold"], {"units": "1", "long_name": "damping ratio at which the dynamic peak at our optimum equals the allowable",
+                                                        "nan_meaning": "no damping ratio in the assumed range brings the peak to the allowable"}),
         },
         coords={
             "diameters": ("diameters", np.array(list(sets), dtype=object), {"units": "1", "long_name": "initial or our optimal diameters"}),
