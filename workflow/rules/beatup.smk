@@ -11,7 +11,7 @@ rule beatup_sixbar:
         "results/beatup/sixbar.nc",
     params:
         study="linkwork.papers.beatup.studies:sixbar",
-        cfg=section("beatup", "sixbar", "printed_rounding", "closed_form_signs", "grids", "numerics"),
+        cfg=section("beatup", "sixbar", "closed_form_signs", "grids", "numerics"),
     script:
         STUDY
 
@@ -53,6 +53,6 @@ rule beatup_compare:
         "results/beatup/findings.nc",
     params:
         study="linkwork.papers.beatup.findings:compare",
-        cfg=section("beatup", "grids.paper_step_deg", "comparison.fourbar_window_band_deg"),
+        cfg=section("beatup", "sixbar", "printed_rounding", "table1_fit", "grids.paper_step_deg", "comparison.fourbar_window_band_deg"),
     script:
         STUDY

@@ -15,7 +15,8 @@ from .model import sley_motion
 
 
 def check(section: Mapping[str, Any], key: str = "beatup") -> None:
-    """Both six-bars (printed and scaled crank) and every swept four-bar turn fully; S_w < stroke."""
+    """Both six-bars (printed and scaled crank) and every swept four-bar turn fully; each printed_rounding is half a
+    unit of its parameter's last printed digit; the fit's check tolerance is the tighter; S_w < stroke."""
     for grid_key in ("paper_step_deg", "fine_step_deg"):
         if not divides_turn(section["grids"][grid_key]):
             raise ConfigError(f"config key {key}.grids.{grid_key}: value {section['grids'][grid_key]!r} does not divide 360 deg")
@@ -32,6 +33,15 @@ def check(section: Mapping[str, Any], key: str = "beatup") -> None:
             four_bar_beatup(fourbar, arm_to_crank=ratio).sword_angle(turn)
         except ValueError as exc:
             raise ConfigError(f"config key {key}.fourbar (arm_to_crank={ratio!r}): {exc}") from None
+    for name, half in section["printed_rounding"].items():
+        digits = float(sixbar[name]) / (2 * float(half))
+        if abs(digits - round(digits)) > 1e-6:
+            raise ConfigError(f"config key {key}.printed_rounding.{name}: value {half!r} is not half a unit of the last digit of "
+                              f"{key}.sixbar.{name} = {sixbar[name]!r}")
+    fit = section["table1_fit"]
+    if fit["check_tolerance"] >= fit["tolerance"]:
+        raise ConfigError(f"config key {key}.table1_fit.check_tolerance: value {fit['check_tolerance']!r} must be tighter than "
+                          f"{key}.table1_fit.tolerance = {fit['tolerance']!r}")
     stroke = section["comparison"]["stroke_m"]
     sw = labelled(fourbar["weft_clearance_m"])
     if sw >= stroke:

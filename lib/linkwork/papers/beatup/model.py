@@ -313,34 +313,75 @@ class FourBarBeatup:
         return np.mod(four_bar(self.linkage(), theta1).rocker_angle, TWO_PI)
 
 
-# --- how much the printed parameters' rounding can move a result ------------------------------------
+# --- one joint fit of the printed parameters to Table 1's angles ------------------------------------
 
-SIXBAR_PARAMETERS = ("l1", "l2", "l3", "l4", "l5", "l6", "l7", "theta4", "theta7")
-
-
-def rounding_bound(
-    mechanism: SixBar, theta1: ArrayLike, half_units: dict[str, float], rel_step: float = 1.0e-3
-) -> dict[str, FloatArray]:
-    """Linear worst-case change of every SleyMotion field when each parameter moves by its rounding half-unit.
-
-    half_units: parameter name -> half a unit of its last printed digit (m or rad).
-    Partial derivatives by central differences with a step of ``rel_step`` times the half-unit.
-    Returns field name -> bound (same units as the field: rad, rad/rad, rad/rad^2).
-    """
+def with_parameters(mechanism: SixBar, names: tuple[str, ...], values: ArrayLike) -> SixBar:
+    """The mechanism with the named parameters (SixBar fields, m or rad) set to ``values``."""
     from dataclasses import replace
 
-    fields = ("theta3", "theta3_rate", "theta3_accel", "theta6", "theta6_rate", "theta6_accel")
-    bound = {f: 0.0 for f in fields}
-    for name, half in half_units.items():
-        h = rel_step * half
-        up = sley_motion(replace(mechanism, **{name: getattr(mechanism, name) + h}), theta1)
-        down = sley_motion(replace(mechanism, **{name: getattr(mechanism, name) - h}), theta1)
-        for f in fields:
-            diff = getattr(up, f) - getattr(down, f)
-            if f in ("theta3", "theta6"):
-                diff = np.angle(np.exp(1j * diff))
-            bound[f] = bound[f] + np.abs(diff / (2 * h)) * half
-    return bound
+    return replace(mechanism, **{n: float(v) for n, v in zip(names, np.atleast_1d(values), strict=True)})
+
+
+@dataclass(frozen=True)
+class ParameterFit:
+    """Least-squares fit of six-bar parameters to tabulated theta3 and theta6 angles.
+
+    names: fitted SixBar fields; start: their printed values and half_width: half a unit of the printed
+    last digit (m or rad); value: the fitted values; shift: (value - start) / half_width, so |shift| <= 1
+    is inside the rounding interval; residual: model - table (rad), the theta3 cells then the theta6
+    cells; condition: condition number of the Jacobian in half-width units (large: the parameters
+    trade off against each other); bounded: whether the fit was held inside the rounding intervals.
+    """
+
+    names: tuple[str, ...]
+    start: FloatArray
+    half_width: FloatArray
+    value: FloatArray
+    shift: FloatArray
+    residual: FloatArray
+    condition: float
+    nfev: int
+    bounded: bool
+
+
+def fit_table_angles(
+    mechanism: SixBar,
+    theta1: ArrayLike,
+    theta3: ArrayLike,
+    theta6: ArrayLike,
+    half_widths: dict[str, float],
+    bounded: bool = True,
+    tol: float = 1.0e-12,
+    scale: float = 1.0,
+    unbounded: tuple[str, ...] = (),
+) -> ParameterFit:
+    """Fit the parameters named in ``half_widths`` (SixBar field -> half a printed unit, m or rad) to the
+    tabulated angles theta3, theta6 (rad) at crank angles theta1 (rad) by least squares
+    (scipy.optimize.least_squares, trust-region reflective, 3-point Jacobian).
+
+    The unknowns are the shifts in half-widths from the printed values; ``bounded`` keeps every shift in
+    [-1, 1], the rounding interval of the printed digits, except for the parameters named in
+    ``unbounded``.  The residuals are divided by ``scale`` (rad; half
+    a unit of the table's printed angle digit makes them of order one, so that the gradient test of
+    least_squares means something); ``tol`` is its ftol = xtol = gtol.
+    """
+    from scipy.optimize import least_squares
+
+    names = tuple(half_widths)
+    start = np.array([getattr(mechanism, n) for n in names], dtype=float)
+    half = np.array([half_widths[n] for n in names], dtype=float)
+    t1 = np.asarray(theta1, dtype=float)
+    target = np.concatenate([np.asarray(theta3, dtype=float), np.asarray(theta6, dtype=float)])
+
+    def residual(u: FloatArray) -> FloatArray:
+        m = sley_motion(with_parameters(mechanism, names, start + u * half), t1)
+        return np.angle(np.exp(1j * (np.concatenate([m.theta3, m.theta6]) - target))) / scale
+
+    limit = np.array([np.inf if (not bounded or n in unbounded) else 1.0 for n in names])
+    bounds = (-limit, limit)
+    sol = least_squares(residual, np.zeros(len(names)), jac="3-point", bounds=bounds, method="trf", ftol=tol, xtol=tol, gtol=tol)
+    s = np.linalg.svd(sol.jac, compute_uv=False)
+    return ParameterFit(names, start, half, start + sol.x * half, sol.x, sol.fun * scale, float(s[0] / s[-1]), int(sol.nfev), bounded)
 
 
 def coarse_central_difference(values: ArrayLike, step: float, angles: bool) -> FloatArray:

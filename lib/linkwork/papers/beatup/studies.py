@@ -10,15 +10,13 @@ import numpy as np
 import xarray as xr
 
 from ...units import DEG_PER_RAD, angle_grid_deg
-from .adapter import four_bar_beatup, rounding_half_units, six_bar
+from .adapter import four_bar_beatup, six_bar
 from .model import (
-    coarse_central_difference,
     dead_centres,
     from_front,
     paper_closed_form,
     radius_for_stroke,
     reed_displacement,
-    rounding_bound,
     sley_motion,
     window_span,
 )
@@ -101,7 +99,7 @@ def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
 
 def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
     """Six-bar angles and derivatives on the paper's and a fine grid, dead centres, extremes, typo checks."""
-    base, mech, paper = motion(section)
+    base, mech, _ = motion(section)
     paper_deg, _ = _grids(section)
     data = {}
 
@@ -121,30 +119,6 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
         unit, long_name = MOTION_VARS[name]
         data[name + "_fd"] = xr.DataArray(value, dims="crank_angle", attrs={"units": unit, "long_name": f"{long_name}, central differences"})
 
-    # worst case from the rounding of the printed parameters (half a unit of the last printed digit)
-    half_units = rounding_half_units(section["printed_rounding"])
-    bounds = rounding_bound(mech, np.radians(paper_deg), half_units)
-    for name, value in bounds.items():
-        unit, long_name = MOTION_VARS[name]
-        data[name + "_rounding_bound"] = xr.DataArray(
-            value * DEG if unit == "deg" else value,
-            dims="crank_angle",
-            attrs={"units": unit, "long_name": f"{long_name}: worst-case change from rounding the printed parameters"},
-        )
-    # the same coarse central differences the report applies to the printed columns, applied to ours
-    h = np.radians(section["grids"]["paper_step_deg"])
-    for name, source, is_angle in (
-        ("theta3_rate", paper.theta3, True),
-        ("theta3_accel", paper.theta3_rate, False),
-        ("theta6_rate", paper.theta6, True),
-        ("theta6_accel", paper.theta6_rate, False),
-    ):
-        unit, long_name = MOTION_VARS[name]
-        data[name + "_coarse_fd"] = xr.DataArray(
-            coarse_central_difference(source, h, is_angle),
-            dims="crank_angle",
-            attrs={"units": unit, "long_name": f"{long_name}: central difference of the column above at the paper's step"},
-        )
     # how far the paper's closed forms are from the chain solver (corrected: rounding; printed (7)/(13): their typos)
     for name in MOTION_VARS:
         diff = np.abs(data[f"{name}_eqs"].values - base[name].values)
