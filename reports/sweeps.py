@@ -77,7 +77,7 @@ def heat_map(ax, ds, var, xdim, ydim):
     ax.set_title(f"{ds[var].attrs['long_name']} ({ds[var].attrs['units']})", fontsize=8, wrap=True)
     bar = fig.colorbar(im, ax=ax)
     bar.ax.yaxis.set_major_formatter("{x:.3g}")
-    bar.ax.yaxis.set_minor_formatter("{x:.2g}")
+    bar.ax.yaxis.set_minor_formatter("")
 
 
 def percent_range(ds, var, dim):
