@@ -46,7 +46,7 @@ ALL_JOBS = {
     "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1,
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
-    "accuracy_summary": 1, "sweep_point": 15, "sweep_gather": 2, "report": 8,
+    "accuracy_summary": 1, "sweep_point": 3, "sweep_gather": 2, "report": 8,
     "uncertainty_batch": 9, "uncertainty_gather": 4, "readme_findings": 1,  # 2 + 2 + 1 + 4 (clearance: per variant and moved scenes)
 }
 
