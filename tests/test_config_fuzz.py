@@ -60,7 +60,7 @@ CASES = [
     ("rtol-negative", "stiff: {method: bdf, rtol: 1.0e-8", "stiff: {method: bdf, rtol: -1.0e-8", ["clearance.tight_integrators.stiff.rtol", "-1e-08"]),
     ("unknown-method", "explicit: {method: dopri5, rtol: 1.0e-6", "explicit: {method: euler, rtol: 1.0e-6", ["clearance.integrators.explicit.method", "euler"]),
     ("fine-step-tiny", "    fine_step_deg: 1.0", "    fine_step_deg: 1.0e-5", ["stiffness.grids.fine_step_deg", "1e-05"]),
-    ("angle-step-huge", "angle_step_deg: 1.0\n", "angle_step_deg: 180.0\n", ["transplanter.fe.angle_step_deg", "180.0"]),
+    ("angle-step-huge", "angle_step_deg: 1.0  ", "angle_step_deg: 180.0  ", ["transplanter.fe.angle_step_deg", "180.0"]),
     ("points-per-cycle-huge", "points_per_cycle: 720", "points_per_cycle: 100000000", ["clearance.numerics.points_per_cycle", "size guard"]),
     ("record-cycles-huge", "record_cycles: 2  ", "record_cycles: 100000  ", ["clearance.numerics.record_cycles", "size guard"]),
     ("revolutions-huge", "revolutions: 8 ", "revolutions: 1000000 ", ["transplanter.fe.revolutions", "size guard"]),
