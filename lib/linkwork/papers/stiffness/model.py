@@ -337,6 +337,6 @@ def planar_mobility(bodies: int, pins: int) -> int:
 #: The mechanisms whose mobility the report states: (description, bodies with the frame, pins).
 MOBILITY_CASES = {
     "crank held, pins at A and B, O' free (a pinned K_h)": (3, 2),
-    "crank held, pins at A and B, O' pivoted on the frame (the pinned K_c above)": (3, 3),
+    "crank held, pins at A and B, O' pivoted on the frame (the pinned output stiffness)": (3, 3),
     "running: crank on its pivot O, pins at A, B and O'": (4, 4),
 }
