@@ -38,6 +38,6 @@ rule stiffness_compare:
         "results/stiffness/findings.nc",
     params:
         study="linkwork.papers.stiffness.findings:compare",
-        cfg=section("stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa"),
+        cfg=section("stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa", "axial_negligible_share"),
     script:
         STUDY

@@ -268,3 +268,75 @@ def trapezoid_displacement(
         density = np.asarray(f.axial)[..., None] ** 2 / (sec.youngs_modulus * sec.area) + m**2 / (sec.youngs_modulus * sec.second_moment)
         total = total + np.trapezoid(density, x, axis=-1)
     return np.asarray(total, dtype=float)
+
+
+# --- the real, pinned mechanism --------------------------------------------------------------------------
+#: Parts of the pinned output's compliance, in the order ``pinned_output_compliance`` returns them.
+PINNED_PARTS = ("coupler axial", "crank axial", "crank bending", "rocker axial", "rocker bending")
+
+
+def _cross(u: FloatArray, v: FloatArray) -> FloatArray:
+    return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+
+def pinned_output_compliance(
+    linkage: FourBar, sections: tuple[Section, Section, Section], crank_angle: ArrayLike
+) -> FloatArray:
+    """Rotation of the rocker at O' per unit torque on it, for the pinned mechanism with the crank held, by part.
+
+    The real linkage: the crank clamped at O (held by the drive), pins at A and B, the rocker pivoted on the
+    frame at O'.  A torque T on the rocker is resisted by the coupler, a two-force member: its axial force is
+    N = T / c with c = (B - O') x e_AB the lever of the line AB about O'.  N loads the crank's tip at A (axial
+    and transverse components: a cantilever), and the rocker carries N's component along it and a bending
+    moment falling linearly from T at O' to zero at the pin B.  Unit-load (Castigliano) compliance, exact:
+
+        phi / T = [ l2/(E2 A2) + l1 (e_AB.e_OA)^2/(E1 A1) + l1^3 (e_OA x e_AB)^2/(3 E1 I1)
+                    + l3 (e_AB.e_O'B)^2/(E3 A3) ] / c^2  +  l3 / (3 E3 I3)
+
+    Returns an array (..., 5) in rad per N m, parts in the order of ``PINNED_PARTS``.
+    """
+    motion = four_bar(linkage, crank_angle)
+    l1, l2, l3, _ = linkage.lengths
+    a, b = np.asarray(motion.A, dtype=float), np.asarray(motion.B, dtype=float)
+    pivot = np.asarray(linkage.rocker_pivot, dtype=float)
+    e_oa = a / l1
+    e_ab = (b - a) / l2
+    e_rb = (b - pivot) / l3
+    lever = l3 * _cross(e_rb, e_ab)  # c, m
+    (crank, coupler, rocker) = sections
+    parts = np.stack(
+        [
+            l2 / (coupler.youngs_modulus * coupler.area) / lever**2,
+            l1 * np.sum(e_ab * e_oa, axis=-1) ** 2 / (crank.youngs_modulus * crank.area) / lever**2,
+            l1**3 * _cross(e_oa, e_ab) ** 2 / (3.0 * crank.youngs_modulus * crank.second_moment) / lever**2,
+            l3 * np.sum(e_ab * e_rb, axis=-1) ** 2 / (rocker.youngs_modulus * rocker.area) / lever**2,
+            np.full_like(lever, l3 / (3.0 * rocker.youngs_modulus * rocker.second_moment)),
+        ],
+        axis=-1,
+    )
+    return parts
+
+
+def pinned_output_stiffness(
+    linkage: FourBar, sections: tuple[Section, Section, Section], crank_angle: ArrayLike
+) -> FloatArray:
+    """Rotational stiffness of the rocker at O' with the crank held, pinned mechanism (N m/rad)."""
+    return 1.0 / pinned_output_compliance(linkage, sections, crank_angle).sum(axis=-1)
+
+
+def planar_mobility(bodies: int, pins: int) -> int:
+    """Grübler-Kutzbach mobility of a planar chain: 3 (bodies - 1) - 2 pins (the frame counts as a body).
+
+    A body welded to the frame (the crank held by the drive) is part of the frame.
+    """
+    if bodies < 1 or pins < 0:
+        raise ValueError(f"a chain needs at least the frame and no negative pin count, got {bodies} bodies, {pins} pins")
+    return 3 * (bodies - 1) - 2 * pins
+
+
+#: The mechanisms whose mobility the report states: (description, bodies with the frame, pins).
+MOBILITY_CASES = {
+    "crank held, pins at A and B, O' free (a pinned K_h)": (3, 2),
+    "crank held, pins at A and B, O' pivoted on the frame (the pinned output stiffness)": (3, 3),
+    "running: crank on its pivot O, pins at A, B and O'": (4, 4),
+}
