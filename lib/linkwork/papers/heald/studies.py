@@ -70,11 +70,14 @@ def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
     return xr.Dataset(data, coords={"model": ("model", np.array(models, dtype=object), {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"})})
 
 
-def interlaced(zeros: np.ndarray, poles: np.ndarray) -> bool:
-    """True if the sorted zeros and poles alternate, starting with a zero (w09 < w07 < w010 < w08 < w011)."""
-    merged = sorted([(w, 0) for w in zeros] + [(w, 1) for w in poles])
-    kinds = [k for _, k in merged]
-    return kinds[0] == 0 and all(kinds[i] != kinds[i + 1] for i in range(len(kinds) - 1))
+def interlaced(zeros: np.ndarray, poles: np.ndarray, rtol: float = 1e-9) -> bool:
+    """True if the sorted zeros and poles alternate, starting with a zero (w09 <= w07 <= w010 <= w08 <= w011);
+    equality within ``rtol`` is allowed: two equal branches make a pole coincide with their zeros (it cancels)."""
+    z, p = np.sort(np.asarray(zeros, dtype=float)), np.sort(np.asarray(poles, dtype=float))
+    if z.size != p.size + 1:
+        return False
+    tol = rtol * max(float(np.max(z, initial=0.0)), 1.0)
+    return bool(all(z[i] <= p[i] + tol and p[i] <= z[i + 1] + tol for i in range(p.size)))
 
 
 def _labelled_attrs(cfg: Mapping[str, Any]) -> dict[str, str]:
