@@ -138,11 +138,10 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
     many = float(pub["force_E_many_times_F"]["value"])
     p = parameters(cfg)
     if "A" in cfg["models"]:
-        from scipy.optimize import brentq
-
-        f = measure_function("force_E_many_times_F", "A", cfg)
-        ratio = brentq(lambda r: f({**p, "reaction_E": r * p["reaction_F"]}) - many, 1e-3, 1e3, rtol=1e-8)
-        ds["threshold_reaction_ratio_A"] = ((), float(ratio), {"units": "1", "long_name": f"model A: |R_E|/|R_F| (|R_F| assumed) at which min |Q_E|/|Q_F| = {many:g}"})
+        at = [r[5] for r in rows if r[0] == "A" and r[1] == "force_E_many_times_F" and r[2] == "reaction_E"]
+        ds["threshold_reaction_ratio_A"] = ((), float(at[0]) / p["reaction_F"] if at else float("nan"), {
+            "units": "1", "long_name": f"model A: |R_E|/|R_F| (|R_F| assumed) at which min |Q_E|/|Q_F| = {many:g} (the flip point of reaction_E)",
+            "nan_meaning": "reaction_E does not decide the verdict alone"})
         ds["threshold_clearance_difference_A"] = ((), clearance_difference_for_ratio(p, many, "A"), {
             "units": "m", "long_name": f"model A: Delta_F - Delta_E (Delta_E assumed) at which the self-consistent reactions split as {many:g} : 1"})
     return ds
