@@ -89,19 +89,37 @@ for m in models:
             row[f"holds for {sweep_labels[sweep]} in"] = text or "–"
         rows.append(row)
 table(pd.DataFrame(rows))
+flips = fnd[[v for v in fnd.data_vars if v.startswith("flip_")]].to_dataframe()
 md(
     f"""
 **Reading.** "Many times" is read as a ratio of at least {many:g} over the whole speed band ({cfg['speeds']['min_rpm']:g}–{cfg['speeds']['max_rpm']:g} min⁻¹),
-and the {limit:g} s⁻¹ limit as a resonance of the model lying within the band above. The verdicts hold at the assumed parameters;
-the range columns say where each claim would hold instead. In model A the E/F force ratio equals the ratio of the joint
-stiffnesses k_E/k_F, so the first claim needs Vulfson's k_τ at E to be several times that at F. That means a larger
-reaction or a smaller clearance at E. In model B the ratio follows the reduced masses of the two sides and stays near 1
-unless they differ. In model A a force resonance of the frame on the warp, reached through the bell cranks, falls at
-{float(ds.first_resonance.sel(model='A')):.1f} rad/s ({float(ds.first_resonance_rpm.sel(model='A')):.0f} min⁻¹),
-close to the paper's 400 min⁻¹ limit. It also makes the joint forces dip there, so in model A "forces grow with frequency"
-fails at these parameters.
+and the {limit:g} s⁻¹ limit as the model's lowest resonance under the kinematic drive (a velocity resonance, K = 0, where the
+drive force peaks) lying within the band above; a force resonance is an antiresonance of a velocity-driven chain and is not
+counted (section 3). The verdicts hold at the assumed parameters; the range columns say where each claim would hold instead,
+"independent" where the joint forces do not move along that sweep at all. In model A the E/F force ratio follows the ratio of
+the joint stiffnesses k_E/k_F, so the first claim needs Vulfson's k_τ at E to be several times that at F: a larger reaction or
+a smaller clearance at E. In model B each joint carries only its own branch, so the ratio follows the reduced masses of the
+two sides, and the reactions are the branches' own kinetostatic ones (section 1b).
 """
 )
+
+# %% [markdown]
+# ### Where each verdict flips
+#
+# For every verdict that one assumed input decides alone, the value of that input (the others at their assumed values) at
+# which the verdict flips, found by bisection between its assumed value and the end of its range that flips it.
+
+# %%
+table(flips.rename(columns={"flip_model": "model", "flip_claim": "claim", "flip_input": "assumed input", "flip_nominal": "assumed value",
+                            "flip_end": "range end", "flip_value": "verdict flips at", "flip_measure": "measure there", "flip_nominal_state": "at the assumed value the claim"}),
+      {"assumed value": "{:.4g}", "range end": "{:.4g}", "verdict flips at": "{:.4g}", "measure there": "{:.4g}"})
+if "threshold_reaction_ratio_A" in fnd:
+    md(
+        f"Named thresholds. Model A: the E/F claim holds once |R_E|/|R_F| exceeds **{float(fnd.threshold_reaction_ratio_A):.3f}** "
+        f"(|R_F| at its assumed value), close to the ratio {many:g} itself, because k_τ ≈ |R|/Δ while |R| ≪ k_nΔ. "
+        f"Model B: the lowest resonance under the drive is the warp branch √(k_O/M_P); the limit claim holds between the flip "
+        "values of M_P and k_O in the table (the band is the limit ± 10 %)."
+    )
 
 # %% [markdown]
 # ## 1. Parameters (all assumed: the paper prints none)
@@ -114,6 +132,37 @@ md(
     f"Joint stiffnesses from Vulfson's model: k_E = {float(ds.k_E.sel(joints='elastic')):.3g} N/m and "
     f"k_F = {float(ds.k_F.sel(joints='elastic')):.3g} N/m with clearance; k_n = {float(ds.k_E.sel(joints='ideal')):.3g} N/m "
     "without (the ideal joint). The excitation is a harmonic drive displacement X at D, so V = jωX."
+)
+
+# %% [markdown]
+# ### 1b. The joint reactions from the mechanism's own kinetostatics
+#
+# Vulfson's k_τ needs the reaction |R| in each joint. Kinetostatics gives it: the forces of the ideal-joint chain (pins of
+# stiffness k_n, no clearance) when the heald stroke at D (first harmonic, assumed) is driven at the operating speed (assumed).
+
+# %%
+rk = ds.reaction_kinetostatic
+md(
+    f"At {float(ds.omega_op):.1f} rad/s with a stroke of {float(ds.stroke_D) * 1e3:.0f} mm at D the ideal-joint chains give "
+    f"|R_E| = {float(rk.sel(model='A', joint='E')):.0f} N, |R_F| = {float(rk.sel(model='A', joint='F')):.0f} N in model A and "
+    f"{float(rk.sel(model='B', joint='E')):.0f} N, {float(rk.sel(model='B', joint='F')):.0f} N in model B.\n\n"
+    f"**Model B uses them** (|R_E| = {float(ds.reaction_model_B.sel(joint='E')):.0f} N, |R_F| = {float(ds.reaction_model_B.sel(joint='F')):.0f} N, "
+    "in closed form, checked against the network in the tests): each joint carries only its own branch, whose ideal pin does not "
+    "depend on the reaction, so nothing is circular, and the assumed reaction_E, reaction_F do not enter model B.\n\n"
+    "**Model A cannot use them: the split is circular.** With both joints rigid the frame is driven from both sides, a statically "
+    "indeterminate loop: the ideal chain splits the load evenly only because both pins are given the same k_n. With clearance the load "
+    "splits by k_E : k_F, and k_τ depends on the share each joint carries. Solving R = |Q(ω_op; k_τ(R))| gives the self-consistent "
+    f"reactions |R_E| = {float(ds.reaction_self_consistent_A.sel(joint='E')):.0f} N, |R_F| = {float(ds.reaction_self_consistent_A.sel(joint='F')):.0f} N "
+    f"(converged: {'yes' if int(ds.self_consistent_converged_A) else 'no'}), and with them the smallest E/F force ratio over the band is "
+    f"{float(ds.ratio_EF_min_self_consistent_A):.3f}. But the fixed point is weak: along the split the map has slope "
+    f"{float(ds.self_consistent_split_slope_A):.3f} (at 1 every split would reproduce itself), because k_τ ≈ |R|/Δ while |R| ≪ k_nΔ "
+    f"(k_nΔ = {float(ds.clearance_pin_product.sel(joint='E')):.0f} N here). Quasi-statically the fixed point is |R_E| − |R_F| = k_n(Δ_F − Δ_E): "
+    "the split is set by the difference of the two clearances, not by the mechanism's kinetostatics. A split of "
+    + (f"{many:g} : 1 needs Δ_F − Δ_E = {float(fnd.threshold_clearance_difference_A) * 1e6:.1f} µm, " if "threshold_clearance_difference_A" in fnd else "")
+    + f"well inside the assumed clearance range ({cfg['parameters']['clearance_E']['range'][0] * 1e6:g}–{cfg['parameters']['clearance_E']['range'][1] * 1e6:g} µm) "
+    "and unknowable for a worn mechanism. So model A keeps the reactions as assumed inputs, and the E/F claim in model A is decided by them. "
+    f"Note that the kinetostatic reactions at this stroke and speed exceed the assumed range of those inputs ({cfg['parameters']['reaction_E']['range'][0]:g}–"
+    f"{cfg['parameters']['reaction_E']['range'][1]:g} N): larger reactions stiffen both joints alike and leave model A's ratio to the ratio of the reactions."
 )
 
 # %% [markdown]
@@ -157,7 +206,7 @@ freqs = pd.DataFrame(
 ).sort_values("frequency (rad/s)")
 table(freqs, {"frequency (rad/s)": "{:.2f}"})
 md(
-    f"Interlacing ω09 < ω07 < ω010 < ω08 < ω011: **{'yes' if int(ds.eq2_interlaced) else 'no'}**. Numerator degree 6 and "
+    f"Interlacing ω09 ≤ ω07 ≤ ω010 ≤ ω08 ≤ ω011 (equality where the E and F branches are equal, as at the assumed parameters: the pole then cancels a zero): **{'yes' if int(ds.eq2_interlaced) else 'no'}**. Numerator degree 6 and "
     f"denominator degree 5 in ω (the mobility is spring-like at high frequency and mass-like at low frequency). "
     f"Eq. (2) with these frequencies against the network solution of model B: max relative difference "
     f"{float(ds.eq2_relative_difference):.1e}. The eigen-solver's resonances of model B (undamped) are velocity "
@@ -167,13 +216,70 @@ md(
 )
 
 # %% [markdown]
+# ### Resonance and antiresonance under a kinematic drive
+#
+# The chain is driven by a velocity V at D (kinematic excitation), and the force Q = V/K follows. Where K = 0 (Druzhinsky's
+# *velocity resonance*) a finite V needs an infinite Q: these are the **resonances** of the driven mechanism, the natural
+# frequencies with D held, where the drive force and the internal forces peak. Where K → ∞ (*force resonance*) a finite V needs
+# no force at all: these are **antiresonances**, the natural frequencies with D free, where the drive force dips to zero.
+
+# %%
+def freq_list(var, m):
+    return ", ".join(f"{x:.1f}" for x in ds[var].sel(model=m, joints="elastic").dropna("mode").values) or "none"
+
+
+def zeta_list(m, kind):
+    f, z = ds[f"mode_frequency_{kind}"].sel(model=m).dropna("mode").values, ds[f"damping_ratio_{kind}"].sel(model=m).dropna("mode").values
+    return ", ".join(f"ζ = {max(b, 0.0):.4f} at {a:.1f} rad/s" for a, b in zip(f, z)) or "–"
+
+
+table(pd.DataFrame([(m, freq_list("velocity_resonance", m), freq_list("force_resonance", m), zeta_list(m, "held"), zeta_list(m, "free")) for m in models],
+                   columns=["model", "resonances, K = 0 (rad/s)", "antiresonances, K → ∞ (rad/s)", "damping of the resonances", "damping of the antiresonances"]))
+caption_text = (
+    f"The damping ratios are the complex eigenvalues of the damped chains (−Re λ/|λ|), from the assumed c_O = {cfg['parameters']['c_O']['value']:g} N s/m "
+    f"and c_joint = {cfg['parameters']['c_joint']['value']:g} N s/m; in model B the warp resonance has ζ = c_O/(2√(k_O M_P)) = "
+    f"{float(ds.damping_ratio_held.sel(model='B', mode=0)):.4f}, the joint branches none (the paper's chain has no joint damper). "
+    "Antiresonances of model B are not given a damping ratio: its driven node is massless, so with D free the chain has no such mode."
+)
+md(caption_text)
+md(
+    f"**What this means for the speed limit.** In model A the lowest natural frequency, {float(ds.force_resonance.sel(model='A', joints='elastic', mode=0)):.1f} rad/s, "
+    "is an antiresonance: the frame "
+    "swinging on the warp together with the free rod. Under the kinematic drive the joint forces *dip* there. A dip lowers the loads "
+    "at that speed and cannot set an upper speed limit, so an earlier version of this report was wrong to offer it as the origin of "
+    f"the paper's limit: we withdraw that. Model A's lowest resonance under the drive is {float(ds.first_resonance.sel(model='A')):.1f} rad/s "
+    f"({float(ds.first_resonance_rpm.sel(model='A')):.0f} min⁻¹), far above the limit. The paper's own introduction gives the likelier source "
+    "of its number: it cites measurements [2] showing that kinetostatic calculations hold only up to about its limit speed, which "
+    "its chain does not derive."
+)
+
+# %% [markdown]
+# ### Model B: the joint forces do not see the warp branch
+#
+# Under a velocity drive every branch on the driven node sees the same prescribed motion, so Q_E and Q_F depend only on their
+# own branches. The table gives the largest relative change of |Q_E| and |Q_F| over the band between the two ends of each sweep.
+
+# %%
+sweep_keys = ["reaction_ratio", "clearance", "heald_mass", "warp_stiffness"]
+table(pd.DataFrame([(m, *[float(ds[f"joint_force_change_vs_{k}"].sel(model=m)) for k in sweep_keys]) for m in models],
+                   columns=["model", *[f"change along {k.replace('_', ' ')}" for k in sweep_keys]]), {f"change along {k.replace('_', ' ')}": "{:.2e}" for k in sweep_keys})
+md(
+    "In model B the heald mass and the warp stiffness change the joint forces only by the round-off of the solve (the tests vary "
+    "M_P, k_O and c_O and find the E and F responses unchanged), and the assumed reactions not at all (model B takes its own). "
+    "Along these sweeps model B can show nothing about the E/F claims: the table of supporting ranges says 'independent' there, "
+    "and the only model-B claim the heald mass and warp stiffness bear on is the limit (the warp branch's resonance, which shows in "
+    "the drive force Q at D, not in Q_E, Q_F)."
+)
+
+# %% [markdown]
 # ## 4. The supporting ranges
 
 # %%
 fig, axes = plt.subplots(1, 3, figsize=(14, 4), constrained_layout=True)
 for m in models:
     s = ds.sel(model=m)
-    axes[0].semilogx(ds.reaction_ratio, s.ratio_EF_min_vs_reaction_ratio, "o-", ms=3, label=f"model {m}")
+    flat = float(s.joint_force_change_vs_reaction_ratio) <= 1e-8
+    axes[0].semilogx(ds.reaction_ratio, s.ratio_EF_min_vs_reaction_ratio, "o-", ms=3, label=f"model {m}" + (" (independent of the assumed reactions)" if flat else ""))
     axes[1].plot(ds.heald_mass, s.first_resonance_vs_heald_mass, "o-", ms=3, label=f"model {m}")
     axes[2].semilogx(ds.warp_stiffness, s.first_resonance_vs_warp_stiffness, "o-", ms=3, label=f"model {m}")
 axes[0].axhline(many, color="C3", ls=":", lw=1)
@@ -190,10 +296,63 @@ for ax in axes:
 plt.show()
 caption("Claims' measures along the parameter sweeps: the smallest E/F force ratio against |R_E|/|R_F| (red dotted: the ratio read as 'many times'), and the lowest resonance against the heald-frame mass and the warp stiffness (red band: the paper's limit with our tolerance).")
 md(
-    "In model B the lowest resonance is the warp branch, √(k_O/M_P). In model A it is the frame on the warp seen "
-    "through the bell cranks. In both models a heald frame of 5–12 kg on a warp of roughly 1–2·10⁴ N/m puts a resonance "
-    "at the paper's 41.89 s⁻¹. This is the most plausible dynamic origin of the 400 min⁻¹ limit, although the paper does "
-    "not say where its limit comes from."
+    "In model B the lowest resonance under the drive is the warp branch, √(k_O/M_P); a heavier frame or a softer warp than "
+    "assumed puts it at the paper's limit (the flip values above). It is a peak of the drive force at D only: "
+    "the joint forces E and F do not see it. In model A the lowest resonance under the drive is the frame on the warp and the joint "
+    "springs with D held, far above the band over the whole range of the inputs. Model B's E/F ratio does not depend on the "
+    "reaction ratio (flat line): its reactions are its own kinetostatic ones."
+)
+
+# %% [markdown]
+# ## 4b. A real heald motion: a dwell cam's harmonics
+#
+# A heald frame does not move harmonically: it rises, dwells, returns and dwells within a turn. We drive the chains with a
+# cycloidal dwell-rise-dwell-return profile (its rise fraction assumed) as a Fourier series, the first harmonic scaled to the
+# excitation amplitude, and judge the claims on the peak joint forces over a turn. The limit becomes the lowest shaft speed at
+# which a significant harmonic (our reading: at least a set fraction of the first) meets the lowest resonance.
+
+# %%
+cam = cfg["cam"]
+fig, axes = plt.subplots(1, 3, figsize=(15, 4), constrained_layout=True)
+axes[0].bar(ds.harmonic, ds.cam_harmonic_amplitude)
+axes[0].axhline(cam["significant_harmonic"], color="C3", ls=":", lw=1, label="significant (our reading)")
+axes[0].set_yscale("log")
+axes[0].set_ylim(1e-4, 2)
+axes[0].set_xlabel("harmonic h of the shaft speed")
+axes[0].set_ylabel("|c_h| / |c_1|")
+axes[0].legend(fontsize=8)
+for i, m in enumerate(models):
+    ax = axes[i + 1]
+    ax.plot(speed, ds.Q_E.sel(model=m, joints="elastic"), "C0--", lw=1, label="Q_E, harmonic drive")
+    ax.plot(speed, ds.Q_F.sel(model=m, joints="elastic"), "C1--", lw=1, label="Q_F, harmonic drive")
+    ax.plot(speed, ds.Q_E_cam.sel(model=m), "C0-", label="peak Q_E over a turn, cam")
+    ax.plot(speed, ds.Q_F_cam.sel(model=m), "C1-", label="peak Q_F over a turn, cam")
+    ax.set_yscale("log")
+    ax.set_title(f"model {m}")
+    ax.set_xlabel("main-shaft speed (min⁻¹)")
+    ax.set_ylabel("joint force (N)")
+    ax.legend(fontsize=8)
+for ax in axes:
+    ax.grid(alpha=0.3, which="both")
+plt.show()
+caption(f"Left: harmonics of the cam drive (rise fraction {cam['rise_fraction']['value']:g}; the profile is half-wave symmetric, so the even harmonics vanish). "
+        "Middle and right: joint forces with the harmonic drive (dashed) and peak joint forces over a turn with the cam drive (solid), elastic joints.")
+claim_short = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": "limit 41.89 s⁻¹"}
+rows = []
+for m in models:
+    for c in fnd.claim.values:
+        rows.append((m, claim_short[str(c)], str(fnd.verdict_sine_nominal.sel(model=m, claim=c).values), str(fnd.verdict_cam_nominal.sel(model=m, claim=c).values),
+                     float(fnd.value_cam_nominal.sel(model=m, claim=c)), str(fnd.verdict_cam_over_rise.sel(model=m, claim=c).values)))
+table(pd.DataFrame(rows, columns=["model", "claim", "verdict, harmonic drive (assumed parameters)", "verdict, cam drive", "measure, cam drive",
+                                  f"cam drive over the rise fraction {cam['rise_fraction']['range'][0]:g}–{cam['rise_fraction']['range'][1]:g}"]),
+      {"measure, cam drive": "{:.4g}"})
+md(
+    f"Do the harmonics change a verdict at the assumed parameters? **{'yes' if int(fnd.cam_changes_a_verdict) else 'no'}**. "
+    f"With the cam the highest significant harmonic is h = {int(ds.top_harmonic_cam.sel(model=models[0], rise='nominal'))}, so the "
+    "lowest resonance is met at a shaft speed that many times lower. Weak higher harmonics matter where a resonance is undamped: "
+    "model B's joint branches have no damper, and a harmonic far below the significance threshold still raises a sharp peak when h times "
+    "the shaft speed meets a branch's resonance, so the peak joint forces no longer grow over the whole band. The headline verdicts "
+    "(with the ranges of every assumed input) stay those of the harmonic drive, the paper's own excitation."
 )
 
 # %% [markdown]

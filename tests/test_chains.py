@@ -46,7 +46,7 @@ def test_network_and_matrix_routes_agree(model, variant):
 
 
 def test_series_parallel_and_eq2_match_the_network_for_model_b():
-    undamped = {**P, "c_joint": 0.0, "c_O": 0.0}
+    undamped = {**P, "c_joint": 0.0, "c_O": 0.0, "eta8": 1.7}  # unequal E and F branches: strict interlacing
     net = model_b(undamped)
     k_net = 1.0 / solve_network(net, W, 1.0).input_force
     k_tree = series_parallel_mobility(model_b_tree(undamped), W)
@@ -218,6 +218,7 @@ def test_interlacing_of_zeros_and_poles():
     assert interlaced(np.array([1.0, 3.0, 5.0]), np.array([2.0, 4.0]))
     assert not interlaced(np.array([1.0, 2.0, 5.0]), np.array([3.0, 4.0]))
     assert not interlaced(np.array([2.0, 4.0]), np.array([1.0, 3.0, 5.0]))  # must start with a zero
+    assert interlaced(np.array([1.0, 3.0, 3.0]), np.array([2.0, 3.0]))  # equal branches: a pole on a double zero
     w = np.linspace(10, 1000, 50)
     _, num, den = eq2_mobility(P, w)
     assert interlaced(num, den)  # the property the paper's form relies on, at the assumed parameters

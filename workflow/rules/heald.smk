@@ -10,7 +10,7 @@ rule heald_chain:
         "results/heald/chain.nc",
     params:
         study="linkwork.papers.heald.studies:chain",
-        cfg=section("heald", *HEALD_MODEL, "models", "sweeps"),
+        cfg=section("heald", *HEALD_MODEL, "models", "sweeps", "cam"),
     script:
         STUDY
 
@@ -40,6 +40,6 @@ rule heald_compare:
         "results/heald/findings.nc",
     params:
         study="linkwork.papers.heald.findings:compare",
-        cfg={},
+        cfg=section("heald", *HEALD_MODEL, "models"),
     script:
         STUDY

@@ -11,8 +11,11 @@ from ...units import RAD_S_PER_RPM
 
 
 def parameters(cfg: Mapping[str, Any]) -> dict[str, float]:
-    """Plain values of the labelled entries of ``parameters`` (SI units)."""
-    return {k: float(v["value"]) for k, v in cfg["parameters"].items()}
+    """Plain values of the labelled entries of ``parameters`` (SI units: ``operating_speed_rpm`` becomes
+    ``omega_op`` in rad/s)."""
+    p = {k: float(v["value"]) for k, v in cfg["parameters"].items()}
+    p["omega_op"] = p.pop("operating_speed_rpm") * RAD_S_PER_RPM
+    return p
 
 
 def omega_grid(speeds: Mapping[str, Any]) -> np.ndarray:

@@ -33,6 +33,10 @@ def check(section: Mapping[str, Any], key: str = "heald") -> None:
     for name, sweep in section["sweeps"].items():
         if sweep["start"] >= sweep["stop"]:
             raise ConfigError(f"config key {key}.sweeps.{name}: start {sweep['start']!r} must be below stop {sweep['stop']!r}")
+    rise = section["cam"]["rise_fraction"]
+    for what, value in (("value", rise["value"]), *((f"range.{i}", v) for i, v in enumerate(rise.get("range", ())))):
+        if not 0 < value < 0.5:
+            raise ConfigError(f"config key {key}.cam.rise_fraction.{what}: value {value!r} must lie in (0, 0.5): the rise and the return share one turn")
     for model in section["models"]:
         try:
             build(model, parameters(section), "elastic")

@@ -10,13 +10,24 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs, tolerance_of, where_true
+from ...pipeline.compare import acceptance, classify, compare_datasets, count_text, counts_dataset, findings_attrs, tolerance_of, where_true
 from ...units import RAD_S_PER_RPM
+from .adapter import amplitude, omega_grid, parameters
+from .dynamics import clearance_difference_for_ratio, flip_point
 
 #: Model A is the physical linkage (defensible); model B is the chain of the form of the paper's eq. (2).
 DEFENSIBLE, PAPER_MODEL = "A", "B"
 CLAIMS = ("force_E_many_times_F", "forces_grow_with_frequency", "limit_41_89")
 SWEEPS = ("reaction_ratio", "clearance", "heald_mass", "warp_stiffness")
+#: Claims judged on the joint forces E and F (not on the resonances).
+FORCE_CLAIMS = ("force_E_many_times_F", "forces_grow_with_frequency")
+#: Largest relative change of the joint forces along a sweep that counts as none (round-off of the solve).
+INDEPENDENT = 1e-8
+INDEPENDENT_TEXT = "independent (the joint forces do not move along this sweep)"
+#: Relative width to which a verdict's flip point is located.
+FLIP_RTOL = 1e-3
+#: Points scanned between an assumed value and a range end that does not flip the verdict (an interval claim).
+SCAN = 9
 
 
 def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance: float) -> dict[str, np.ndarray]:
@@ -34,7 +45,10 @@ def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance:
             ("limit_41_89", "warp_stiffness"): np.abs(s.first_resonance_vs_warp_stiffness - limit) <= limit_tolerance,
         }
         for (claim, sweep), ok in tests.items():
-            text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = where_true(chain[sweep].values, ok.values)
+            if claim in FORCE_CLAIMS and float(s[f"joint_force_change_vs_{sweep}"]) <= INDEPENDENT:
+                text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = INDEPENDENT_TEXT
+            else:
+                text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = where_true(chain[sweep].values, ok.values)
     return {"models": models, "text": text}
 
 
@@ -52,8 +66,120 @@ def numerical_errors(chain: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple
     return out
 
 
+def measure_function(claim: str, model: str, cfg: Mapping[str, Any]):
+    """The claim's measure as a function of a parameter dict (the cheapest route to it)."""
+    from .studies import growth_fraction, joint_forces, lowest_resonance
+
+    w, amp = omega_grid(cfg["speeds"]), amplitude(cfg)
+    if claim == "force_E_many_times_F":
+        def ratio(p):
+            _, q_e, q_f, _ = joint_forces(model, p, "elastic", w, amp)
+            return float(np.min(np.abs(q_e) / np.abs(q_f)))
+        return ratio
+    if claim == "forces_grow_with_frequency":
+        return lambda p: growth_fraction(model, p, w, amp)
+    return lambda p: lowest_resonance(model, p)
+
+
+def moved(cfg: Mapping[str, Any], name: str, value: float) -> dict[str, float]:
+    """The parameter dict with one labelled parameter set to ``value`` (config units)."""
+    section = {**cfg, "parameters": {**cfg["parameters"], name: {**cfg["parameters"][name], "value": value}}}
+    return parameters(section)
+
+
+def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.DataFrame) -> xr.Dataset:
+    """For every verdict that an input decides alone: the value of that input (the others at their assumed
+    values) at which the verdict flips, located by bisection between its assumed value and the end of its range
+    that flips it."""
+    pub = {q["id"]: q for q in published["quantities"]}
+    rows = []
+    for _, row in table[table.verdict == "depends on assumptions"].iterrows():
+        names = [] if str(row.decided_by).startswith("jointly") else [n.strip() for n in str(row.decided_by).split(",")]
+        region = acceptance(float(row.published), float(row.tolerance), row.relation)
+        f = measure_function(row.id, row.model, cfg)
+        for name in names:
+            nominal = float(cfg["parameters"][name]["value"])
+            low, high = (float(x) for x in cfg["parameters"][name]["range"])
+            base = region[0] <= float(row.reproduced) <= region[1]
+
+            def holds(x, name=name):
+                v = f(moved(cfg, name, x))
+                return bool(region[0] <= v <= region[1])
+
+            for end in (low, high):
+                if holds(end) != base:
+                    brackets = [(nominal, end)]
+                elif row.relation != "eq":  # a one-sided claim on a monotone measure: this end does not flip it
+                    brackets = []
+                else:  # an interval claim can flip and flip back inside the range: scan for the changes
+                    grid = np.geomspace(nominal, end, SCAN) if nominal > 0 and end > 0 else np.linspace(nominal, end, SCAN)
+                    state = [holds(x) for x in grid]
+                    brackets = [(grid[i], grid[i + 1]) for i in range(SCAN - 1) if state[i] != state[i + 1]]
+                for a, b in brackets:
+                    value = flip_point(holds, a, b, FLIP_RTOL)
+                    rows.append((row.model, row.id, name, nominal, end, value, f(moved(cfg, name, value)), "holds" if base else "fails"))
+    cols = list(zip(*rows, strict=True)) if rows else [[] for _ in range(8)]
+    dim = "flip"
+    ds = xr.Dataset(
+        {
+            "flip_model": (dim, np.array(cols[0], dtype=object), {"units": "1", "long_name": "chain model"}),
+            "flip_claim": (dim, np.array(cols[1], dtype=object), {"units": "1", "long_name": "published claim"}),
+            "flip_input": (dim, np.array(cols[2], dtype=object), {"units": "1", "long_name": "the assumed input moved alone"}),
+            "flip_nominal": (dim, np.array(cols[3], dtype=float), {"units": "config units of the input", "long_name": "its assumed value"}),
+            "flip_end": (dim, np.array(cols[4], dtype=float), {"units": "config units of the input", "long_name": "the end of its range on the flipping side"}),
+            "flip_value": (dim, np.array(cols[5], dtype=float), {"units": "config units of the input", "long_name": f"value at which the verdict flips (bisection to a relative {FLIP_RTOL:g})"}),
+            "flip_measure": (dim, np.array(cols[6], dtype=float), {"units": "the claim's unit", "long_name": "the claim's measure at the flip value"}),
+            "flip_nominal_state": (dim, np.array(cols[7], dtype=object), {"units": "1", "long_name": "whether the claim holds at the assumed value"}),
+        },
+        coords={dim: (dim, np.arange(len(rows)), {"units": "1", "long_name": "flip point"})},
+    )
+    ds.attrs["flip_rtol"] = FLIP_RTOL
+    # the named thresholds: the reaction ratio and, through the kinetostatics, the clearance difference
+    many = float(pub["force_E_many_times_F"]["value"])
+    p = parameters(cfg)
+    if "A" in cfg["models"]:
+        at = [r[5] for r in rows if r[0] == "A" and r[1] == "force_E_many_times_F" and r[2] == "reaction_E"]
+        ds["threshold_reaction_ratio_A"] = ((), float(at[0]) / p["reaction_F"] if at else float("nan"), {
+            "units": "1", "long_name": f"model A: |R_E|/|R_F| (|R_F| assumed) at which min |Q_E|/|Q_F| = {many:g} (the flip point of reaction_E)",
+            "nan_meaning": "reaction_E does not decide the verdict alone"})
+        ds["threshold_clearance_difference_A"] = ((), clearance_difference_for_ratio(p, many, "A"), {
+            "units": "m", "long_name": f"model A: Delta_F - Delta_E (Delta_E assumed) at which the self-consistent reactions split as {many:g} : 1"})
+    return ds
+
+
+def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.Dataset) -> xr.Dataset:
+    """Verdicts at the assumed parameters with the harmonic drive and with the cam drive (nominal rise fraction;
+    and over the rise fraction's range, the other inputs at their assumed values)."""
+    errors = numerical_errors(chain, accuracy)
+    sine = compare_datasets(published, [chain], errors=errors)
+    names = {"ratio_EF_min": "ratio_EF_min_cam", "growth_fraction": "growth_fraction_cam", "first_resonance": "first_resonance_cam"}
+    cam = xr.Dataset({k: chain[v].sel(rise="nominal", drop=True) for k, v in names.items()})
+    cam_table = compare_datasets(published, [cam], errors=errors)
+    pub = {q["id"]: q for q in published["quantities"]}
+    over = []
+    for _, row in cam_table.iterrows():
+        var = names[pub[row.id]["measure"]["variable"]]
+        values = chain[var].sel(model=row.model).values
+        over.append(classify(float(row.published), float(row.tolerance), row.relation, float(values[0]), float(row.numerical_error), float(values.min()), float(values.max())))
+    shape = (len(chain.model), len(CLAIMS))
+
+    def grid(col):
+        return np.array(list(col), dtype=object).reshape(shape)
+
+    return xr.Dataset(
+        {
+            "verdict_sine_nominal": (("model", "claim"), grid(sine.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, harmonic drive"}),
+            "verdict_cam_nominal": (("model", "claim"), grid(cam_table.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, cam drive"}),
+            "verdict_cam_over_rise": (("model", "claim"), grid(over), {"units": "1", "long_name": "verdict with the cam drive over the rise fraction's range (other inputs assumed)"}),
+            "value_cam_nominal": (("model", "claim"), np.array(list(cam_table.reproduced), dtype=float).reshape(shape), {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"}),
+            "cam_changes_a_verdict": ((), int((sine.verdict.values != cam_table.verdict.values).any()), {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"}),
+        }
+    )
+
+
 def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.Dataset, uncertainty: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
-    """Comparison table per model and the support ranges of every claim."""
+    """Comparison table per model, the support ranges of every claim, the flip points of the verdicts an input
+    decides, and the verdicts with a cam's harmonics."""
     table = compare_datasets(published, [chain], errors=numerical_errors(chain, accuracy), uncertainty=uncertainty)
     pub = {q["id"]: q for q in published["quantities"]}
     limit = float(pub["limit_41_89"]["value"])
@@ -74,6 +200,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
         },
     )
     findings = findings.merge(counts_dataset(table))
+    findings = findings.merge(thresholds(cfg, published, table)).merge(cam_verdicts(published, chain, accuracy))
     findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain)))
     return table, findings
 

@@ -18,7 +18,10 @@ parameter dict (SI units; every value is labelled sourced/assumed in config):
 ``k_n``
     pin bending stiffness (N/m); ``c_joint`` damping in a joint (N s/m);
 ``clearance_E``, ``clearance_F`` (m), ``reaction_E``, ``reaction_F`` (N)
-    Vulfson's clearance model of the joints E and F.
+    Vulfson's clearance model of the joints E and F (the assumed reactions enter model A only);
+``omega_op`` (rad/s), ``stroke_D`` (m)
+    operating speed and heald stroke at D (amplitude of the first harmonic): model B's reactions are its
+    own kinetostatic ones, |R_i| = |Q_i| of the ideal-joint branch under that stroke at that speed.
 
 Model A (the physical linkage): the rigid rod DEF moves with the drive D; the
 joints E and F are springs k_tau (Vulfson) into the bell cranks, whose levers
@@ -57,6 +60,22 @@ def reduced_masses(p: Mapping[str, float]) -> tuple[float, float]:
     return m_e, m_f
 
 
+def kinetostatic_reactions_b(p: Mapping[str, float]) -> tuple[float, float]:
+    """Model B's joint reactions from its own kinetostatics (closed form): each joint carries only its own
+    branch, a pin (stiffness k_n, damping c_joint) into the reduced mass m_i, so under the heald stroke X at
+    omega_op the force is |z X omega^2 m_i / (z - omega^2 m_i)| with z = k_n + j omega c_joint.  Not circular:
+    the ideal joint has no clearance, so its stiffness does not depend on the reaction."""
+    w, x = p["omega_op"], p["stroke_D"]
+    z = p["k_n"] + 1j * w * p["c_joint"]
+    return tuple(float(abs(z * x * w**2 * m / (z - w**2 * m))) for m in reduced_masses(p))
+
+
+def model_b_parameters(p: Mapping[str, float]) -> dict[str, float]:
+    """The parameter set with model B's kinetostatic reactions in place of the assumed ones."""
+    r_e, r_f = kinetostatic_reactions_b(p)
+    return {**p, "reaction_E": r_e, "reaction_F": r_f}
+
+
 def model_a(p: Mapping[str, float], variant: str = "elastic") -> Network:
     """The physical linkage as a chain (bridge network: not series/parallel)."""
     k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
@@ -78,6 +97,7 @@ def model_a(p: Mapping[str, float], variant: str = "elastic") -> Network:
 
 def model_b(p: Mapping[str, float], variant: str = "elastic") -> Network:
     """Eq. (2)'s chain: three spring->mass branches on the driven node, which carries no mass."""
+    p = model_b_parameters(p)
     k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
     m_e, m_f = reduced_masses(p)
     els = (
@@ -96,6 +116,7 @@ def model_b(p: Mapping[str, float], variant: str = "elastic") -> Network:
 
 def model_b_tree(p: Mapping[str, float], variant: str = "elastic"):
     """Model B without dampers as a series/parallel tree (for eq. (2) and the closed-form route)."""
+    p = model_b_parameters(p)
     k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
     m_e, m_f = reduced_masses(p)
 
@@ -113,6 +134,7 @@ def eq2_mobility(p: Mapping[str, float], omega, variant: str = "elastic"):
     roots of sum_i k_i prod_{j != i} (w_j^2 - w^2) (force resonances).
     Returns (mobility, numerator frequencies, denominator frequencies).
     """
+    p = model_b_parameters(p)
     k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
     m_e, m_f = reduced_masses(p)
     k = np.array([k_e, k_f, p["k_O"]])

@@ -11,7 +11,8 @@ import xarray as xr
 from ...engines.chains import resonances, solve_network
 from ...units import RAD_S_PER_RPM
 from .adapter import amplitude, omega_grid, parameters, sweep_values
-from .model import JOINTS, build, eq2_mobility, joint_stiffness
+from .dynamics import cam_harmonics, damped_modes, harmonic_transfer, kinetostatic_reactions, periodic_peaks, self_consistent_reactions
+from .model import JOINTS, build, eq2_mobility, joint_stiffness, model_b_parameters
 
 
 def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.ndarray, amplitude: float):
@@ -33,16 +34,23 @@ def claim_measures(model: str, p: Mapping[str, float], omega: np.ndarray, amplit
     _, q_e, q_f, _ = joint_forces(model, p, "elastic", omega, amplitude)
     ratio = np.abs(q_e) / np.abs(q_f)
     growth = np.mean((np.diff(np.abs(q_e)) > 0) & (np.diff(np.abs(q_f)) > 0))
-    vel, force = resonances(build(model, p, "elastic"))
-    first = min([x for x in (*vel, *force) if x > 0], default=np.nan)
-    return {"ratio_EF_min": float(ratio.min()), "ratio_EF_max": float(ratio.max()), "growth_fraction": float(growth), "first_resonance": float(first)}
+    return {"ratio_EF_min": float(ratio.min()), "ratio_EF_max": float(ratio.max()), "growth_fraction": float(growth),
+            "first_resonance": lowest_resonance(model, p)}
+
+
+def lowest_resonance(model: str, p: Mapping[str, float]) -> float:
+    """The lowest resonance under the kinematic drive (rad/s): a velocity resonance, K = 0, where the drive
+    force peaks.  A force resonance (K -> infinity) is an antiresonance of a velocity-driven chain, where the
+    drive force dips, and is not counted."""
+    vel, _ = resonances(build(model, p, "elastic"))
+    return float(min([x for x in vel if x > 0], default=np.nan))
 
 
 MEASURES = {
     "ratio_EF_min": ("1", "min over the band of |Q_E| / |Q_F| (elastic joints)"),
     "ratio_EF_max": ("1", "max over the band of |Q_E| / |Q_F| (elastic joints)"),
     "growth_fraction": ("1", "fraction of the band where |Q_E| and |Q_F| both grow with frequency"),
-    "first_resonance": ("rad s-1", "lowest undamped resonance (velocity or force), elastic joints"),
+    "first_resonance": ("rad s-1", "lowest undamped resonance under the kinematic drive (velocity resonance, K = 0), elastic joints"),
 }
 
 
@@ -62,11 +70,14 @@ def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
     return xr.Dataset(data, coords={"model": ("model", np.array(models, dtype=object), {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"})})
 
 
-def interlaced(zeros: np.ndarray, poles: np.ndarray) -> bool:
-    """True if the sorted zeros and poles alternate, starting with a zero (w09 < w07 < w010 < w08 < w011)."""
-    merged = sorted([(w, 0) for w in zeros] + [(w, 1) for w in poles])
-    kinds = [k for _, k in merged]
-    return kinds[0] == 0 and all(kinds[i] != kinds[i + 1] for i in range(len(kinds) - 1))
+def interlaced(zeros: np.ndarray, poles: np.ndarray, rtol: float = 1e-9) -> bool:
+    """True if the sorted zeros and poles alternate, starting with a zero (w09 <= w07 <= w010 <= w08 <= w011);
+    equality within ``rtol`` is allowed: two equal branches make a pole coincide with their zeros (it cancels)."""
+    z, p = np.sort(np.asarray(zeros, dtype=float)), np.sort(np.asarray(poles, dtype=float))
+    if z.size != p.size + 1:
+        return False
+    tol = rtol * max(float(np.max(z, initial=0.0)), 1.0)
+    return bool(all(z[i] <= p[i] + tol and p[i] <= z[i + 1] + tol for i in range(p.size)))
 
 
 def _labelled_attrs(cfg: Mapping[str, Any]) -> dict[str, str]:
@@ -144,7 +155,105 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         for k, arr in table.items():
             unit, text = MEASURES[k]
             data[f"{k}_vs_{key}"] = xr.DataArray(arr, dims=("model", dim), attrs={"units": unit, "long_name": f"{text} vs {long_name}"})
+        # do the joint forces E, F move at all along this sweep? (model B under a velocity drive: not with the warp branch)
+        change = []
+        for m in models:
+            ends = [joint_forces(m, make(x), "elastic", w, amp)[1:3] for x in (values[0], values[-1])]
+            change.append(max(float(np.max(np.abs(np.abs(a) - np.abs(b)) / np.abs(a))) for a, b in zip(ends[0], ends[1], strict=True)))
+        data[f"joint_force_change_vs_{key}"] = xr.DataArray(np.array(change), dims="model", attrs={
+            "units": "1", "long_name": f"max relative change of |Q_E| and |Q_F| over the band between the ends of the sweep of the {long_name}"})
+    data.update(damping(p, models))
+    data.update(kinetostatics(p, models, w, amp))
+    cam_data, cam_coords = cam_study(cfg, p, models, w, amp)
+    data.update(cam_data)
+    coords.update(cam_coords)
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(_labelled_attrs(cfg), title="Heald motion as mechanical chains")
     ds.attrs.update(displacement_amplitude_m=amp, frequency_points=int(w.size))
     return ds
+
+
+def damping(p: Mapping[str, float], models: list[str], n_modes: int = 4) -> dict[str, xr.DataArray]:
+    """Damping ratios of the modes from the chains' own parameters: the resonances under the kinematic drive
+    (driven node held) and the antiresonances (driven node free, where it carries mass)."""
+    out = {}
+    for held, name, what in ((True, "held", "resonances under the kinematic drive (driven node held)"),
+                             (False, "free", "antiresonances (driven node free)")):
+        freq = np.full((len(models), n_modes), np.nan)
+        zeta = np.full((len(models), n_modes), np.nan)
+        for i, m in enumerate(models):
+            wn, z = damped_modes(build(m, p, "elastic"), held=held)
+            freq[i, : min(n_modes, wn.size)], zeta[i, : min(n_modes, wn.size)] = wn[:n_modes], z[:n_modes]
+        nan = {"nan_meaning": "no such mode (or a massless free driven node)"}
+        out[f"mode_frequency_{name}"] = xr.DataArray(freq, dims=("model", "mode"), attrs={"units": "rad s-1", "long_name": f"natural frequency |lambda| of the damped {what}", **nan})
+        out[f"damping_ratio_{name}"] = xr.DataArray(zeta, dims=("model", "mode"), attrs={"units": "1", "long_name": f"damping ratio -Re(lambda)/|lambda| of the {what}", **nan})
+    return out
+
+
+def kinetostatics(p: Mapping[str, float], models: list[str], w: np.ndarray, amp: float) -> dict[str, xr.DataArray]:
+    """The joint reactions from the mechanism's own kinetostatics (ideal joints, heald stroke, operating speed),
+    and model A's self-consistent reactions (Vulfson's stiffness fed by the forces it produces)."""
+    out = {
+        "reaction_kinetostatic": xr.DataArray([list(kinetostatic_reactions(m, p)) for m in models], dims=("model", "joint"),
+                                              attrs={"units": "N", "long_name": "|R| of the ideal-joint chain under the heald stroke at the operating speed (first harmonic)"}),
+        "reaction_assumed": xr.DataArray([p["reaction_E"], p["reaction_F"]], dims="joint", attrs={"units": "N", "long_name": "assumed |R| (config; model A only)"}),
+        "omega_op": xr.DataArray(p["omega_op"], attrs={"units": "rad s-1", "long_name": "operating speed of the kinetostatic reactions"}),
+        "stroke_D": xr.DataArray(p["stroke_D"], attrs={"units": "m", "long_name": "first-harmonic amplitude of the heald stroke at D"}),
+    }
+    b = model_b_parameters(p)
+    out["reaction_model_B"] = xr.DataArray([b["reaction_E"], b["reaction_F"]], dims="joint", attrs={"units": "N", "long_name": "the reactions model B uses (its kinetostatic ones, closed form)"})
+    if "A" in models:
+        sc = self_consistent_reactions(p, "A")
+        out["reaction_self_consistent_A"] = xr.DataArray([sc["R_E"], sc["R_F"]], dims="joint", attrs={"units": "N", "long_name": "model A: reactions R = |Q(omega_op; k_tau(R))| (fixed point)"})
+        out["self_consistent_split_slope_A"] = xr.DataArray(sc["split_slope"], attrs={"units": "1", "long_name": "model A: slope of the fixed-point map along the E/F split (1: every split self-consistent)"})
+        out["self_consistent_converged_A"] = xr.DataArray(int(sc["converged"]), attrs={"units": "1", "long_name": "1 if the fixed point was found"})
+        at = {**p, "reaction_E": sc["R_E"], "reaction_F": sc["R_F"]}
+        out["ratio_EF_min_self_consistent_A"] = xr.DataArray(claim_measures("A", at, w, amp)["ratio_EF_min"], attrs={"units": "1", "long_name": "model A: min |Q_E|/|Q_F| over the band with the self-consistent reactions"})
+        out["clearance_pin_product"] = xr.DataArray([p["k_n"] * p["clearance_E"], p["k_n"] * p["clearance_F"]], dims="joint", attrs={"units": "N", "long_name": "k_n Delta of each joint (Vulfson: k_tau ~ |R|/Delta while |R| << k_n Delta)"})
+    return out
+
+
+def cam_measures(model: str, p: Mapping[str, float], transfer, coefficients: np.ndarray, samples: int, significant: float):
+    """The claims' measures with a periodic (cam) drive: peaks over a turn instead of harmonic amplitudes; the
+    limit as the lowest shaft speed at which a significant harmonic meets the lowest resonance.  Returns the
+    measures and the peaks (|Q_E|, |Q_F|)."""
+    pe, pf = periodic_peaks(transfer, coefficients, samples)
+    mags = np.abs(coefficients)
+    h_top = int(np.flatnonzero(mags >= significant * mags[0])[-1]) + 1
+    return {"ratio_EF_min": float(np.min(pe / pf)), "growth_fraction": float(np.mean((np.diff(pe) > 0) & (np.diff(pf) > 0))),
+            "first_resonance": lowest_resonance(model, p) / h_top, "top_harmonic": float(h_top)}, (pe, pf)
+
+
+def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str], w: np.ndarray, amp: float):
+    """A dwell cam's drive (Fourier series, first harmonic scaled to the excitation amplitude): its harmonics,
+    the peak joint forces over a turn, and the claims' measures at the nominal rise fraction and its range ends."""
+    cam = cfg["cam"]
+    rise = cam["rise_fraction"]
+    fractions = [float(rise["value"]), *map(float, rise["range"])]
+    transfer = {m: harmonic_transfer(m, p, w, cam["harmonics"]) for m in models}
+    variables: dict[str, Any] = {"Q_E_cam": np.empty((len(models), w.size)), "Q_F_cam": np.empty((len(models), w.size))}
+    table = {k: np.empty((len(models), 3)) for k in ("ratio_EF_min", "growth_fraction", "first_resonance", "top_harmonic")}
+    for j, beta in enumerate(fractions):
+        c = cam_harmonics(beta, cam["harmonics"], cam["samples"])
+        c = c * amp / abs(c[0])
+        if j == 0:
+            variables["cam_harmonic_amplitude"] = xr.DataArray(np.abs(c) / amp, dims="harmonic", attrs={"units": "1", "long_name": "|c_h| / |c_1| of the cam drive (nominal rise fraction)"})
+        for i, m in enumerate(models):
+            values, peaks = cam_measures(m, p, transfer[m], c, cam["samples"], cam["significant_harmonic"])
+            for k, v in values.items():
+                table[k][i, j] = v
+            if j == 0:
+                variables["Q_E_cam"][i], variables["Q_F_cam"][i] = peaks
+    texts = {"ratio_EF_min": ("1", "min over the band of peak |Q_E| / peak |Q_F| over a turn (cam drive)"),
+             "growth_fraction": ("1", "fraction of the band where the peak |Q_E| and |Q_F| over a turn both grow (cam drive)"),
+             "first_resonance": ("rad s-1", "lowest shaft speed at which a significant harmonic of the cam drive meets the lowest resonance"),
+             "top_harmonic": ("1", "highest harmonic of the cam drive counted as significant")}
+    for k, arr in table.items():
+        variables[f"{k}_cam"] = xr.DataArray(arr, dims=("model", "rise"), attrs={"units": texts[k][0], "long_name": texts[k][1]})
+    for k in ("Q_E_cam", "Q_F_cam"):
+        variables[k] = xr.DataArray(variables[k], dims=("model", "omega"), attrs={"units": "N", "long_name": f"peak |{k[:3]}| over a turn, cam drive (nominal rise fraction), elastic joints"})
+    coords = {"rise": ("rise", np.array(["nominal", "low", "high"], dtype=object), {"units": "1", "long_name": "cam rise fraction: nominal and its range ends"}),
+              "rise_fraction": ("rise", np.array(fractions), {"units": "1", "long_name": "fraction of a turn of the rise (and of the return)"}),
+              "harmonic": ("harmonic", np.arange(1, cam["harmonics"] + 1), {"units": "1", "long_name": "harmonic of the shaft speed"}),
+              "joint": ("joint", np.array(["E", "F"], dtype=object), {"units": "1", "long_name": "joint"})}
+    return variables, coords

@@ -1,0 +1,120 @@
+"""The heald paper's analyses beyond the chain routes (tests/test_chains.py): independence of model B's joint
+forces from the warp branch, damping ratios, kinetostatic reactions, flip points, the cam's Fourier series."""
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+
+from conftest import load_yaml
+from linkwork.papers.heald.adapter import omega_grid, parameters
+from linkwork.papers.heald.dynamics import (
+    cam_harmonics,
+    cam_profile,
+    clearance_difference_for_ratio,
+    damped_modes,
+    flip_point,
+    harmonic_transfer,
+    kinetostatic_reactions,
+    periodic_peaks,
+    self_consistent_reactions,
+)
+from linkwork.papers.heald.model import build, kinetostatic_reactions_b, reduced_masses
+from linkwork.papers.heald.studies import joint_forces
+
+CFG = load_yaml("config/config.yaml")["heald"]
+P = parameters(CFG)
+W = omega_grid(CFG["speeds"])
+
+
+@pytest.mark.parametrize("change", [{"k_O": 7.0e3}, {"M_P": 11.5}, {"c_O": 75.0}, {"k_O": 4.5e4, "M_P": 5.5, "c_O": 6.0}])
+def test_model_b_joint_forces_do_not_depend_on_the_warp_branch(change):
+    """Under a velocity drive each branch on the driven node sees the prescribed motion: moving the warp branch's
+    parameters leaves Q_E and Q_F unchanged to round-off, while the drive force Q does change (the test can fail)."""
+    q0, e0, f0, _ = joint_forces("B", P, "elastic", W, 1e-4)
+    q1, e1, f1, _ = joint_forces("B", {**P, **change}, "elastic", W, 1e-4)
+    np.testing.assert_allclose(e1, e0, rtol=1e-8, atol=0)
+    np.testing.assert_allclose(f1, f0, rtol=1e-8, atol=0)
+    assert np.max(np.abs(q1 - q0) / np.abs(q0)) > 1e-3
+
+
+def test_model_a_joint_forces_do_depend_on_the_warp_branch():
+    """The contrast: in the physical linkage the warp spring loads both joints."""
+    _, e0, _, _ = joint_forces("A", P, "elastic", W, 1e-4)
+    _, e1, _, _ = joint_forces("A", {**P, "k_O": 7.0e3}, "elastic", W, 1e-4)
+    assert np.max(np.abs(e1 - e0) / np.abs(e0)) > 1e-2
+
+
+def test_damping_ratio_of_model_b_warp_mode_is_the_closed_form():
+    """Complex eigenvalues against zeta = c / (2 sqrt(k m)) of the warp branch (D held), and the undamped joints."""
+    wn, zeta = damped_modes(build("B", P, "elastic"), held=True)
+    closed = P["c_O"] / (2 * np.sqrt(P["k_O"] * P["M_P"]))
+    k = int(np.argmin(np.abs(wn - np.sqrt(P["k_O"] / P["M_P"]))))
+    assert zeta[k] == pytest.approx(closed, rel=1e-12)
+    assert np.sqrt(P["k_O"] / P["M_P"]) == pytest.approx(wn[k], rel=1e-12)
+    assert np.allclose(np.delete(zeta, k), 0.0, atol=1e-12)
+
+
+def test_damped_modes_match_the_undamped_resonances_without_damping():
+    """With the dampers removed, |lambda| are the resonances (held) and antiresonances (free) of the engine."""
+    from linkwork.engines.chains import resonances
+
+    p = {**P, "c_O": 0.0, "c_joint": 0.0}
+    vel, force = resonances(build("A", p, "elastic"))
+    np.testing.assert_allclose(damped_modes(build("A", p, "elastic"), held=True)[0], vel, rtol=1e-9)
+    np.testing.assert_allclose(damped_modes(build("A", p, "elastic"), held=False)[0], force, rtol=1e-9)
+
+
+def test_model_b_kinetostatic_reactions_closed_form_against_the_network():
+    """The closed form of model B's reactions against the ideal-joint network solved at the operating speed."""
+    np.testing.assert_allclose(kinetostatic_reactions_b(P), kinetostatic_reactions("B", P), rtol=1e-9)
+    m_e, _ = reduced_masses(P)
+    assert kinetostatic_reactions_b(P)[0] == pytest.approx(m_e * P["omega_op"] ** 2 * P["stroke_D"], rel=1e-2)  # rigid limit
+
+
+def test_model_b_ignores_the_assumed_reactions():
+    _, e0, f0, _ = joint_forces("B", P, "elastic", W, 1e-4)
+    _, e1, f1, _ = joint_forces("B", {**P, "reaction_E": 17.0, "reaction_F": 555.0}, "elastic", W, 1e-4)
+    np.testing.assert_array_equal(e0, e1)
+    np.testing.assert_array_equal(f0, f1)
+
+
+def test_self_consistent_reactions_reproduce_themselves_and_follow_the_clearance_difference():
+    """Fixed point: the chain's forces with k_tau(R) are R; quasi-statically R_E - R_F = k_n (Delta_F - Delta_E)."""
+    sc = self_consistent_reactions(P)
+    assert sc["converged"]
+    assert sc["ratio"] == pytest.approx(1.0, rel=1e-6)  # equal clearances, symmetric linkage
+    r = sc["R_E"]
+    assert sc["split_slope"] == pytest.approx(P["k_n"] * P["clearance_E"] / (P["k_n"] * P["clearance_E"] + r), rel=2e-2)
+    delta = clearance_difference_for_ratio(P, 3.0)
+    q = self_consistent_reactions({**P, "clearance_F": P["clearance_E"] + delta})
+    assert q["ratio"] == pytest.approx(3.0, rel=1e-5)
+    assert q["R_E"] - q["R_F"] == pytest.approx(P["k_n"] * delta, rel=5e-2)
+
+
+def test_flip_point_bisection():
+    assert flip_point(lambda x: x**2 > 2.0, 1.0, 3.0, 1e-9) == pytest.approx(np.sqrt(2.0), rel=1e-8)
+    assert flip_point(lambda x: x < -5.0, 0.0, 3.0, 1e-9) != flip_point(lambda x: x < -5.0, 0.0, 3.0, 1e-9)  # NaN: no flip
+
+
+def test_cam_fourier_coefficients_against_quadrature_and_the_profile():
+    """FFT coefficients against the Fourier integrals by quadrature; the series reconstructs the profile."""
+    beta = 0.3
+    c = cam_harmonics(beta, 12, 4096)
+    for h in (1, 3, 5):
+        re = quad(lambda t: cam_profile(np.array([t]), beta)[0] * np.cos(h * t), 0, 2 * np.pi, limit=200)[0] / np.pi
+        im = -quad(lambda t: cam_profile(np.array([t]), beta)[0] * np.sin(h * t), 0, 2 * np.pi, limit=200)[0] / np.pi
+        assert c[h - 1] == pytest.approx(re + 1j * im, abs=1e-7)
+    theta = np.linspace(0, 2 * np.pi, 500, endpoint=False)
+    full = cam_harmonics(beta, 200, 4096)
+    series = 0.5 + np.real(np.exp(1j * np.outer(theta, np.arange(1, 201))) @ full)
+    assert np.max(np.abs(series - cam_profile(theta, beta))) < 1e-4
+    assert np.allclose(c[1::2], 0.0, atol=1e-12)  # half-wave symmetry: no even harmonics
+
+
+def test_periodic_peaks_of_one_harmonic_are_the_amplitude():
+    """A pure first harmonic: the peak over a turn is the harmonic amplitude |Q|."""
+    tr = harmonic_transfer("A", P, W[:50], 3)
+    pe, pf = periodic_peaks(tr, np.array([1e-4, 0.0, 0.0]), 4096)
+    _, e, f, _ = joint_forces("A", P, "elastic", W[:50], 1e-4)
+    np.testing.assert_allclose(pe, np.abs(e), rtol=1e-5)
+    np.testing.assert_allclose(pf, np.abs(f), rtol=1e-5)
