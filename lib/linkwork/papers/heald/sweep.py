@@ -2,7 +2,8 @@
 force ratio the first claim is judged on and the peak joint forces, then the gathered grid with the facts
 that interpret it (where the ratio crosses the claim's threshold).
 
-Both axes act on the E and F branches, so the map means the same in model A and model B.  The heald-frame
+Both axes act on the E and F branches.  The reaction axis is model A's assumed input: model B takes its
+reactions from its own kinetostatics (``model.model_b_parameters``), so the sweep runs model A.  The heald-frame
 mass M_P (and the warp stiffness k_O) are not swept: in model B the E and F branches hang on the driven node,
 whose velocity the drive prescribes, so Q_E and Q_F do not depend on the warp branch at all
 (``warp_branch_independence`` shows it, and the gathered sweep records it at the reference point); in model A M_P scales the peak forces but not the smallest E/F ratio,
