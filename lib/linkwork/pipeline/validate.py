@@ -98,7 +98,7 @@ def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
         raise ConfigError("invalid config:\n  " + "\n  ".join(dict.fromkeys(_schema_message(e) for e in errors)))
 
 
-#: At most this many sweep points in one grid (each is a job; Snakemake plans every job before it runs one).
+#: At most this many sweep points in one grid (each job computes points_per_job of them; bounds the work a grid asks for).
 SWEEP_POINTS_LIMIT = 2000
 
 
