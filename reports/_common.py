@@ -142,17 +142,23 @@ def show_log_log(ax, xlabel: str, ylabel: str, text: str) -> None:
     caption(text)
 
 
-def verdict_figure(rows: pd.DataFrame, title: str) -> None:
+def verdict_figure(rows: pd.DataFrame, title: str, note: str = "") -> None:
     """Each published number's acceptance band (grey, |ours - published| <= tolerance) against our nominal value (dot),
-    our numerical error bar (black whisker) and our range over the assumed inputs (blue bar), all in units of the
-    tolerance.  Rows with a zero tolerance or no value of ours are left out."""
+    our numerical error bar (black whisker) and our range over the assumed inputs (blue bar, drawn only where the
+    assumed inputs move the value), all in units of the tolerance.  Rows with a zero tolerance or no value of ours are
+    left out.  ``note`` is added to the caption (e.g. the sense and sign convention the numbers are judged in)."""
+    import textwrap
+
     import matplotlib.pyplot as plt
     import numpy as np
+    from matplotlib.ticker import FuncFormatter
 
     rows = rows[(rows.tolerance > 0) & rows.reproduced.notna()]
     if rows.empty:
         return
-    fig, ax = plt.subplots(figsize=(9, 0.45 * len(rows) + 1.2), constrained_layout=True)
+    labels = [textwrap.fill(str(q), 48) for q in rows.quantity]
+    lines = sum(label.count("\n") + 1 for label in labels)
+    fig, ax = plt.subplots(figsize=(10, 0.3 * lines + 0.25 * len(rows) + 1.8), layout="constrained")
     y = np.arange(len(rows))[::-1]
     scale = rows.tolerance.to_numpy()
     nominal = (rows.reproduced.to_numpy() - rows.published.to_numpy()) / scale
@@ -161,18 +167,24 @@ def verdict_figure(rows: pd.DataFrame, title: str) -> None:
     error = np.nan_to_num(rows.numerical_error.to_numpy() / scale)
     for yi, rel in zip(y, rows.get("relation", ["eq"] * len(rows))):
         ax.fill_betweenx([yi - 0.35, yi + 0.35], -1, 1e9 if rel == "ge" else 1, color="0.85", lw=0)
-    ax.hlines(y, low, high, color="C0", lw=5, alpha=0.6, label="ours over the assumed inputs")
+    moved = np.isfinite(low) & np.isfinite(high) & (low != high)
+    if moved.any():
+        ax.hlines(y[moved], low[moved], high[moved], color="C0", lw=5, alpha=0.6, label="ours over the assumed inputs")
     ax.errorbar(nominal, y, xerr=error, fmt="o", color="k", ms=5, capsize=3, label="ours at nominal inputs (± numerical error)")
     ax.axvline(0, color="k", lw=0.8)
     span = np.nanmax(np.abs(np.concatenate([nominal, low, high, [1.5]])))
     ax.set_xlim(-1.15 * span, 1.15 * span)
     if span > 50:
         ax.set_xscale("symlog", linthresh=1.0)
-    ax.set_yticks(y, [esc(q)[:60] for q in rows.quantity])
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.set_yticks(y, labels, fontsize=8)
+    ax.set_ylim(-0.7, len(rows) - 0.3)
     ax.set_xlabel("(our value − published) / tolerance   (grey: within the tolerance)")
     ax.set_title(title)
     ax.grid(alpha=0.3, axis="x")
-    ax.legend(fontsize=8, loc="lower right")
+    fig.legend(fontsize=8, loc="outside lower center", ncol=2)
     plt.show()
     caption(f"{title}: for each published number the grey band is the published value ± its tolerance; the dot is ours at the "
-            "nominal inputs with its numerical error bar, the blue bar our range over the assumed inputs, all divided by the tolerance.")
+            "nominal inputs with its numerical error bar" + (", the blue bar our range over the assumed inputs" if moved.any() else
+                                                               " (no assumed input moves these values)")
+            + ", all divided by the tolerance." + (f" {note}" if note else ""))
