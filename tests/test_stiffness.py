@@ -339,3 +339,30 @@ def test_pinned_stiffness_statement_follows_the_result():
     assert np.all(shares > 0.4)  # the torque goes through the coupler's tension and the rocker's bending
     _, fnd = _compared()
     assert float(fnd.pinned_varies_considerably) == float(float(ds.K_pinned_max_over_min) >= 1.2)
+
+
+def test_the_conclusion_is_one_verdict_per_form_and_counted_once():
+    from linkwork.papers.stiffness.findings import CONCLUSION, conclusion_verdicts
+
+    table, fnd = _compared()
+    forms = [str(f) for f in fnd.form.values]
+    # each form's count holds its eight stiffness numbers and the conclusion once (not its two claims)
+    for form in forms:
+        counted = int(fnd.verdict_count.sel(count_model=form, role="headline").sum())
+        assert counted == int(fnd.headline_total.sel(form=form)) + 1 == 9
+    assert list(fnd.conclusion_verdict.values) == ["matches"] * len(forms)
+    assert int(fnd.verdict_count.sel(count_model="tables", role="headline", verdict="matches")) == int(fnd.headline_matches.sel(form="tables")) + 1
+    # the combined verdict: one stiffness found near constant makes the conclusion deviate
+    claims = table[table.id.isin(CONCLUSION)].copy()
+    claims.loc[(claims.model == "equilibrium") & (claims.id == "K_c_not_constant"), "verdict"] = "deviates"
+    claims.loc[(claims.model == "tables") & (claims.id == "K_h_not_constant"), "verdict"] = "undetermined (numerics)"
+    assert conclusion_verdicts(claims, forms) == ["deviates", "undetermined (numerics)", "matches"]
+    # the README answer counts the stiffness numbers without the conclusion and names each form's conclusion verdict
+    assert "equilibrium: matches, tables: matches, printed: matches" in fnd.attrs["answer"]
+    assert f"without the conclusion: {int(fnd.headline_matches.sel(form='tables'))} match" in fnd.attrs["answer"]
+    # a threshold claim shows our max/min itself, not a percentage of the threshold
+    assert str(fnd.deviation_unit.sel(quantity_id="K_h_not_constant").values) == "ratio"
+    head = table[table.role == "headline"].set_index(["model", "id"])
+    assert float(fnd.deviation_shown.sel(form="tables", quantity_id="K_h_not_constant")) == head.loc[("tables", "K_h_not_constant"), "reproduced"]
+    # eq. (8) is Table 1 integrated: the printed form's K_h is the tables' (why two rows of section 6 agree)
+    assert int(fnd.printed_K_h_same_as_tables) == 1

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import compare_datasets, count_text, counts_dataset, expand_tables, findings_attrs, lead_word, scalar
+from ...pipeline.compare import VERDICTS, compare_datasets, count_text, counts_dataset, expand_tables, findings_attrs, lead_word, scalar
 
 STIFFNESS_UNITS = ("N/m", "N m/rad")
 
@@ -43,17 +43,45 @@ def shown_deviations(headline: pd.DataFrame, forms: list[str]) -> dict[str, Any]
     degrees for a crank angle, taken on the circle in (-180, 180] (a relative deviation of an angle means nothing),
     a fraction of the published value for everything else."""
     ids = list(dict.fromkeys(headline.id))
-    units = ["deg" if headline[headline.id == q].unit.iloc[0] == "deg" else "1" for q in ids]
+    first = headline.drop_duplicates("id").set_index("id")
+    units = ["deg" if first.unit[q] == "deg" else ("ratio" if first.relation[q] in ("ge", "le") else "1") for q in ids]
     values = np.full((len(forms), len(ids)), np.nan)
     for i, form in enumerate(forms):
         part = headline[headline.model == form].set_index("id")
-        values[i] = [_wrapped_deg(part.deviation[q]) if unit == "deg" else part.relative_deviation[q] for q, unit in zip(ids, units, strict=True)]
+        values[i] = [_wrapped_deg(part.deviation[q]) if unit == "deg" else (part.reproduced[q] if unit == "ratio" else part.relative_deviation[q])
+                     for q, unit in zip(ids, units, strict=True)]
     return {
         "coords": {"quantity_id": ("quantity_id", np.array(ids, dtype=object), {"units": "1", "long_name": "published headline number"}),
-                   "deviation_unit": ("quantity_id", np.array(units, dtype=object), {"units": "1", "long_name": "unit of the shown deviation: deg (ours - published) or 1 (relative)"})},
-        "deviation_shown": (("form", "quantity_id"), values, {"units": "deg or 1 (see deviation_unit)",
-                                                              "long_name": "ours minus published: in degrees for crank angles (on the circle), relative to the published value otherwise"}),
+                   "deviation_unit": ("quantity_id", np.array(units, dtype=object),
+                                      {"units": "1", "long_name": "what deviation_shown holds: deg (ours - published), 1 (relative deviation) or ratio (our value of a thresholded ratio itself)"})},
+        "deviation_shown": (("form", "quantity_id"), values, {"units": "deg, 1 or ratio (see deviation_unit)",
+                                                              "long_name": "ours against published: in degrees for crank angles (on the circle), our own max/min for a threshold claim "
+                                                                           "(a deviation from a threshold means nothing), relative to the published value otherwise"}),
     }
+
+
+def conclusion_verdicts(table: pd.DataFrame, forms: list[str]) -> list[str]:
+    """The paper's conclusion (neither stiffness is constant) as one verdict per form: it matches when both of its
+    claims (K_h and K_c vary) match, deviates when either stiffness is in fact near constant, and otherwise takes the
+    verdict of the claim that does not match."""
+    out = []
+    for form in forms:
+        verdicts = set(table[(table.model == form) & table.id.isin(CONCLUSION)].verdict)
+        if verdicts == {"matches"}:
+            out.append("matches")
+        elif "deviates" in verdicts:
+            out.append("deviates")
+        else:
+            out.append(next(v for v in VERDICTS if v in verdicts - {"matches"}))
+    return out
+
+
+def conclusion_counted_once(table: pd.DataFrame, forms: list[str]) -> pd.DataFrame:
+    """The comparison rows to count: the conclusion's two claims (K_h, K_c) replaced by one row per form with its
+    combined verdict, so each form's count holds the conclusion once, beside its stiffness numbers."""
+    rest = table[~table.id.isin(CONCLUSION)]
+    rows = pd.DataFrame({"model": forms, "id": "conclusion", "role": "headline", "verdict": conclusion_verdicts(table, forms)})
+    return pd.concat([rest, rows], ignore_index=True)
 
 
 def axial_statement(cfg: Mapping[str, Any], result: xr.Dataset) -> dict[str, Any]:
@@ -115,14 +143,17 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     table3 = table.id.str.startswith("table3")
     first = table[table3 & (table.model == forms[0])]
     headline = table[~table3]
+    numbers = headline[~headline.id.isin(CONCLUSION)]
     used = float(cfg["members"]["OA"]["youngs_modulus_Pa"])
     data: dict[str, Any] = {
         "table3_matches": scalar((first.verdict == "matches").sum(), "1", "Table 3 angles within half the printed digit"),
         "table3_total": scalar(len(first), "1", "Table 3 angles compared"),
         "table3_max_deviation_beta": scalar(first[first.id.str.contains("beta")].deviation.abs().max(), "deg", "largest |deviation| of beta in Table 3"),
         "table3_max_deviation_gamma": scalar(first[first.id.str.contains("gamma")].deviation.abs().max(), "deg", "largest |deviation| of gamma in Table 3"),
-        "headline_matches": ("form", [int((headline[headline.model == f].verdict == "matches").sum()) for f in forms], {"units": "1", "long_name": "headline numbers within rounding, per form"}),
-        "headline_total": ("form", [int((headline.model == f).sum()) for f in forms], {"units": "1", "long_name": "headline numbers compared, per form"}),
+        "headline_matches": ("form", [int((numbers[numbers.model == f].verdict == "matches").sum()) for f in forms],
+                             {"units": "1", "long_name": "published stiffness numbers (extremes, their angles, means; the conclusion apart) within rounding, per form"}),
+        "headline_total": ("form", [int((numbers.model == f).sum()) for f in forms],
+                           {"units": "1", "long_name": "published stiffness numbers compared (the conclusion apart), per form"}),
         "used_youngs_modulus": scalar(used, "Pa", "Young's modulus used (as printed)"),
         "steel_factor": scalar(float(cfg["steel_youngs_modulus_Pa"]["value"]) / used, "1", "steel's modulus over the printed one: the factor every stiffness would grow by"),
     }
@@ -130,6 +161,9 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
         kc = headline[(headline.model == "printed") & headline.id.isin(["K_c_min", "K_c_max", "K_c_mean"])].relative_deviation.abs()
         data["printed_K_c_deviation_min"] = scalar(kc.min(), "1", "smallest |relative deviation| of the literal eq. (14) from the published K_c")
         data["printed_K_c_deviation_max"] = scalar(kc.max(), "1", "largest |relative deviation| of the literal eq. (14) from the published K_c")
+    if {"printed", "tables"} <= set(forms):
+        same = float(np.max(np.abs(result.K_h.sel(form="printed") / result.K_h.sel(form="tables") - 1)))
+        data["printed_K_h_same_as_tables"] = scalar(same < 1e3 * ROUNDING, "1", "1 if eq. (8) as printed gives the K_h of Tables 1-2 to rounding at every frame")
     implied = implied_modulus(headline, used, [f for f in ("tables", "equilibrium") if f in forms])
     data["implied_youngs_modulus"] = implied
     if "tables" in forms:
@@ -140,6 +174,8 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     conclusion = headline[headline.id.isin(CONCLUSION)]
     data["conclusion_holds"] = ("form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
                                 {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"})
+    data["conclusion_verdict"] = ("form", np.array(conclusion_verdicts(table, forms), dtype=object),
+                                  {"units": "1", "long_name": "the paper's conclusion (neither stiffness is constant) as one verdict per form, from its K_h and K_c claims"})
     data["table3_all_match"] = scalar(bool((first.verdict == "matches").all()), "1", "1 if every Table 3 angle is reproduced within half the printed digit")
     if "implied_youngs_modulus_tables_min" in data:
         lo, hi = (float(data[k][1]) for k in ("implied_youngs_modulus_tables_min", "implied_youngs_modulus_tables_max"))
@@ -156,7 +192,10 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     coords = {"form": ("form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"}), **deviations.pop("coords")}
     coords.update({c: result[c] for c in ("force_form", "load_case")})
     findings = xr.Dataset({**data, **deviations}, coords=coords)
-    findings = findings.merge(counts_dataset(table))
+    counts = counts_dataset(conclusion_counted_once(table, forms))
+    counts.verdict_count.attrs["long_name"] = ("comparison rows per model, role and verdict class; the conclusion's K_h and K_c claims "
+                                               "count as one row per form (conclusion_verdict)")
+    findings = findings.merge(counts)
     attrs = findings_attrs("Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result))
     attrs["material_statement"] = material_statement(findings, result)
     attrs["extremes_grid"] = result.attrs["extremes_grid"]
@@ -191,11 +230,11 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
     published_argmax = table[(table.model == PAPER_MODEL) & (table.id == "K_h_argmax")].published.iloc[0]
     follows = (own.verdict == "matches").sum() > len(own) / 2
     out = [f"{lead} The published stiffness numbers {'follow' if follows else 'do not follow'} the paper's own Tables 1–2 "
-           f"(headline numbers: {count_text(own, PAPER_MODEL)})"]
+           f"(the stiffness numbers, without the conclusion: {count_text(own, PAPER_MODEL)})"]
     if not bool(findings.tables_in_equilibrium):
         out[-1] += (f", but those tables are not in equilibrium: the coupler's moment jumps by up to {jump:.3f} N·m per N at the "
                     "rigid joint B, an erratum in the sign of its l₁ term.")
-        out.append(f"With statics-consistent internal forces the headline numbers {count_text(fair, DEFENSIBLE)}, and the K_h maximum "
+        out.append(f"With statics-consistent internal forces the stiffness numbers {count_text(fair, DEFENSIBLE)}, and the K_h maximum "
                    f"moves from {published_argmax:g}° to {float(defensible.K_h_argmax):.0f}° (every extreme here is over the paper's {frames} frames).")
     else:
         out[-1] += ", and those tables are in equilibrium."
@@ -212,7 +251,9 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
     if "implies_printed_modulus" in findings and bool(findings.implies_printed_modulus):
         lo, hi = float(findings.implied_youngs_modulus_tables_min), float(findings.implied_youngs_modulus_tables_max)
         out.append(f"The published values imply E = {lo / 1e6:.1f}–{hi / 1e6:.1f} MPa: they use the printed modulus.")
-    rigid = f"{'holds in every form' if holds else 'does not hold in every form'} of the rigid frame (max/min over the {frames} frames {min(ratios):.2f}–{max(ratios):.2f})"
+    verdicts = ", ".join(f"{f}: {v}" for f, v in zip(result.form.values, findings.conclusion_verdict.values, strict=True))
+    rigid = (f"{'holds in every form' if holds else 'does not hold in every form'} of the rigid frame (one verdict per form, from both "
+             f"stiffnesses: {verdicts}; max/min over the {frames} frames {min(ratios):.2f}–{max(ratios):.2f})")
     if "pinned_varies_considerably" in findings:
         pinned = (f"; the pinned output stiffness varies {'by as much' if bool(findings.pinned_varies_considerably) else 'less'} "
                   f"(max/min {float(result.K_pinned_max_over_min):.2f} against the {float(findings.conclusion_ratio_threshold):g} we read as 'varies considerably')")
