@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import html
 import json
+import math
 import os
 from pathlib import Path
 
@@ -83,6 +84,23 @@ def _num(value: float, digits: int = 5) -> str:
     return "–" if pd.isna(value) else f"{value:.{digits}g}"
 
 
+def _digits_for(value: float, tolerance: float) -> int:
+    """Significant digits that resolve a tenth of ``tolerance`` at the size of ``value`` (at least 4)."""
+    if pd.isna(value) or pd.isna(tolerance) or tolerance <= 0 or value == 0:
+        return 4
+    return max(4, math.ceil(math.log10(abs(value) / (0.1 * tolerance))) + 1)
+
+
+def _range(low: float, high: float, tolerance: float) -> str:
+    """Our range over the assumed inputs, to the digits its tolerance needs; one value where no input moves it."""
+    if pd.isna(low):
+        return "–"
+    digits = _digits_for(max(abs(low), abs(high)), tolerance)
+    if low == high:
+        return f"{_num(low, digits)} (no assumed input moves it)"
+    return f"{_num(low, digits)} … {_num(high, digits)}"
+
+
 def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: float = 1.0, digits: int = 5) -> None:
     """Published numbers beside ours with the verdict's ingredients: tolerance and its source, our numerical
     error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
@@ -95,7 +113,7 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
         "ours": [_num(v * scale, digits) for v in rows.reproduced],
         "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
         "error from": rows.numerical_source,
-        "over the assumed inputs": [("–" if pd.isna(lo) else f"{_num(lo * scale, 4)} … {_num(hi * scale, 4)}") for lo, hi in zip(rows.input_low, rows.input_high)],
+        "over the assumed inputs": [_range(lo * scale, hi * scale, t * scale) for lo, hi, t in zip(rows.input_low, rows.input_high, rows.tolerance)],
         "decided by": rows.decided_by.fillna(""),
         "unit": rows.unit,
         "verdict": rows.verdict,
