@@ -248,6 +248,12 @@ def test_more_damping_lowers_the_dynamic_peak_and_the_threshold_is_a_root():
     nominal = damping_study(section, d, 1e9)
     assert np.all(np.diff(nominal["peaks"]) < 0)
     assert np.isnan(nominal["threshold"])
+    # the report's sentence: the pipeline's N at and above the assumed damping, N zeta0/zeta below it
+    zeta0, n = section["fe"]["damping_ratio"]["value"], section["fe"]["revolutions"]
+    above = nominal["ratios"] >= zeta0
+    assert np.all(nominal["revolutions"][above] == n)
+    assert np.allclose(nominal["revolutions"][~above], np.ceil(n * zeta0 / nominal["ratios"][~above]))
+    assert np.all(nominal["revolutions"][~above] > n)
     middle = float(np.mean(nominal["peaks"][:2]))  # an allowable the range crosses
     crossed = damping_study(section, d, middle)
     z = crossed["threshold"]
@@ -257,3 +263,55 @@ def test_more_damping_lowers_the_dynamic_peak_and_the_threshold_is_a_root():
 def test_along_and_across_arm_components_are_a_rotation_of_x_and_y():
     r = ked(MECH, discretise((1, 2, 2, 4), "quintic8"), PUBLISHED_POINT, MAT, THETA)
     assert np.allclose(np.hypot(r.tip_axial, r.tip_transverse), np.hypot(r.tip[:, 0], r.tip[:, 1]), rtol=1e-12)
+
+
+def _finding_inputs(peaks):
+    """Minimal ked and accuracy datasets for the dynamic finding (errors far below the margins tested)."""
+    ked_ds = xr.Dataset({"periodicity": ("diameters", [1e-6, 1e-6]), "newmark_pipeline_error": 1e-4, "damping_peak": ("damping", np.asarray(peaks, float))},
+                        coords={"diameters": ["initial", "optimal"]})
+    acc = xr.Dataset({"wp_setting": ("wp", ["quintic8 x1"]), "wp_pipeline": ("wp", [1]),
+                      "stress_error": (("element", "refinement"), [[1e-5]])}, coords={"element": ["quintic8"], "refinement": [1]})
+    return ked_ds, acc
+
+
+@pytest.mark.parametrize(("peaks", "status"), [([36.0, 37.0, 38.0], "unsafe at every damping"), ([30.0, 31.0, 32.0], "safe at every damping"),
+                                               ([32.0, 34.0, 36.0], "the damping ratio decides")])
+def test_dynamic_safety_is_our_finding_not_a_verdict(peaks, status):
+    """The paper makes no claim on the dynamic safety of a quasi-statically sized design (its Sec. 2 states only that
+    its design meets the stress requirement): our finding is stated in words, never as a verdict class."""
+    from linkwork.pipeline.compare import VERDICTS
+    from linkwork.papers.transplanter.findings import DYNAMIC_STATUS, dynamic_finding
+
+    ked_ds, acc = _finding_inputs(peaks)
+    found = dynamic_finding(ked_ds, acc, peaks[1], 33.6)
+    assert found["status"].startswith(status)
+    assert (found["low"], found["high"]) == (peaks[0], peaks[-1])
+    assert not any(v in text for v in VERDICTS for text in DYNAMIC_STATUS.values())
+
+
+def test_the_stress_row_names_the_solution_compared():
+    """The paper's 'maximum dynamic stress' row says which of our solutions is 'ours'; other rows are left alone."""
+    import json
+
+    import pandas as pd
+
+    from linkwork.papers.transplanter.findings import label_compared_solution
+
+    table = pd.DataFrame({"id": ["Uy", "stress_max"], "quantity": ["tip y", "maximum dynamic stress (at the published optimum)"]})
+    for solution in ("quasi-static", "dynamic"):
+        at = xr.Dataset(attrs={"config_json": json.dumps({"fe": {"compared_solution": {"value": solution}}})})
+        out = label_compared_solution(table, at)
+        assert out.quantity.tolist() == ["tip y", f"maximum dynamic stress (at the published optimum; ours: the {solution} solution)"]
+    assert table.quantity[1].endswith("optimum)")  # the input table is not modified
+
+
+def test_readme_prints_the_published_objective_to_its_digits():
+    """SS = 21.9665 is printed with all six digits in the README; numbers printed with fewer keep the five-digit form."""
+    from linkwork.pipeline.readme import _digits, _num, _num_like
+
+    assert (_digits(21.9665), _digits(3460000.0), _digits(0.0034), _digits(41.89), _digits(0.1 + 0.2)) == (6, 3, 2, 4, 0)
+    assert _num_like(21.9665, 21.9665) == "21.9665"
+    assert _num_like(21.96651234, 21.9665) == "21.9665"
+    for value, published in ((30.28645725, 31.09), (2779919.774, 3460000.0), (0.0035583820, 0.0034), (0.30000000000000004, 0.1 + 0.2)):
+        assert _num_like(value, published) == _num(value)
+    assert _num_like(float("nan"), 21.9665) == "–"

@@ -19,6 +19,24 @@ def _num(value: float) -> str:
     return "–" if value is None or (isinstance(value, float) and math.isnan(value)) else f"{value:.5g}"
 
 
+def _digits(value: float, cap: int = 10) -> int:
+    """Significant digits of a printed number: the fewest that give back the float exactly (21.9665 -> 6,
+    3460000.0 -> 3); a number that needs more than ``cap`` (not a printed one) counts as 0."""
+    import math
+
+    if value is None or not math.isfinite(value) or value == 0:
+        return 0
+    return next((n for n in range(1, cap + 1) if float(f"{value:.{n}g}") == value), 0)
+
+
+def _num_like(value: float, published: float) -> str:
+    """``_num``, with at least as many significant digits as the published value is printed with."""
+    import math
+
+    n = max(5, _digits(published))
+    return "–" if value is None or (isinstance(value, float) and math.isnan(value)) else f"{value:.{n}g}"
+
+
 def _range(low: float, high: float, source: str) -> str:
     if not source.endswith("assumed inputs"):
         return "none assumed" if source.startswith("no assumed") else "–"
@@ -29,7 +47,7 @@ def _published(row: Any) -> str:
     """'≥ 3', '41.89 rad/s': the published value with its relation and unit (none for a pure number)."""
     sign = {"ge": "≥ ", "le": "≤ "}.get(str(row.relation), "")
     unit = "" if str(row.unit) == "1" else f" {row.unit}"
-    return f"{sign}{_num(row.published)}{unit}"
+    return f"{sign}{_num_like(row.published, row.published)}{unit}"
 
 
 def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
@@ -44,7 +62,7 @@ def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
     lines += [head, "|" + "---|" * (head.count("|") - 1)]
     other = comparison[(comparison.role == "headline") & (comparison.model == own)].set_index("id") if own and own != defensible else None
     for row in rows.itertuples():
-        cells = [row.quantity, _published(row), _num(row.reproduced), _range(row.input_low, row.input_high, row.input_source), row.verdict]
+        cells = [row.quantity, _published(row), _num_like(row.reproduced, row.published), _range(row.input_low, row.input_high, row.input_source), row.verdict]
         if other is not None:
             cells += [_num(other.loc[row.id, "reproduced"]), other.loc[row.id, "verdict"]]
         lines.append("| " + " | ".join(str(c).replace("|", "∣") for c in cells) + " |")
