@@ -140,7 +140,7 @@ def evidence_dataset(rows: list[dict[str, Any]]) -> xr.Dataset:
                   "deviation_in_tolerances": ("1", "(printed - fitted model) / (half a printed digit + numerical error); |.| <= 1: matches"),
                   "printed_column_fd": (same, "15 deg central difference of the printed source column"),
                   "our_coarse_fd": (same, "the same difference of the fitted model"),
-                  "offset_model": (same, "the joint fit with the offset parameter freed of its bound"),
+                  "offset_model": (same, "the joint fit refitted with the offset parameter unbounded (the others within rounding)"),
                   "nominal_model": (same, "the model at the printed parameters")}
     data = {k: ("cell", df[k].to_numpy(dtype=float), {"units": u, "long_name": n}) for k, (u, n) in long_names.items()}
     for k in ("printed_column_fd", "our_coarse_fd"):
