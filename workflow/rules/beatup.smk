@@ -53,6 +53,7 @@ rule beatup_compare:
         "results/beatup/findings.nc",
     params:
         study="linkwork.papers.beatup.findings:compare",
-        cfg=section("beatup", "sixbar", "printed_rounding", "table1_fit", "grids.paper_step_deg", "comparison.fourbar_window_band_deg"),
+        cfg=section("beatup", "sixbar", "printed_rounding", "table1_fit", "grids.paper_step_deg", "comparison.fourbar_window_band_deg",
+            "numerics.scan_points", "numerics.root_xtol_rad"),
     script:
         STUDY

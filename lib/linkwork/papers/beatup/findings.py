@@ -14,12 +14,20 @@ from ...pipeline.compare import compare as compare_one
 from ...pipeline.compare import compare_datasets, count_text, counts_dataset, evaluate_measure, expand_tables, findings_attrs, scalar
 from ...units import DEG_PER_RAD
 from .adapter import rounding_half_units, six_bar
-from .model import ParameterFit, SleyMotion, coarse_central_difference, fit_table_angles, sley_motion, with_parameters
+from .model import ParameterFit, SleyMotion, coarse_central_difference, dead_centres, fit_table_angles, sley_motion, with_parameters
 
-CLASSES = ("matches the fitted model", "printed cell inconsistent", "inconclusive", "marginal", "matches with the offset parameter freed",
+CLASSES = ("matches the fitted model", "printed cell inconsistent", "inconclusive", "marginal", "matches the refit with the offset parameter unbounded",
            "matches only the printed parameters", "beyond the fitted model")
 MOTION_UNITS = {"theta3": "deg", "theta3_rate": "rad rad-1", "theta3_accel": "rad rad-2", "theta6": "deg", "theta6_rate": "rad rad-1", "theta6_accel": "rad rad-2"}
 SOLVER_ERROR = 1.0e-12  # the chain solver against the paper's corrected closed forms (tests)
+# theta3 and its derivatives depend only on the crank-rocker ABCD; a parameter outside it moves theta6 alone
+ROCKER_PARAMETERS = frozenset({"l1", "l2", "l3", "l4", "theta4"})
+ROCKER_COLUMNS = frozenset({"theta3", "theta3_rate", "theta3_accel"})
+
+
+def columns_moved_by(parameter: str) -> frozenset[str]:
+    """The Table 1 columns a six-bar parameter moves (theta6 ones always; theta3 ones only for the crank-rocker's)."""
+    return frozenset(MOTION_UNITS) if parameter in ROCKER_PARAMETERS else frozenset(MOTION_UNITS) - ROCKER_COLUMNS
 
 
 def printed_table(published: Mapping[str, Any]) -> tuple[np.ndarray, dict[str, np.ndarray], dict[str, float]]:
@@ -64,6 +72,7 @@ def table1_evidence(
     step_deg: float,
     offset_model: dict[str, np.ndarray] | None = None,
     nominal_model: dict[str, np.ndarray] | None = None,
+    offset_moves: frozenset[str] | None = None,
 ) -> list[dict[str, Any]]:
     """Classify every printed Table 1 cell against one model (the joint fit), with the evidence why a cell differs.
 
@@ -74,9 +83,12 @@ def table1_evidence(
     (theta for theta', theta' for theta'') is differenced at the paper's step and set beside the same
     difference of ours: if they agree within that column's rounding, the paper's own neighbouring cells
     agree with us (**printed cell inconsistent**); if a neighbour is itself off, **inconclusive**; a
-    deviation smaller than what that check resolves is **marginal**.  Before that check, a cell that
-    matches ``offset_model`` (the joint fit with the parameter that removes the systematic theta6 offset
-    freed of its bound) **matches with the offset parameter freed**.  An angle that matches neither but matches
+    deviation smaller than what that check resolves is **marginal**.  Before that check, a cell of a
+    column the offset parameter moves (``offset_moves``; all columns if None) that matches ``offset_model``
+    (the joint fit refitted with the parameter that removes the systematic theta6 offset freed of its
+    bound; the other parameters re-adjust within rounding) **matches the refit with the offset parameter
+    unbounded**.  A column the offset parameter cannot move is not given that class: its change in the
+    refit would come from the other parameters' re-adjustment, not from the offset.  An angle that matches neither but matches
     ``nominal_model`` (the printed parameters; the joint fit traded it for others) **matches only the
     printed parameters**; else it is **beyond the fitted model**.
     """
@@ -93,13 +105,15 @@ def table1_evidence(
         for i, angle in enumerate(theta1):
             dev = values[i] - model[i]
             row = {"column": col, "theta1": float(angle), "printed": float(values[i]), "ours": float(model[i]), "deviation": float(dev),
-                   "tolerance": tol, "numerical_error": err, "printed_column_fd": np.nan, "our_coarse_fd": np.nan,
+                   "tolerance": tol, "numerical_error": err, "deviation_in_tolerances": float(dev / (tol + err)),
+                   "printed_column_fd": np.nan, "our_coarse_fd": np.nan,
                    "offset_model": np.nan if offset_model is None else float(offset_model[col][i]),
                    "nominal_model": np.nan if nominal_model is None else float(nominal_model[col][i])}
             if abs(dev) <= (tol + err) * (1 + 1e-9):
                 row["class"] = "matches the fitted model"
-            elif offset_model is not None and abs(values[i] - offset_model[col][i]) <= (tol + err) * (1 + 1e-9):
-                row["class"] = "matches with the offset parameter freed"
+            elif (offset_model is not None and (offset_moves is None or col in offset_moves)
+                  and abs(values[i] - offset_model[col][i]) <= (tol + err) * (1 + 1e-9)):
+                row["class"] = "matches the refit with the offset parameter unbounded"
             elif col in EVIDENCE_SOURCES:
                 row["printed_column_fd"] = float(printed_fd[i])
                 row["our_coarse_fd"] = float(ours_fd[col][i])
@@ -123,9 +137,10 @@ def evidence_dataset(rows: list[dict[str, Any]]) -> xr.Dataset:
     long_names = {"theta1": ("deg", "crank angle theta1"), "printed": (same, "printed value"), "ours": (same, "the fitted model's value"),
                   "deviation": (same, "printed - fitted model"), "tolerance": (same, "half a unit of the printed last digit"),
                   "numerical_error": (same, "our numerical error of the fitted model (fit tolerance and chain solver)"),
+                  "deviation_in_tolerances": ("1", "(printed - fitted model) / (half a printed digit + numerical error); |.| <= 1: matches"),
                   "printed_column_fd": (same, "15 deg central difference of the printed source column"),
                   "our_coarse_fd": (same, "the same difference of the fitted model"),
-                  "offset_model": (same, "the joint fit with the offset parameter freed of its bound"),
+                  "offset_model": (same, "the joint fit refitted with the offset parameter unbounded (the others within rounding)"),
                   "nominal_model": (same, "the model at the printed parameters")}
     data = {k: ("cell", df[k].to_numpy(dtype=float), {"units": u, "long_name": n}) for k, (u, n) in long_names.items()}
     for k in ("printed_column_fd", "our_coarse_fd"):
@@ -230,7 +245,7 @@ def table1_fit(cfg: Mapping[str, Any], crank_deg: np.ndarray, printed: dict[str,
     }
     coords = {"fit_parameter": ("fit_parameter", np.array(names, dtype=object), {"units": "1", "long_name": "fitted printed parameter (SixBar field)"}),
               "fit_case": ("fit_case", np.array(list(cases), dtype=object), {"units": "1", "long_name": "which parameters are fitted, and how"})}
-    return {"data": data, "coords": coords, "fitted": fitted, "columns": cols, "error": error, "offset_columns": case_cols[offset_label],
+    return {"data": data, "coords": coords, "fitted": fitted, "fitted_mechanism": with_parameters(mech, joint.names, joint.value), "columns": cols, "error": error, "offset_columns": case_cols[offset_label],
             "nominal_columns": case_cols["printed parameters"],
             "offset_parameter": best_name, "offset_unit": unit, "names": names}
 
@@ -299,6 +314,27 @@ def compare_table1(published: Mapping[str, Any], crank_deg: np.ndarray, fit: Map
     return table
 
 
+# headline numbers read as a note at the fitted parameters: published id -> DeadCentres field (rad)
+FITTED_NOTES = {"front_dead_centre": "front", "span_front_to_back": "span_reverse", "swing": "swing"}
+
+
+def fitted_headline_notes(fit: Mapping[str, Any], numerics: Mapping[str, Any], pub: Mapping[str, Any],
+                          errors: Mapping[str, tuple[float, str]]) -> dict[str, Any]:
+    """The dead-centre headline numbers at the joint fit of Table 1 (not at the printed parameters): a note
+    beside each verdict, not a second verdict.  Within = |fitted - published| <= tolerance + numerical error."""
+    dc = dead_centres(fit["fitted_mechanism"], numerics["scan_points"], numerics["root_xtol_rad"])
+    ids = list(FITTED_NOTES)
+    values = np.array([getattr(dc, FITTED_NOTES[q]) * DEG_PER_RAD for q in ids])
+    tol = np.array([pub[q]["tolerance"]["abs"] for q in ids], dtype=float)
+    err = np.array([errors[q][0] for q in ids])
+    within = np.abs(values - np.array([pub[q]["value"] for q in ids], dtype=float)) <= tol + err
+    return {
+        "data": {"fitted_note_value": ("fitted_note_id", values, {"units": "deg", "long_name": "headline number at the joint fit of Table 1 (a note, not a verdict)"}),
+                 "fitted_note_within": ("fitted_note_id", within.astype(int), {"units": "1", "long_name": "1 if within the published tolerance plus our numerical error"})},
+        "coords": {"fitted_note_id": ("fitted_note_id", np.array(ids, dtype=object), {"units": "1", "long_name": "published id"})},
+    }
+
+
 def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], sixbar: xr.Dataset, window: xr.Dataset, uncertainty: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table and findings: headline numbers (one crank sense each, the other as a note), Table 1
     against one joint fit of the printed parameters, the theta6 offset, closed forms, window constraints."""
@@ -307,15 +343,18 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], sixbar: xr.Dat
     headline = compare_datasets({**published, "tables": []}, [sixbar, window], errors={"": numerical_errors(published, sixbar)}, uncertainty=uncertainty)
     table = pd.concat([headline, compare_table1(published, crank_deg, fit)], ignore_index=True)
     rows = table1_evidence(fit["columns"], coarse_differences(fit["fitted"], cfg["grids"]["paper_step_deg"]), fit["error"], crank_deg, printed, tolerance,
-                           cfg["grids"]["paper_step_deg"], offset_model=fit["offset_columns"], nominal_model=fit["nominal_columns"])
+                           cfg["grids"]["paper_step_deg"], offset_model=fit["offset_columns"], nominal_model=fit["nominal_columns"],
+                           offset_moves=columns_moved_by(fit["offset_parameter"]))
     evidence = evidence_dataset(rows)
     classes = [str(c) for c in evidence.cell_class.values]
     t1 = table.role == "table cell"
     pub = {q["id"]: q for q in published["quantities"]}
     notes = other_sense_notes(published, sixbar)
+    fitted_notes = fitted_headline_notes(fit, cfg["numerics"], pub, numerical_errors(published, sixbar))
     data: dict[str, Any] = {
         **fit["data"],
         **notes["data"],
+        **fitted_notes["data"],
         "class_count": ("cell_class_name", [classes.count(c) for c in CLASSES], {"units": "1", "long_name": "Table 1 cells per class"}),
         "table1_matches": scalar((table[t1].verdict == "matches").sum(), "1", "Table 1 cells that match the fitted model"),
         "table1_total": scalar(t1.sum(), "1", "Table 1 cells compared"),
@@ -332,6 +371,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], sixbar: xr.Dat
     findings = xr.Dataset(data, coords={
         **fit["coords"],
         **notes["coords"],
+        **fitted_notes["coords"],
         "cell_class_name": ("cell_class_name", np.array(CLASSES, dtype=object), {"units": "1", "long_name": "Table 1 cell class"}),
         "arm_to_crank": ("arm_to_crank", window.arm_to_crank.values, {"units": "1", "long_name": "four-bar L/R"}),
     })
