@@ -27,7 +27,7 @@ import json
 
 import matplotlib.pyplot as plt
 import numpy as np
-from _common import caption, esc, inputs, load, md
+from _common import caption, esc, inputs, load, md, provenance
 
 files = inputs()
 cl = load(files["result"])
@@ -53,18 +53,21 @@ def axis_unit(dim):
     return label[label.index("(") + 1 : -1] if "(" in label and "assumed" not in label else ""
 
 
-def heat_map(ax, ds, var, xdim, ydim):
-    """One output over the grid: log colour range from the result, reference cell outlined, threshold contour."""
+def heat_map(ax, ds, var, xdim, ydim, linear=False):
+    """One output over the grid: log colour range from the result (``linear``: from 0), reference cell outlined,
+    threshold contour."""
     data = ds[var].transpose(ydim, xdim)
     low, high = float(ds.colour_low.sel(output=var)), float(ds.colour_high.sel(output=var))
-    scale = {"norm": "log", "vmin": low, "vmax": high} if np.isfinite(low) else {}
-    im = ax.pcolormesh(np.arange(ds[xdim].size), np.arange(ds[ydim].size), data.values, shading="nearest", cmap="RdBu_r", **scale)
+    if linear:
+        low = np.nan
+    scale = {"norm": "log", "vmin": low, "vmax": high} if np.isfinite(low) else {"vmin": 0.0, "cmap": "Greys"} if linear else {}
+    im = ax.pcolormesh(np.arange(ds[xdim].size), np.arange(ds[ydim].size), data.values, shading="nearest", **{"cmap": "RdBu_r", **scale})
     ax.set_xticks(np.arange(ds[xdim].size), [fmt_axis(xdim, v) for v in ds[xdim].values])
     ax.set_yticks(np.arange(ds[ydim].size), [fmt_axis(ydim, v) for v in ds[ydim].values])
     for i in range(ds[ydim].size):
         for j in range(ds[xdim].size):
             shade = float(im.norm(data.values[i, j]))
-            ax.text(j, i, f"{data.values[i, j]:.3g}", ha="center", va="center", fontsize=7, color="w" if shade < 0.2 or shade > 0.8 else "k")
+            ax.text(j, i, f"{data.values[i, j]:.3g}", ha="center", va="center", fontsize=7, color="w" if shade > (0.6 if linear else 0.8) or (shade < 0.2 and not linear) else "k")
     rx = list(ds[xdim].values).index(ds.attrs[f"reference_{xdim}"])
     ry = list(ds[ydim].values).index(ds.attrs[f"reference_{ydim}"])
     ax.add_patch(plt.Rectangle((rx - 0.5, ry - 0.5), 1, 1, fill=False, edgecolor="k", linewidth=2))
@@ -76,6 +79,8 @@ def heat_map(ax, ds, var, xdim, ydim):
     ax.tick_params(axis="x", labelrotation=45)
     ax.set_title(f"{ds[var].attrs['long_name']} ({ds[var].attrs['units']})", fontsize=8, wrap=True)
     bar = fig.colorbar(im, ax=ax)
+    if np.isfinite(low):  # five labelled ticks, equal ratios apart: the ends and the centre (threshold or reference value)
+        bar.set_ticks(np.geomspace(low, high, 5))
     bar.ax.yaxis.set_major_formatter("{x:.3g}")
     bar.ax.yaxis.set_minor_formatter("")
 
@@ -125,34 +130,82 @@ def threshold_sentence(ds, var, along, other, what_above, what_below):
 
 # %% [markdown]
 # ## Clearance sweep: radial clearance × crank speed
+#
+# ### Validity map: where the Hertz contact model holds
 
 # %%
 dims = ("clearance_m", "crank_speed_rad_s")
-cl_vars = ["rocker_acceleration_deviation", "crank_torque_deviation", "penetration_over_clearance", "peak_joint_force"]
-fig, axes = plt.subplots(2, 2, figsize=(12, 10), constrained_layout=True)
-for ax, var in zip(axes.flat, cl_vars):
+cl_valid = ["penetration_over_clearance", "peak_joint_force", "peak_force_over_ideal"]
+fig, axes = plt.subplots(1, 3, figsize=(17, 5.5), constrained_layout=True)
+for ax, var in zip(axes.flat, cl_valid):
     heat_map(ax, cl, var, "crank_speed_rad_s", "clearance_m")
 plt.show()
 caption(
-    f"Clearance sweep, scene `{esc(cl.attrs['scene'])}` (both joints with clearance), variant `{esc(cl.attrs['variant'])}`, "
-    f"{cl.attrs['settle_cycles']} settling and {cl.attrs['record_cycles']} recorded cycle(s) per point. Top: the claims' measure, RMS "
-    "deviation from the ideal joints over the RMS of the ideal response, for the rocker acceleration (claim 1) and the crank torque "
-    "(claim 2). Bottom: the deepest penetration over the clearance, with the Hertz validity limit (penetration = clearance, dashed), "
-    "and the peak contact force. Outlined: the paper's clearance and speed. Colour: log scale centred on the threshold (bottom left) or "
-    f"the reference value, symmetric, at least ×/÷ {cl.attrs['colour_floor_factor']:g}."
+    f"Validity map of the clearance model: {esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}, "
+    f"over {cl.attrs['record_cycles']} recorded cycles after {cl.attrs['settle_cycles']} settling ones. Left: the deepest penetration over "
+    "the radial clearance, with the Hertz validity limit (penetration = clearance, dashed). Middle: the peak contact force. Right: the "
+    "peak contact force over the largest reaction the same joints carry with ideal (no-clearance) joints. Outlined: the paper's "
+    "clearance and speed. Colour: log scale centred on the threshold (left) or the reference value, symmetric, at least ×/÷ "
+    f"{cl.attrs['colour_floor_factor']:g}."
 )
 
 # %%
 md(
-    "The scene with both joints in clearance is the one claims 1 and 2 rank largest; the sweep shows how its deviation from the ideal "
-    "scales. The orderings themselves (joint 2 > joint 1 for the acceleration, the reverse for the torque) need the single-joint scenes, "
-    "which this sweep does not run. The dry response never settles into a periodic one, so a single recorded cycle per point scatters: "
-    "the count of monotone grid lines below says how far a trend is a trend.\n\n"
-    + "\n\n".join(trend_sentence(cl, var, dims, cl[var].attrs["long_name"]) for var in cl_vars)
-    + "\n\n" + threshold_sentence(cl, "penetration_over_clearance", "clearance_m", "crank_speed_rad_s",
-                                  "penetration at or beyond the clearance", "penetration below the clearance")
-    + " Where the penetration reaches the clearance the dry contact is far outside Hertz's small-deformation law and the claims' "
-    "measures there describe the model, not a joint."
+    threshold_sentence(cl, "penetration_over_clearance", "clearance_m", "crank_speed_rad_s",
+                       "penetration at or beyond the clearance", "penetration below the clearance")
+    + " Below the crossing clearance (smaller clearances, higher speeds) the dry contact is far outside Hertz's small-deformation "
+    "law: the forces and the claims' measures there describe the model, not a joint. Above it the penetration stays a fraction of "
+    "the clearance.\n\n"
+    + "\n\n".join(trend_sentence(cl, var, dims, cl[var].attrs["long_name"]) for var in cl_valid)
+)
+
+# %% [markdown]
+# ### The claims' measure and its cycle-to-cycle scatter
+
+# %%
+cl_dev = ["rocker_acceleration_deviation", "crank_torque_deviation"]
+fig, axes = plt.subplots(2, 2, figsize=(12, 10), constrained_layout=True)
+for k, var in enumerate(cl_dev):
+    heat_map(axes[0, k], cl, var, "crank_speed_rad_s", "clearance_m")
+    heat_map(axes[1, k], cl, var + "_relative_cycle_spread", "crank_speed_rad_s", "clearance_m", linear=True)
+plt.show()
+caption(
+    f"The claims' measure on the same grid ({esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}): RMS "
+    "deviation from the ideal joints over the RMS of the ideal response, per recorded cycle, for the rocker acceleration (left, claim "
+    f"1) and the crank torque (right, claim 2). Top: mean over the {cl.attrs['record_cycles']} recorded cycles. Bottom: the spread "
+    "of the same cycles (largest − smallest) over their mean; 0 where the response has settled into a periodic one; linear grey scale "
+    "from 0. Outlined: "
+    "the paper's clearance and speed."
+)
+
+
+# %%
+def resolved_sentence(ds, var, dims):
+    """Along each axis: on how many lines the change exceeds the cycle spread (from the result)."""
+    other = {dims[0]: dims[1], dims[1]: dims[0]}
+    parts = []
+    for dim in dims:
+        lines = ds[other[dim]].size
+        up = round(float(ds.trend_resolved_up_fraction.sel(output=var, axis=dim)) * lines)
+        down = round(float(ds.trend_resolved_down_fraction.sel(output=var, axis=dim)) * lines)
+        steps = 100 * float(ds.trend_resolved_step_fraction.sel(output=var, axis=dim))
+        parts.append(f"along {axis_name(dim)} it **{esc(str(ds.trend_resolved_class.sel(output=var, axis=dim).values))}**: the change from the first to the last grid value exceeds the spread on {up + down} of "
+                     f"{lines} lines ({up} up, {down} down; the change itself is {percent_range(ds, var, dim)}), and {steps:.0f} % of "
+                     "the steps between neighbouring grid values do")
+    ref, lo, hi = (100 * float(ds[k].sel(output=var)) for k in ("relative_scatter_reference", "relative_scatter_low", "relative_scatter_high"))
+    return (f"**{esc(ds[var].attrs['long_name'][:1].upper() + ds[var].attrs['long_name'][1:])}**: {float(ds.reference_value.sel(output=var)):.3g} "
+            f"at the reference point, with a cycle spread of {ref:.0f} % of that (from {lo:.0f} to {hi:.0f} % over the grid); "
+            + "; ".join(parts) + ".")
+
+
+md(
+    "What this map can show: how far the scene with both joints in clearance departs from the ideal joints, and whether that "
+    "departure changes with clearance or speed by more than the response's own cycle-to-cycle scatter. What it cannot show: the "
+    "paper's orderings (joint 2 > joint 1 for the acceleration, the reverse for the torque) need the single-joint scenes, which this "
+    f"sweep does not run (the clearance report judges them over many cycles); and with {cl.attrs['record_cycles']} recorded cycles "
+    "per point the spread is a lower bound on the scatter, so a change counts as a trend below only where it exceeds the sum of the "
+    "spreads of the two cells it compares (their cycle ranges are then apart).\n\n"
+    + "\n\n".join(resolved_sentence(cl, var, dims) for var in cl_dev)
 )
 
 # %% [markdown]
@@ -189,3 +242,17 @@ md(
     "band is the ratio of the two joints' Vulfson stiffnesses, which follows the assumed reactions, so the chain returns nearly the "
     "ratio it was given."
 )
+
+# %% [markdown]
+# ## Provenance
+#
+# Clearance sweep:
+
+# %%
+provenance(cl)
+
+# %% [markdown]
+# Heald sweep:
+
+# %%
+provenance(he)

@@ -115,3 +115,57 @@ def test_clearance_relative_deviation():
     assert relative_rms_deviation(ideal, ideal) == 0.0
     assert relative_rms_deviation(1.1 * ideal, ideal) == pytest.approx(0.1, rel=1e-12)
     assert relative_rms_deviation(ideal + 0.5 * np.cos(t), ideal) == pytest.approx(0.5, rel=1e-3)  # orthogonal over a cycle
+
+
+def test_clearance_per_cycle_deviation_and_its_spread():
+    """Per cycle, the measure is the single-cycle measure of that cycle: a response 10 % too large in cycle 1 and
+    30 % in cycle 2 gives 0.1 and 0.3 (spread 0.2); a periodic response gives a spread of exactly 0."""
+    from linkwork.papers.clearance.sweep import per_cycle_deviation
+
+    n = 360
+    t = np.linspace(0.0, 2 * np.pi, n + 1)
+    ideal = np.sin(t) + 0.2
+    run = np.concatenate([1.1 * ideal[:-1], 1.3 * ideal])
+    assert per_cycle_deviation(run, ideal) == pytest.approx([0.1, 0.3], rel=1e-12)
+    periodic = np.concatenate([1.2 * ideal[:-1]] * 3 + [1.2 * ideal[-1:]])
+    d = per_cycle_deviation(periodic, ideal)
+    assert d.size == 3 and np.ptp(d) < 1e-15
+
+
+def test_resolved_trend_counts_only_changes_beyond_the_cycle_spread():
+    from linkwork.pipeline.sweeps import TREND_CLASSES, resolved_trend, trend_class
+
+    v = np.array([[1.0, 1.0, 1.0], [1.5, 1.1, 1.2], [2.0, 1.2, 0.5]])  # axis 0 swept; three lines
+    s = np.array([[0.1, 0.3, 0.1], [0.1, 0.3, 0.1], [0.1, 0.3, 0.1]])
+    r = resolved_trend(v, s)
+    # line 0: +1.0 > 0.2 (up); line 1: +0.2 < 0.6 (scatter); line 2: -0.5 > 0.2 (down)
+    assert r["resolved_up"] == pytest.approx(1 / 3) and r["resolved_down"] == pytest.approx(1 / 3)
+    # steps: line 0 both (0.5 > 0.2), line 1 none (0.1 < 0.6), line 2 the second only (0.2 = 0.2 is not beyond, 0.7 is)
+    assert r["resolved_steps"] == pytest.approx(3 / 6)
+    assert trend_class(r["resolved_up"], r["resolved_down"]) == "partly"
+    assert trend_class(1.0, 0.0) == "grows" and trend_class(0.0, 1.0) == "falls" and trend_class(0.0, 0.0) == "none"
+    # a scatter larger than every change: nothing is a trend, however monotone the lines
+    assert resolved_trend(v[:, :1], np.full((3, 1), 1.0)) == {"resolved_up": 0.0, "resolved_down": 0.0, "resolved_steps": 0.0}
+    axes = {"clearance_m": [1e-5, 2e-5, 4e-5], "crank_speed_rad_s": [10.0, 20.0, 30.0]}
+    pts = grid(axes)
+    vals = [{"y": 1.0 + p["clearance_m"] * 1e5, "y_spread": 0.1} for p in pts]  # grows by 1 per grid step in clearance
+    out = interpret(gather(axes, [points_dataset(pts, vals, {"y": ("1", "y"), "y_spread": ("1", "spread")})]),
+                    {"clearance_m": 2e-5, "crank_speed_rad_s": 20.0}, {}, scatter={"y": "y_spread"})
+    assert str(out.trend_resolved_class.sel(output="y", axis="clearance_m").values) == TREND_CLASSES["grows"]
+    assert str(out.trend_resolved_class.sel(output="y", axis="crank_speed_rad_s").values) == TREND_CLASSES["none"]
+    assert float(out.relative_scatter_reference.sel(output="y")) == pytest.approx(0.1 / 3.0)
+    assert np.isnan(float(out.trend_resolved_up_fraction.sel(output="y_spread", axis="clearance_m")))
+
+
+def test_clearance_ideal_response_is_periodic_so_one_cycle_serves_every_recorded_cycle(config):
+    """The sweep computes the ideal joints over one cycle and compares every recorded cycle with it: the ideal
+    response two cycles on is the same (inverse dynamics at the later times, an independent evaluation)."""
+    from linkwork.engines.multibody.model import inverse_dynamics
+    from linkwork.papers.clearance.adapter import parameters
+
+    p = parameters(config["clearance"], config["sweeps"]["clearance"]["variant"], config["sweeps"]["clearance"]["scene"])
+    period = 2 * np.pi / p.crank_speed
+    t = np.linspace(0.0, period, 73)
+    first, later = inverse_dynamics(p, t, True), inverse_dynamics(p, t + 2 * period, True)
+    for k in ("rocker_acceleration", "crank_torque", "force_A", "force_B"):
+        assert np.allclose(later[k], first[k], rtol=1e-9, atol=1e-9 * np.ptp(first[k]))

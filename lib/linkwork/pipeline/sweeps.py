@@ -128,7 +128,36 @@ def trend(values: np.ndarray) -> dict[str, float]:
     return {"change_low": float(change.min()), "change_high": float(change.max()), "monotone_fraction": float(monotone.mean())}
 
 
-def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mapping[str, Any]]):
+def resolved_trend(values: np.ndarray, spread: np.ndarray) -> dict[str, float]:
+    """Along axis 0 of ``values`` (each cell a mean over recorded cycles, ``spread`` its cycle-to-cycle spread,
+    largest - smallest): the fraction of lines whose first-to-last change exceeds the sum of the two end cells'
+    spreads, upwards and downwards, and the fraction of neighbouring steps (over all lines) that do.
+
+    A mean lies inside its cycles' range, so a change larger than the sum of the spreads separates the two
+    ranges: only such a change is a trend rather than the scatter of the cycles."""
+    change = values[-1] - values[0]
+    resolved = np.abs(change) > spread[-1] + spread[0]
+    steps = np.abs(np.diff(values, axis=0)) > spread[1:] + spread[:-1]
+    return {"resolved_up": float(np.mean(resolved & (change > 0))), "resolved_down": float(np.mean(resolved & (change < 0))),
+            "resolved_steps": float(np.mean(steps))}
+
+
+#: What the lines of a grid say about an output's change along an axis, given its cycle-to-cycle spread.
+TREND_CLASSES = {"grows": "grows beyond the cycle scatter on every line", "falls": "falls beyond the cycle scatter on every line",
+                 "partly": "changes beyond the cycle scatter on some lines only (no trend over the whole grid)",
+                 "none": "changes beyond the cycle scatter on no line (no trend)"}
+
+
+def trend_class(resolved_up: float, resolved_down: float) -> str:
+    """The key of TREND_CLASSES for the fractions of lines resolved upwards and downwards (``resolved_trend``)."""
+    if resolved_up == 1.0:
+        return "grows"
+    if resolved_down == 1.0:
+        return "falls"
+    return "none" if resolved_up == 0.0 and resolved_down == 0.0 else "partly"
+
+
+def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mapping[str, Any]], scatter: Mapping[str, str] | None = None):
     """The facts a sweep's paragraph states, added to the gathered Dataset ``ds`` (two axes, nonzero outputs):
 
     * per output and axis: the relative change from the first to the last value of the axis (smallest and
@@ -138,7 +167,10 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
       has one) or the reference value, symmetric, at least COLOUR_FLOOR_FACTOR either side;
     * per output with a threshold (``thresholds[output]``: ``value``, ``along`` (an axis), ``label``): the fraction
       of grid cells at or above it and, for every value of the other axis, where the output crosses it along
-      ``along``.
+      ``along``;
+    * per output with a cycle-to-cycle spread (``scatter[output]``: the name of the spread output): the fractions
+      of lines and steps along each axis whose change exceeds the spread (``resolved_trend``), and the spread
+      relative to the output (at the reference point, smallest and largest over the grid).
     """
     import xarray as xr
 
@@ -148,6 +180,10 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
     n_out = len(outputs)
     change_low, change_high, monotone = (np.full((n_out, 2), np.nan) for _ in range(3))
     ref_value, span, c_low, c_high, t_value, t_holds = (np.full(n_out, np.nan) for _ in range(6))
+    scatter = dict(scatter or {})
+    res_up, res_down, res_steps = (np.full((n_out, 2), np.nan) for _ in range(3))
+    rel_ref, rel_low, rel_high = (np.full(n_out, np.nan) for _ in range(3))
+    classes = np.full((n_out, 2), "", dtype=object)
     new: dict[str, Any] = {}
     for o, name in enumerate(outputs):
         v = ds[name].transpose(a, b).values
@@ -155,6 +191,14 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
             t = trend(v if axis == a else v.T)
             change_low[o, k], change_high[o, k], monotone[o, k] = t["change_low"], t["change_high"], t["monotone_fraction"]
         ref_value[o] = v[ia, ib]
+        if name in scatter:
+            sv = ds[scatter[name]].transpose(a, b).values
+            for k, axis in enumerate((a, b)):
+                r = resolved_trend(v, sv) if axis == a else resolved_trend(v.T, sv.T)
+                res_up[o, k], res_down[o, k], res_steps[o, k] = r["resolved_up"], r["resolved_down"], r["resolved_steps"]
+                classes[o, k] = TREND_CLASSES[trend_class(r["resolved_up"], r["resolved_down"])]
+            rel = sv / np.abs(v)
+            rel_ref[o], rel_low[o], rel_high[o] = rel[ia, ib], rel.min(), rel.max()
         span[o] = (v.max() - v.min()) / abs(ref_value[o])
         spec = thresholds.get(name)
         centre = float(spec["value"]) if spec else float(ref_value[o])
@@ -176,6 +220,7 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
                                              "on the whole line, -1 below it on the whole line, 0 on both sides"})
     no_log = {"nan_meaning": "the output is not positive everywhere: no log colour range"}
     thresh_nan = {"nan_meaning": "the output has no claim threshold"}
+    scatter_nan = {"nan_meaning": "the output has no cycle-to-cycle spread"}
     new.update({
         "trend_change_low": (("output", "axis"), change_low, {"units": "1", "long_name": "smallest relative change (last / first - 1) along the axis, over the other axis"}),
         "trend_change_high": (("output", "axis"), change_high, {"units": "1", "long_name": "largest relative change (last / first - 1) along the axis, over the other axis"}),
@@ -186,6 +231,17 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
         "colour_high": ("output", c_high, {"units": "SI of the output", "long_name": "upper end of the colour range (log scale)", **no_log}),
         "threshold_value": ("output", t_value, {"units": "SI of the output", "long_name": "claim threshold of the output", **thresh_nan}),
         "threshold_holds_fraction": ("output", t_holds, {"units": "1", "long_name": "fraction of grid cells at or above the threshold", **thresh_nan}),
+        "trend_resolved_up_fraction": (("output", "axis"), res_up, {"units": "1", "long_name": "fraction of grid lines along the axis on which "
+                                       "the output grows from first to last by more than the sum of the two cells' cycle spreads", **scatter_nan}),
+        "trend_resolved_down_fraction": (("output", "axis"), res_down, {"units": "1", "long_name": "fraction of grid lines along the axis on "
+                                         "which the output falls from first to last by more than the sum of the two cells' cycle spreads", **scatter_nan}),
+        "trend_resolved_step_fraction": (("output", "axis"), res_steps, {"units": "1", "long_name": "fraction of neighbouring grid steps along "
+                                         "the axis whose change exceeds the sum of the two cells' cycle spreads", **scatter_nan}),
+        "trend_resolved_class": (("output", "axis"), classes, {"units": "1", "long_name": "what the grid lines say about the change along "
+                                 "the axis, given the cycle spread ('' for an output without one)"}),
+        "relative_scatter_reference": ("output", rel_ref, {"units": "1", "long_name": "cycle spread / output at the reference point", **scatter_nan}),
+        "relative_scatter_low": ("output", rel_low, {"units": "1", "long_name": "smallest cycle spread / output over the grid", **scatter_nan}),
+        "relative_scatter_high": ("output", rel_high, {"units": "1", "long_name": "largest cycle spread / output over the grid", **scatter_nan}),
     })
     labels = [thresholds[n]["label"] if n in thresholds else "" for n in outputs]
     out = ds.assign(**{k: xr.Variable(*spec) for k, spec in new.items()}).assign_coords(
