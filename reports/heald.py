@@ -63,10 +63,10 @@ limit = float(fnd.limit_rad_s)
 
 # %%
 answer(fnd)
-figure_labels = {"force_E_many_times_F": "force in E many times that in F (min |Q_E|/|Q_F| ≥ 3 over the band)",
+figure_labels = {"force_E_many_times_F": f"force in E many times that in F (min |Q_E|/|Q_F| ≥ {many:g} over the band)",
                  "forces_grow_with_frequency": "joint forces grow with frequency (over the whole band)",
-                 "limit_41_89": "limit 400 min⁻¹ = 41.89 rad/s: the lowest resonance under the drive lies within ±10 %"}
-claim_short = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": "limit 41.89 rad/s"}
+                 "limit_41_89": f"limit {float(fnd.limit_rpm):.0f} min⁻¹ = {limit:g} rad/s: the lowest resonance under the drive lies within ±{float(fnd.limit_band):.2g} rad/s"}
+claim_short = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": f"limit {limit:g} rad/s"}
 for m in models:
     rows_m = cmp[cmp.model == m]
     comparison_table(rows_m, caption=f"model {m}: our value at the assumed parameters and its range over every assumed parameter's range")
@@ -126,6 +126,7 @@ two sides, and the reactions are the branches' own kinetostatic ones (section 1b
 # which the verdict flips, found by bisection between its assumed value and the end of its range that flips it.
 
 # %%
+flips["flip_claim"] = [claim_short[c] for c in flips.flip_claim]
 table(flips.rename(columns={"flip_model": "model", "flip_claim": "claim", "flip_input": "assumed input", "flip_nominal": "assumed value",
                             "flip_end": "range end", "flip_value": "verdict flips at", "flip_measure": "measure there", "flip_nominal_state": "at the assumed value the claim"}),
       {"assumed value": "{:.4g}", "range end": "{:.4g}", "verdict flips at": "{:.4g}", "measure there": "{:.4g}"})
