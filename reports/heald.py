@@ -187,7 +187,7 @@ md(
     + (f"{float(fnd.threshold_reaction_ratio_A):.4g} : 1, " if "threshold_reaction_ratio_A" in fnd else "several to one, ")
     + "which the kinetostatics of a symmetric linkage do not give. The assumed reaction_E, reaction_F "
     f"({cfg['parameters']['reaction_E']['range'][0]:g}–{cfg['parameters']['reaction_E']['range'][1]:g} N, below the kinetostatic magnitudes) stand for that "
-    "split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ k_nΔ) a common factor on both reactions stiffens both joints alike and leaves the ratio unchanged, so the "
+    "split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ k_nΔ) a common factor on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the "
     "range of the split, not of the magnitude, is what decides. Model A's 'depends on assumptions' on this claim therefore means: it holds only for an "
     "unequal split of the reactions that the paper does not give and the kinetostatics do not produce."
 )
