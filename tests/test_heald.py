@@ -118,3 +118,63 @@ def test_periodic_peaks_of_one_harmonic_are_the_amplitude():
     _, e, f, _ = joint_forces("A", P, "elastic", W[:50], 1e-4)
     np.testing.assert_allclose(pe, np.abs(e), rtol=1e-5)
     np.testing.assert_allclose(pf, np.abs(f), rtol=1e-5)
+
+
+def test_damping_ratios_of_undamped_modes_are_plain_zero():
+    """Model B's joint branches have no damper: their damping ratio is 0, never a negative zero or a round-off negative
+    (the report printed '-0.0000')."""
+    _, zeta = damped_modes(build("B", P, "elastic"), held=True)
+    assert (zeta >= 0).all() and not np.signbit(zeta).any()
+    assert (zeta == 0).sum() == 2
+
+
+def test_bounded_text_places_the_ends_at_the_located_boundaries():
+    from linkwork.papers.heald.findings import bounded_text
+
+    x = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    ok = np.array([False, True, True, False, False])
+    assert bounded_text(x, ok, lambda i: x[i] + 0.25) == "1.25–3.25"
+    assert bounded_text(x, np.array([False, False, True, True, True]), lambda i: 2.5) == "2.5–5"
+    assert bounded_text(x, np.ones(5, bool), lambda i: 0.0).startswith("all of")
+
+
+def test_sweep_boundary_is_the_flip_value_or_the_closed_form():
+    """Along a one-input sweep the range table's ends are the flip table's bisection values (so both tables print the
+    same number); where the flip table has none, a bisection of its own, checked against model B's closed form
+    sqrt(k_O/M_P) = upper end of the limit's band."""
+    import xarray as xr
+
+    from linkwork.papers.heald.findings import sweep_boundary
+
+    published = load_yaml("config/published/heald.yaml")
+    flips = xr.Dataset({"flip_model": ("flip", np.array(["B"], dtype=object)), "flip_claim": ("flip", np.array(["limit_41_89"], dtype=object)),
+                        "flip_input": ("flip", np.array(["M_P"], dtype=object)), "flip_value": ("flip", [9.4213])})
+    boundary = sweep_boundary(CFG, published, flips)
+    assert boundary("B", "limit_41_89", "heald_mass", 9.0, 9.5) == 9.4213
+    flips["flip_value"] = ("flip", [99.0])  # not in the bracket: located afresh
+    upper = 41.89 * 1.10
+    closed = P["k_O"] / upper**2
+    assert boundary("B", "limit_41_89", "heald_mass", 9.0, 9.5) == pytest.approx(closed, rel=2e-3)
+    # the reaction-ratio sweep is reaction_E over the assumed reaction_F
+    flips = xr.Dataset({"flip_model": ("flip", np.array(["A"], dtype=object)), "flip_claim": ("flip", np.array(["force_E_many_times_F"], dtype=object)),
+                        "flip_input": ("flip", np.array(["reaction_E"], dtype=object)), "flip_value": ("flip", [312.5])})
+    assert sweep_boundary(CFG, published, flips)("A", "force_E_many_times_F", "reaction_ratio", 3.0, 3.2) == pytest.approx(312.5 / P["reaction_F"])
+
+
+def test_cam_window_and_notes():
+    """The significance window of each harmonic, and the summary's note on a verdict the cam changes."""
+    import xarray as xr
+
+    from linkwork.papers.heald.findings import notes
+
+    f = xr.Dataset({"verdict_sine_nominal": (("model", "claim"), np.array([["matches", "deviates"]], dtype=object)),
+                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object))},
+                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"]})
+    text = notes(xr.Dataset(), f)
+    assert "model B, forces grow: matches → deviates" in text and "limit" not in text
+    from linkwork.papers.heald.studies import cam_study
+
+    variables, _ = cam_study(CFG, P, ["B"], W[:20], 1e-4)
+    amp, low = variables["cam_harmonic_amplitude"].values, variables["cam_harmonic_window_low"].values
+    assert low[6] == pytest.approx(amp[8])  # h = 7: the strongest higher one is h = 9
+    assert low[-1] == 0.0

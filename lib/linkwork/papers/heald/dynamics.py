@@ -41,6 +41,7 @@ def damped_modes(net: Network, held: bool = True) -> tuple[np.ndarray, np.ndarra
     wn = np.abs(lam)
     keep = wn > 1e-9 * max(wn.max(initial=0.0), 1.0)
     wn, zeta = wn[keep], -lam.real[keep] / wn[keep]
+    zeta = np.where(zeta > 0.0, zeta, 0.0)  # an undamped mode gives -0.0 or a round-off negative: no negative damping here
     order = np.argsort(wn)
     return wn[order], zeta[order]
 

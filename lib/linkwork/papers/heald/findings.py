@@ -28,10 +28,36 @@ INDEPENDENT_TEXT = "independent (the joint forces do not move along this sweep)"
 FLIP_RTOL = 1e-3
 #: Points scanned between an assumed value and a range end that does not flip the verdict (an interval claim).
 SCAN = 9
+#: Sweeps that move one assumed input alone (the reaction ratio moves reaction_E with reaction_F at its assumed value);
+#: the clearance sweep moves both clearances together and has no single input.
+SWEEP_INPUT = {"reaction_ratio": "reaction_E", "heald_mass": "M_P", "warp_stiffness": "k_O"}
+CLAIM_SHORT = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": "the speed limit"}
 
 
-def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance: float) -> dict[str, np.ndarray]:
-    """Per model, claim and sweep: where along the sweep the claim holds (text; '' where not swept for that claim)."""
+def bounded_text(x: np.ndarray, ok: np.ndarray, boundary) -> str:
+    """Like ``where_true``, but each change between two grid cells is placed at ``boundary(i)``, the located
+    value between cells i and i + 1 (the bisection's flip point), not at a grid cell."""
+    if ok.all() or not ok.any():
+        return where_true(x, ok, ".4g")
+    parts, i, n = [], 0, ok.size
+    while i < n:
+        if not ok[i]:
+            i += 1
+            continue
+        j = i
+        while j + 1 < n and ok[j + 1]:
+            j += 1
+        left = x[0] if i == 0 else boundary(i - 1)
+        right = x[-1] if j == n - 1 else boundary(j)
+        parts.append(f"{left:.4g}–{right:.4g}")
+        i = j + 1
+    return ", ".join(parts)
+
+
+def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance: float, boundary=None) -> dict[str, np.ndarray]:
+    """Per model, claim and sweep: where along the sweep the claim holds (text; '' where not swept for that claim).
+    ``boundary(model, claim, sweep, a, b)``, if given, locates a change of the claim between the sweep values a
+    and b (else the text names grid cells)."""
     models = [str(m) for m in chain.model.values]
     text = np.full((len(models), len(CLAIMS), len(SWEEPS)), "", dtype=object)
     for i, m in enumerate(models):
@@ -47,6 +73,9 @@ def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance:
         for (claim, sweep), ok in tests.items():
             if claim in FORCE_CLAIMS and float(s[f"joint_force_change_vs_{sweep}"]) <= INDEPENDENT:
                 text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = INDEPENDENT_TEXT
+            elif boundary is not None and sweep in SWEEP_INPUT:
+                x = chain[sweep].values
+                text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = bounded_text(x, ok.values, lambda k, m=m, c=claim, w=sweep, x=x: boundary(m, c, w, x[k], x[k + 1]))
             else:
                 text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = where_true(chain[sweep].values, ok.values)
     return {"models": models, "text": text}
@@ -85,6 +114,30 @@ def moved(cfg: Mapping[str, Any], name: str, value: float) -> dict[str, float]:
     """The parameter dict with one labelled parameter set to ``value`` (config units)."""
     section = {**cfg, "parameters": {**cfg["parameters"], name: {**cfg["parameters"][name], "value": value}}}
     return parameters(section)
+
+
+def sweep_boundary(cfg: Mapping[str, Any], published: Mapping[str, Any], flips: xr.Dataset):
+    """A function locating where a claim changes along a one-input sweep between two sweep values: the flip
+    point of the flip table if one lies there (the same bisection), else a bisection of its own."""
+    pub = {q["id"]: q for q in published["quantities"]}
+
+    def scale(sweep):
+        return 1.0 / float(cfg["parameters"]["reaction_F"]["value"]) if sweep == "reaction_ratio" else 1.0
+
+    def boundary(model, claim, sweep, a, b):
+        name, k = SWEEP_INPUT[sweep], scale(sweep)
+        lo, hi = min(a, b), max(a, b)
+        for j in range(flips.sizes["flip"]):
+            if (str(flips.flip_model.values[j]), str(flips.flip_claim.values[j]), str(flips.flip_input.values[j])) == (model, claim, name):
+                v = float(flips.flip_value.values[j]) * k
+                if lo <= v <= hi:
+                    return v
+        q = pub[claim]
+        region = acceptance(float(q["value"]), tolerance_of(q), q.get("relation", "eq"))
+        f = measure_function(claim, model, cfg)
+        return flip_point(lambda x: bool(region[0] <= f(moved(cfg, name, x / k)) <= region[1]), a, b, FLIP_RTOL)
+
+    return boundary
 
 
 def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.DataFrame) -> xr.Dataset:
@@ -162,6 +215,10 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
         values = chain[var].sel(model=row.model).values
         over.append(classify(float(row.published), float(row.tolerance), row.relation, float(values[0]), float(row.numerical_error), float(values.min()), float(values.max())))
     shape = (len(chain.model), len(CLAIMS))
+    limit_row = sine[sine.id == "limit_41_89"].set_index("model")
+    by_h = np.array([[classify(float(limit_row.published[str(m)]), float(limit_row.tolerance[str(m)]), limit_row.relation[str(m)], float(v),
+                               float(limit_row.numerical_error[str(m)]), float(v), float(v)) for v in chain.cam_harmonic_speed.sel(model=m).values]
+                     for m in chain.model.values], dtype=object)
 
     def grid(col):
         return np.array(list(col), dtype=object).reshape(shape)
@@ -172,6 +229,7 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
             "verdict_cam_nominal": (("model", "claim"), grid(cam_table.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, cam drive"}),
             "verdict_cam_over_rise": (("model", "claim"), grid(over), {"units": "1", "long_name": "verdict with the cam drive over the rise fraction's range (other inputs assumed)"}),
             "value_cam_nominal": (("model", "claim"), np.array(list(cam_table.reproduced), dtype=float).reshape(shape), {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"}),
+            "verdict_limit_by_harmonic": (("model", "harmonic"), by_h, {"units": "1", "long_name": "verdict on the speed limit at the assumed parameters if harmonic h were the highest one counted (cam drive)"}),
             "cam_changes_a_verdict": ((), int((sine.verdict.values != cam_table.verdict.values).any()), {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"}),
         }
     )
@@ -184,7 +242,8 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
     pub = {q["id"]: q for q in published["quantities"]}
     limit = float(pub["limit_41_89"]["value"])
     many_times = float(pub["force_E_many_times_F"]["value"])
-    sup = support(chain, many_times, limit, tolerance_of(pub["limit_41_89"]))
+    flips = thresholds(cfg, published, table)
+    sup = support(chain, many_times, limit, tolerance_of(pub["limit_41_89"]), sweep_boundary(cfg, published, flips))
     findings = xr.Dataset(
         {
             "holds_for": (("model", "claim", "sweep"), sup["text"], {"units": "1", "long_name": "sub-ranges of the swept parameter over which the claim holds"}),
@@ -200,17 +259,35 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
         },
     )
     findings = findings.merge(counts_dataset(table))
-    findings = findings.merge(thresholds(cfg, published, table)).merge(cam_verdicts(published, chain, accuracy))
-    findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain)))
+    findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy))
+    findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain, findings)))
     return table, findings
 
 
-def answer(table: pd.DataFrame, chain: xr.Dataset) -> str:
-    """Does the paper hold up? One sentence from the comparison."""
+def notes(chain: xr.Dataset, findings: xr.Dataset) -> str:
+    """What the headline counts do not show: model A's E/F verdict with the kinetostatic reactions, and the
+    verdicts a dwell cam's harmonics change."""
+    out = []
+    if "threshold_reaction_ratio_A" in findings and "ratio_EF_min_self_consistent_A" in chain:
+        out.append(f"Model A's E/F claim holds only for an assumed split of the reactions of at least {float(findings.threshold_reaction_ratio_A):.4g} : 1; "
+                   f"with the mechanism's own (self-consistent) reactions the E/F ratio is {float(chain.ratio_EF_min_self_consistent_A):.3f} and the claim fails.")
+    if "verdict_cam_nominal" in findings:
+        changed = [f"model {m}, {CLAIM_SHORT[str(c)]}: {findings.verdict_sine_nominal.sel(model=m, claim=c).item()} → {findings.verdict_cam_nominal.sel(model=m, claim=c).item()}"
+                   for m in findings.model.values for c in findings.claim.values
+                   if findings.verdict_sine_nominal.sel(model=m, claim=c).item() != findings.verdict_cam_nominal.sel(model=m, claim=c).item()]
+        if changed:
+            out.append("With a dwell cam's harmonics instead of the harmonic drive (all inputs at their assumed values) the verdict changes for "
+                       + "; ".join(changed) + ".")
+    return " ".join(out)
+
+
+def answer(table: pd.DataFrame, chain: xr.Dataset, findings: xr.Dataset | None = None) -> str:
+    """Does the paper hold up? One sentence from the comparison (and the notes that qualify it)."""
     deciders = sorted({name.strip() for d in table.decided_by.dropna() if d and d != "jointly" for name in d.split("(largest alone: ")[-1].rstrip(")").split(",")})
     return (
         f"Not decidable from the paper, which prints no parameter. Its eq. (2) is exactly the mobility of a driven node carrying three "
         f"spring–mass branches (agreement {float(chain.eq2_relative_difference):.0e}). On the physical linkage (model A) the claims: "
         f"{count_text(table, DEFENSIBLE)}; on eq. (2)'s chain (model B): {count_text(table, PAPER_MODEL)}"
         + (f"; the assumed {', '.join(deciders)} decide them" if deciders else "") + "."
+        + (f" {notes(chain, findings)}" if findings is not None and notes(chain, findings) else "")
     )

@@ -123,6 +123,10 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         "k_E": xr.DataArray([joint_stiffness(p, "E", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint E"}),
         "k_F": xr.DataArray([joint_stiffness(p, "F", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint F"}),
     }
+    both = np.concatenate([q_e, q_f], axis=2)  # (model, joints, E then F over the band)
+    data["ideal_elastic_difference"] = xr.DataArray(
+        np.max(np.abs(both[:, 0] - both[:, 1]) / both[:, 1], axis=1),
+        dims="model", attrs={"units": "1", "long_name": "max relative difference of |Q_E|, |Q_F| between ideal and elastic joints over the band"})
     # model B against eq. (2) (undamped)
     undamped = {**p, "c_joint": 0.0, "c_O": 0.0}
     k_eq2, num_w, den_w = eq2_mobility(undamped, w)
@@ -238,6 +242,11 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
         c = c * amp / abs(c[0])
         if j == 0:
             variables["cam_harmonic_amplitude"] = xr.DataArray(np.abs(c) / amp, dims="harmonic", attrs={"units": "1", "long_name": "|c_h| / |c_1| of the cam drive (nominal rise fraction)"})
+            ratio = np.abs(c) / amp
+            variables["cam_harmonic_window_low"] = xr.DataArray(np.array([ratio[h + 1:].max(initial=0.0) for h in range(ratio.size)]), dims="harmonic", attrs={
+                "units": "1", "long_name": "largest |c_k|/|c_1| of the higher harmonics k > h: a significance fraction above it and at most |c_h|/|c_1| makes h the highest counted"})
+            variables["cam_harmonic_present"] = xr.DataArray((np.abs(c) / amp > 1e-9).astype(int), dims="harmonic", attrs={
+                "units": "1", "long_name": "1 if the harmonic is in the drive (|c_h|/|c_1| above round-off; the even ones vanish by half-wave symmetry)"})
         for i, m in enumerate(models):
             values, peaks = cam_measures(m, p, transfer[m], c, cam["samples"], cam["significant_harmonic"])
             for k, v in values.items():
@@ -250,6 +259,11 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
              "top_harmonic": ("1", "highest harmonic of the cam drive counted as significant")}
     for k, arr in table.items():
         variables[f"{k}_cam"] = xr.DataArray(arr, dims=("model", "rise"), attrs={"units": texts[k][0], "long_name": texts[k][1]})
+    lowest = np.array([lowest_resonance(m, p) for m in models])
+    variables["cam_harmonic_speed"] = xr.DataArray(lowest[:, None] / np.arange(1, cam["harmonics"] + 1)[None, :], dims=("model", "harmonic"), attrs={
+        "units": "rad s-1", "long_name": "shaft speed at which harmonic h of the drive meets the lowest resonance"})
+    variables["significant_harmonic"] = xr.DataArray(float(cam["significant_harmonic"]), attrs={
+        "units": "1", "long_name": "our reading: a harmonic counts for the speed limit if |c_h|/|c_1| is at least this"})
     for k in ("Q_E_cam", "Q_F_cam"):
         variables[k] = xr.DataArray(variables[k], dims=("model", "omega"), attrs={"units": "N", "long_name": f"peak |{k[:3]}| over a turn, cam drive (nominal rise fraction), elastic joints"})
     coords = {"rise": ("rise", np.array(["nominal", "low", "high"], dtype=object), {"units": "1", "long_name": "cam rise fraction: nominal and its range ends"}),
