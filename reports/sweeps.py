@@ -78,11 +78,19 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
     ax.set_ylabel(AXIS_LABEL[ydim][0])
     ax.tick_params(axis="x", labelrotation=45)
     ax.set_title(f"{ds[var].attrs['long_name']} ({ds[var].attrs['units']})", fontsize=8, wrap=True)
-    bar = fig.colorbar(im, ax=ax)
+    bar = ax.figure.colorbar(im, ax=ax)
     if np.isfinite(low):  # five labelled ticks, equal ratios apart: the ends and the centre (threshold or reference value)
         bar.set_ticks(np.geomspace(low, high, 5))
     bar.ax.yaxis.set_major_formatter("{x:.3g}")
     bar.ax.yaxis.set_minor_formatter("")
+
+
+def heat_row(ds, names, xdim, ydim, width):
+    """One row of heat maps of ``names`` over ``xdim`` x ``ydim`` (figure ``width`` in inches)."""
+    fig, axes = plt.subplots(1, len(names), figsize=(width, 5.5), constrained_layout=True)
+    for ax, var in zip(axes.flat, names):
+        heat_map(ax, ds, var, xdim, ydim)
+    plt.show()
 
 
 def percent_range(ds, var, dim):
@@ -136,10 +144,7 @@ def threshold_sentence(ds, var, along, other, what_above, what_below):
 # %%
 dims = ("clearance_m", "crank_speed_rad_s")
 cl_valid = ["penetration_over_clearance", "peak_joint_force", "peak_force_over_ideal"]
-fig, axes = plt.subplots(1, 3, figsize=(17, 5.5), constrained_layout=True)
-for ax, var in zip(axes.flat, cl_valid):
-    heat_map(ax, cl, var, "crank_speed_rad_s", "clearance_m")
-plt.show()
+heat_row(cl, cl_valid, "crank_speed_rad_s", "clearance_m", width=17)
 caption(
     f"Validity map of the clearance model: {esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}, "
     f"over {cl.attrs['record_cycles']} recorded cycles after {cl.attrs['settle_cycles']} settling ones. Left: the deepest penetration over "
@@ -214,10 +219,7 @@ md(
 # %%
 he_vars = ["ratio_EF_min", "peak_Q_E", "peak_Q_F"]
 he_dims = ("clearance_m", "reaction_ratio_EF")
-fig, axes = plt.subplots(1, 3, figsize=(16, 5.5), constrained_layout=True)
-for ax, var in zip(axes.flat, he_vars):
-    heat_map(ax, he, var, "reaction_ratio_EF", "clearance_m")
-plt.show()
+heat_row(he, he_vars, "reaction_ratio_EF", "clearance_m", width=16)
 caption(
     f"Heald sweep, model {esc(he.attrs['model'])}, elastic (Vulfson) joints, over the configured speed band: the smallest E/F force "
     "ratio with the first claim's threshold (dashed), and the peak joint forces. |R_F| is held at its configured value and |R_E| "
