@@ -50,3 +50,11 @@ def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: flo
     if beyond is not None:
         attrs["validity_beyond_film_cap_fraction"] = beyond
     return attrs
+
+
+def contact_extent(penetration_over_c: float) -> tuple[str, float]:
+    """How a joint's deepest (|e| - c)/c reads: ('max penetration / c', value) where the journal entered the
+    bushing (>= 0), ('min gap / c', -value) where it never touched (< 0: the smallest gap left)."""
+    if np.isfinite(penetration_over_c) and penetration_over_c < 0:
+        return "min gap / c", float(-penetration_over_c)
+    return "max penetration / c", float(penetration_over_c)
