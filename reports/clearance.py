@@ -39,8 +39,6 @@ import numpy as np
 import pandas as pd
 from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
-from linkwork.papers.clearance.validity import contact_extent
-
 files = inputs()
 claims = load(files["result"])
 wp = load(files["accuracy"])
@@ -225,12 +223,9 @@ md(
 # ## 4. Joint forces and penetration against the clearance
 
 # %%
-joints = runs[runs.summary_max_eccentricity_ratio.notna()][["variant", "run", "joint", "summary_max_penetration_ratio", "summary_max_eccentricity_ratio",
+joints = runs[runs.summary_max_eccentricity_ratio.notna()][["variant", "run", "joint", "summary_contact_label", "summary_contact_value", "summary_max_eccentricity_ratio",
                                                           "summary_max_contact_force", "summary_max_film_force"]]
-joints.columns = ["variant", "scene", "joint", "ratio", "max eccentricity / c", "max dry contact force (N)", "max film force (N)"]
-joints.insert(3, "deepest contact", [contact_extent(x)[0] for x in joints.ratio])
-joints["ratio"] = [contact_extent(x)[1] for x in joints.ratio]
-joints = joints.rename(columns={"ratio": "value"})
+joints.columns = ["variant", "scene", "joint", "deepest contact", "value", "max eccentricity / c", "max dry contact force (N)", "max film force (N)"]
 table(joints, {"value": "{:.2f}", "max eccentricity / c": "{:.2f}", "max dry contact force (N)": "{:.3g}", "max film force (N)": "{:.3g}"},
       caption="Joint extremes over the recorded cycles: the deepest penetration into the bushing, or the smallest gap where the journal never touched")
 ideal_forces = per_run[["variant"]].drop_duplicates().assign(
@@ -257,8 +252,7 @@ md(" ".join(
 
 # %%
 validity = pd.DataFrame([
-    {"variant": v, "scene": s, "deepest contact": contact_extent(ds.attrs.get("validity_penetration_over_clearance", np.nan))[0],
-     "value": contact_extent(ds.attrs.get("validity_penetration_over_clearance", np.nan))[1],
+    {"variant": v, "scene": s, "deepest contact": ds.attrs["validity_contact_label"], "value": ds.attrs["validity_contact_value"],
      "time beyond the film cap (%)": 100 * ds.attrs.get("validity_beyond_film_cap_fraction", np.nan),
      "warning": ds.attrs["validity_warnings"] or "inside both models"}
     for (v, s), ds in sorted(scenes.items()) if s != "ideal"])

@@ -241,7 +241,8 @@ def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[st
     out = {k: np.full(shape, np.nan) for k in ("steps", "first_change", "last_change", "max_drift", "n_contact", "n_friction", "n_lubrication", "ideal_force_A", "ideal_force_B", "film_cap", "hertz_stiffness",
                                              "settle_cycles", "settled", "recorded_cycles", "max_abs_torque")}
     out["integrator"] = np.full(shape, "", dtype=object)
-    out.update({k: np.full(jshape, np.nan) for k in ("max_penetration_ratio", "max_eccentricity_ratio", "max_contact_force", "max_film_force")})
+    out["contact_label"] = np.full(jshape, "", dtype=object)
+    out.update({k: np.full(jshape, np.nan) for k in ("max_penetration_ratio", "max_eccentricity_ratio", "max_contact_force", "max_film_force", "contact_value")})
     for v, variant in enumerate(variants):
         for s, name in enumerate(scenes):
             ds = runs.get((variant, name))
@@ -267,6 +268,7 @@ def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[st
                 pen = float(ds.recorded_max_penetration.sel(joint=jid))
                 if np.isfinite(pen):
                     out["max_penetration_ratio"][v, s, j] = pen / c
+                    out["contact_label"][v, s, j], out["contact_value"][v, s, j] = validity.contact_extent(pen / c)
                     out["max_eccentricity_ratio"][v, s, j] = float(ds.recorded_max_eccentricity.sel(joint=jid)) / c
                     out["max_contact_force"][v, s, j] = float(ds.recorded_max_contact_force.sel(joint=jid))
                     out["max_film_force"][v, s, j] = float(ds.recorded_max_film_force.sel(joint=jid))
@@ -292,6 +294,8 @@ SUMMARY_ATTRS = {
     "hertz_stiffness": ("N m-1.5", "Hertz stiffness K of eq. (9)"),
     "max_penetration_ratio": ("1", "largest (|e| - c) / c over the recorded cycles: > 0 is penetration into the bushing, < 0 a gap that never closed"),
     "max_eccentricity_ratio": ("1", "largest eccentricity ratio |e| / c"),
+    "contact_label": ("1", "how the deepest contact reads: 'max penetration / c' (the journal entered the bushing) or 'min gap / c' (it never touched)"),
+    "contact_value": ("1", "the value of contact_label (a gap as a positive fraction of c)"),
     "max_contact_force": ("N", "largest dry contact force"),
     "max_film_force": ("N", "largest |film force along e|"),
 }

@@ -45,7 +45,9 @@ def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: flo
     """The scene attributes: the two measures, the limit they are judged by, and the warnings."""
     pen = penetration_ratio(penetration, clearance)
     beyond = beyond_cap_fraction(eccentricity, clearance, cap) if cap is not None else None
+    label, value = contact_extent(pen)
     attrs: dict[str, object] = {"validity_penetration_over_clearance": pen, "validity_penetration_limit": PENETRATION_LIMIT,
+                                "validity_contact_label": label, "validity_contact_value": value,
                                 "validity_warnings": warnings(pen, beyond)}
     if beyond is not None:
         attrs["validity_beyond_film_cap_fraction"] = beyond
