@@ -296,3 +296,15 @@ def test_validity_exit_numbers_are_in_the_findings():
     assert float(f.dry_penetration_max) == 1.5 and float(f.dry_torque_max) == 1.5e4 and float(f.crank_mass) == 1.0
     assert float(f.lubricated_2_eccentricity_max) == 0.98 and int(f.beyond_film_cap) == 1
     assert float(f.friction_bound_ratio) == pytest.approx(0.001 * 1000.0 * 0.2 / 10.0)
+
+
+def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():
+    """The scenes repeat one cycle of the ideal response; inverse dynamics over the whole span must agree."""
+    from linkwork.papers.clearance.studies import cycle, periodic_ideal
+
+    per = 90
+    t = np.arange(3 * per + 1) * cycle(SLENDER) / per
+    whole = inverse_dynamics(SLENDER, t, gravity=True)
+    tiled = periodic_ideal(SLENDER, per, 3, True)
+    for key in ("rocker_acceleration", "crank_torque", "energy"):
+        assert np.abs(tiled[key] - whole[key]).max() < 1e-9 * np.abs(whole[key]).max()

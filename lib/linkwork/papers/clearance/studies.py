@@ -42,6 +42,13 @@ def output_times(numerics: Mapping[str, Any], p) -> tuple[np.ndarray, np.ndarray
     return t, t >= numerics["settle_cycles"] * cycle(p) - 1e-12
 
 
+def periodic_ideal(p, per: int, n_cycles: int, gravity: bool) -> dict[str, np.ndarray]:
+    """The ideal linkage's response at ``per`` points a cycle over ``n_cycles`` cycles (plus the end point): under a
+    constant-speed drive it is a function of the crank angle alone, so one cycle of inverse dynamics, repeated."""
+    one = inverse_dynamics(p, np.arange(per + 1) * cycle(p) / per, gravity)
+    return {k: np.r_[np.tile(v[:-1], n_cycles), v[-1:]] for k, v in one.items()}
+
+
 def record_count(cfg: Mapping[str, Any], tolerance: str) -> int:
     """Cycles a scene run records after settling: the long statistics at the pipeline tolerance, a short
     record at the tight one (its numerical-error estimate compares the same cycles)."""
@@ -74,7 +81,7 @@ def scene(cfg: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pi
     record = (record_count(cfg, tolerance) if record is None else record) if joints else shown
     n_cycles = stat["settle_max_cycles"] + record
     t = np.arange(n_cycles * per + 1) * cycle(p) / per
-    ideal = inverse_dynamics(p, t, "gravity" in effects)
+    ideal = periodic_ideal(p, per, n_cycles, "gravity" in effects)
     integ: Mapping[str, Any] = {}
     if not joints:  # kinematics and inverse dynamics, no integration
         diags = None
