@@ -97,7 +97,8 @@ def sample_judgement(nominal: Any, moved: Any | None, batch: int, confidence: fl
         for idx in np.ndindex(stats.shape[:3]):
             x = moved.cycle_deviation.values[idx]
             if np.isfinite(x).any():
-                mean, half, se, dof = mean_ci(x, batch, confidence)
+                n = int(np.isfinite(x).sum())
+                mean, half, se, dof = mean_ci(x, max(1, min(batch, n // 2)), confidence)  # a short record: at least two batches
                 if not moved.settled.values[idx[2]]:
                     half, se = float("inf"), float("inf")
                 stats[idx] = (mean, half, se, dof)
@@ -139,5 +140,5 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                           scene=("scene", claims.scene.values, {"units": "1", "long_name": "scene"}))
     ds.attrs["title"] = "Clearance: assumed joint length, friction thresholds and film cap, propagated"
     ds.attrs["sample_rule"] = ("a sample's claim is its outcome beyond the margins (its moved scenes' own short-record intervals, the nominal "
-                               "numerical errors); where a margin decides at the sample, the nominal outcome")
+                               "numerical errors; batches of at most half the short record, so that it has two); where a margin decides at the sample, the nominal outcome")
     return ds
