@@ -201,3 +201,110 @@ def test_scipys_integrators_on_the_compiled_right_hand_side_agree_with_dormand_p
     ideal = inverse_dynamics(SLENDER, t, gravity=True)
     scale = np.abs(ideal["rocker_acceleration"]).max()
     assert np.abs(diags[:, 0] - ideal["rocker_acceleration"]).max() < 1e-5 * scale
+
+
+# --- statistics of the claims (issue 12) ---------------------------------------------------------
+
+
+def test_settle_point_of_a_series_that_settles_at_a_known_cycle():
+    """Decays by half a cycle for 6 cycles, then constant: with windows of 2 and 5 %, the first cycle at which
+    both windows lie in the constant part is cycle 6 + 4 = 10 (the means of cycles 7-8 and 9-10)."""
+    from linkwork.papers.clearance.statistics import running_change, settle_point
+
+    x = np.r_[100.0 * 0.5 ** np.arange(6), np.full(14, 1.0)]
+    assert settle_point(x, 2, 0.05, 15) == (10, True)
+    assert np.isnan(running_change(x, 2)[:3]).all()
+    assert settle_point(x, 2, 0.05, 8) == (8, False)  # not settled by the latest cycle allowed
+    assert settle_point(np.vstack([x, np.ones(20)]), 2, 0.05, 15)[0] == 10  # every row must be steady
+
+
+def test_batch_means_interval_against_the_t_distribution():
+    """Batch size 1 is the textbook t-interval (closed form); over many normal samples the 95 % interval
+    covers the true mean in 95 % +- 1.5 % of the cases, for batch sizes 1 and 4."""
+    from scipy import stats as st
+
+    from linkwork.papers.clearance.statistics import mean_ci
+
+    x = np.array([1.0, 2.0, 4.0, 7.0])
+    mean, half, se, dof = mean_ci(x, 1, 0.95)
+    assert mean == pytest.approx(3.5) and dof == 3
+    assert half == pytest.approx(st.t.ppf(0.975, 3) * x.std(ddof=1) / 2.0)
+    rng = np.random.default_rng(12)
+    for batch in (1, 4):
+        covered = [abs((m := mean_ci(rng.normal(5.0, 2.0, 20), batch, 0.95))[0] - 5.0) <= m[1] for _ in range(4000)]
+        assert np.mean(covered) == pytest.approx(0.95, abs=0.015)
+    assert mean_ci(np.ones(3), 4, 0.95)[1] == np.inf  # fewer than two batches: no interval
+
+
+def test_an_ordering_is_decided_only_beyond_both_margins():
+    from linkwork.papers.clearance.statistics import FAILS, HOLDS, UNDETERMINED, conjunction, decide, difference
+
+    assert decide(2.0, 1.0, 1.5) == HOLDS
+    assert decide(-2.0, 1.0, 1.5) == FAILS
+    assert decide(2.0, 2.5, 1.0) == UNDETERMINED  # within the statistical margin
+    assert decide(2.0, 1.0, 2.5) == UNDETERMINED  # within the numerical error
+    assert conjunction([HOLDS, HOLDS]) == HOLDS and conjunction([HOLDS, UNDETERMINED]) == UNDETERMINED
+    assert conjunction([UNDETERMINED, FAILS]) == FAILS
+    # Welch: two means with equal standard errors and dof -> sqrt(2) se, dof 2(n - 1)
+    from scipy import stats as st
+
+    d, half, num = difference([(1.0, 10.0, 1.0, 4.0, 0.5), (-1.0, 7.0, 1.0, 4.0, 0.25)], 0.95)
+    assert d == 3.0 and num == 0.75 and half == pytest.approx(st.t.ppf(0.975, 8.0) * np.sqrt(2.0))
+    assert difference([(1.0, 1.0, np.inf, 1.0, 0.0), (-1.0, 0.0, 0.1, 4.0, 0.0)], 0.95)[1] == np.inf  # unsettled scene
+
+
+def test_gap_and_penetration_are_named_by_their_sign():
+    from linkwork.papers.clearance import validity
+    from linkwork.papers.clearance.validity import contact_extent
+
+    assert contact_extent(0.73) == ("max penetration / c", 0.73)
+    assert contact_extent(-0.12) == ("min gap / c", 0.12)
+    assert contact_extent(0.0)[0] == "max penetration / c"
+    attrs = validity.attributes(np.array([[-2e-5, -1e-5]]), np.array([[3e-5, 4e-5]]), 5e-5, None)
+    assert (attrs["validity_contact_label"], attrs["validity_contact_value"]) == ("min gap / c", pytest.approx(0.2))
+
+
+def test_validity_exit_numbers_are_in_the_findings():
+    """physics() on a hand-made claims set: penetration, torque, film cap and the friction bound come out as computed."""
+    import xarray as xr
+
+    from linkwork.papers.clearance.findings import physics
+    from linkwork.papers.clearance.studies import COMPARED, QUANTITIES
+
+    runs = ["ideal", *COMPARED]
+    def per_run(values):
+        return (("variant", "run"), np.array([values]))
+    pen = np.full((1, len(runs), 2), np.nan)
+    pen[0, 1:4, 1] = [1.2, 1.5, 0.9]  # dry scenes, joint 2
+    ecc = np.full_like(pen, np.nan)
+    ecc[0, 4:, 1] = [0.9, 0.98, 0.97]
+    force = np.zeros_like(pen)
+    force[0, 5, 1] = 1000.0  # lubricated_2 touches with 1 kN
+    claims = xr.Dataset({
+        "summary_max_penetration_ratio": (("variant", "run", "joint"), pen),
+        "summary_max_eccentricity_ratio": (("variant", "run", "joint"), ecc),
+        "summary_max_contact_force": (("variant", "run", "joint"), force),
+        "summary_film_cap": per_run([np.nan] * 4 + [0.95] * 3),
+        "summary_max_abs_torque": per_run([100.0, 1.0e4, 1.5e4, 2.0e3, 1.0, 1.0, 1.0]),
+        "summary_n_lubrication": per_run([0.0] * 7),
+        "summary_n_friction": per_run([0.0] * 7),
+        "mean_deviation": (("variant", "measure", "quantity", "scene"), np.full((1, 2, 2, 6), 10.0)),
+    }, coords={"variant": ["decoded"], "run": runs, "joint": [1, 2], "measure": ["rms", "peak"], "quantity": list(QUANTITIES), "scene": list(COMPARED)},
+        attrs={"crank_mass_kg": 1.0})
+    cfg = {"joints": {"friction": 0.001, "journal_radius_m": 0.01}, "bodies": {"crank": {"length_m": 0.19}}}
+    f = physics(claims, cfg).sel(variant="decoded")
+    assert float(f.dry_penetration_max) == 1.5 and float(f.dry_torque_max) == 1.5e4 and float(f.crank_mass) == 1.0
+    assert float(f.lubricated_2_eccentricity_max) == 0.98 and int(f.beyond_film_cap) == 1
+    assert float(f.friction_bound_ratio) == pytest.approx(0.001 * 1000.0 * 0.2 / 10.0)
+
+
+def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():
+    """The scenes repeat one cycle of the ideal response; inverse dynamics over the whole span must agree."""
+    from linkwork.papers.clearance.studies import cycle, periodic_ideal
+
+    per = 90
+    t = np.arange(3 * per + 1) * cycle(SLENDER) / per
+    whole = inverse_dynamics(SLENDER, t, gravity=True)
+    tiled = periodic_ideal(SLENDER, per, 3, True)
+    for key in ("rocker_acceleration", "crank_torque", "energy"):
+        assert np.abs(tiled[key] - whole[key]).max() < 1e-9 * np.abs(whole[key]).max()

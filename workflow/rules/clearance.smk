@@ -55,7 +55,7 @@ rule clearance_claims:
         "results/clearance/claims.nc",
     params:
         study="linkwork.papers.clearance.studies:claims",
-        cfg=section("clearance", "numerics.record_cycles", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
+        cfg=section("clearance", "statistics.batch_cycles", "statistics.confidence", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
     script:
         STUDY
 
@@ -86,7 +86,7 @@ rule clearance_compare:
         "results/clearance/findings.nc",
     params:
         study="linkwork.papers.clearance.findings:compare",
-        cfg={},
+        cfg=section("clearance", "joints.friction", "joints.journal_radius_m", "bodies.crank.length_m"),
     script:
         STUDY
 
@@ -132,7 +132,7 @@ rule clearance_crosscheck_dry:
         study="linkwork.papers.clearance.crosscheck:dry",
         cfg=lambda wildcards: section("clearance", *sorted(set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "pipeline"))
                                                           | set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "tight"))),
-                                      "scenes.ideal", "crosscheck"),
+                                      "numerics.settle_cycles", "scenes.ideal", "crosscheck"),
         args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene},
     script:
         STUDY

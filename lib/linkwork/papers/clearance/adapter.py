@@ -29,7 +29,10 @@ EFFECT_KEYS: dict[str, tuple[str, ...]] = {
 }
 #: What every scene reads: the linkage, the drive and the recorded window.
 LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
-WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.settle_cycles", "numerics.record_cycles")
+WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
+#: What a scene with clearance joints reads to settle (the recorded length depends on the tolerance set).
+SETTLE_KEYS = ("statistics.settle_max_cycles", "statistics.settle_window_cycles", "statistics.settle_tolerance")
+RECORD_KEYS = {"pipeline": "statistics.record_cycles", "tight": "statistics.tight_record_cycles"}
 #: What a scene with clearance joints reads besides its effects.
 DYNAMIC_KEYS = ("joints.journal_radius_m", "joints.bearing_radius_m", "numerics.baumgarte")
 TOLERANCE_SETS = {"pipeline": "integrators", "tight": "tight_integrators"}
@@ -58,7 +61,7 @@ def scene_keys(section: Mapping[str, Any], variant: str, scene: str, tolerance: 
     keys = model_keys(section, variant, scene) + list(WINDOW_KEYS)
     spec = section["scenes"][scene]
     if spec["clearance_joints"]:
-        keys.append(f"{TOLERANCE_SETS[tolerance]}.{integrator_kind(spec)}")
+        keys += [*SETTLE_KEYS, RECORD_KEYS[tolerance], f"{TOLERANCE_SETS[tolerance]}.{integrator_kind(spec)}"]
     return keys
 
 

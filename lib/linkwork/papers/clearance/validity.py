@@ -45,8 +45,18 @@ def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: flo
     """The scene attributes: the two measures, the limit they are judged by, and the warnings."""
     pen = penetration_ratio(penetration, clearance)
     beyond = beyond_cap_fraction(eccentricity, clearance, cap) if cap is not None else None
+    label, value = contact_extent(pen)
     attrs: dict[str, object] = {"validity_penetration_over_clearance": pen, "validity_penetration_limit": PENETRATION_LIMIT,
+                                "validity_contact_label": label, "validity_contact_value": value,
                                 "validity_warnings": warnings(pen, beyond)}
     if beyond is not None:
         attrs["validity_beyond_film_cap_fraction"] = beyond
     return attrs
+
+
+def contact_extent(penetration_over_c: float) -> tuple[str, float]:
+    """How a joint's deepest (|e| - c)/c reads: ('max penetration / c', value) where the journal entered the
+    bushing (>= 0), ('min gap / c', -value) where it never touched (< 0: the smallest gap left)."""
+    if np.isfinite(penetration_over_c) and penetration_over_c < 0:
+        return "min gap / c", float(-penetration_over_c)
+    return "max penetration / c", float(penetration_over_c)
