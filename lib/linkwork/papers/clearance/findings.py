@@ -23,7 +23,7 @@ LUBRICATED_SCENES = ("lubricated_1", "lubricated_2", "lubricated_both")
 def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, tuple[float, str]]]:
     """Per variant and claim: 1 where a margin decides the claim (its difference within the confidence interval
     or the numerical error of an ordering it is made of), else 0."""
-    source = f"{claims.attrs['confidence']:.0%} interval over the recorded cycles and the numerical error (pipeline vs tight tolerance)"
+    source = f"{claims.attrs['confidence']:.0%} interval over the recorded cycles and the numerical error (pipeline vs tight tolerance: {claims.attrs.get('tight_settings', 'see the claims')})"
     return {str(v): {str(c): (float(claims.undecided.sel(variant=v, claim=c)), source) for c in claims.claim.values} for v in claims.variant.values}
 
 

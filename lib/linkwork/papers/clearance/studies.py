@@ -19,6 +19,9 @@ DRY = ("dry_1", "dry_2", "dry_both")
 LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
 COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = ("rocker_acceleration", "crank_torque")
+#: A scene whose recorded per-cycle RMS deviation spreads by less than this fraction of its mean is reported as
+#: periodic to within it (a description of the result; no decision uses it).
+PERIODIC_SPREAD = 0.01
 
 
 #: Attributes of a per-joint variable: NaN where the scene gives the joint no clearance.
@@ -384,6 +387,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     holds, decided = np.zeros((len(variants), len(CLAIMS))), np.zeros((len(variants), len(CLAIMS)))
     steady = np.zeros((len(variants), len(COMPARED)), dtype=int)
     half_change = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
+    spread = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
     comp_reason = np.full((len(variants), len(labels)), "", dtype=object)
     claim_reasons = np.full((len(variants), len(CLAIMS)), "", dtype=object)
     for v, variant in enumerate(variants):
@@ -392,6 +396,8 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
             values = recorded(run)
             per_cycle[v, :, :, s, : values.shape[-1]] = values
             ok, half_change[v, :, s] = scene_stationarity(run, stationarity_tolerance, confidence)
+            rms = values[0]
+            spread[v, :, s] = (rms.max(axis=-1) - rms.min(axis=-1)) / np.abs(rms.mean(axis=-1))
             steady[v, s] = int(ok)
             stats[v, :, :, s] = scene_statistics(run, batch, confidence, steady=ok)
             num[v, :, :, s] = numerical_error(run, tight_runs[(variant, name)])
@@ -427,6 +433,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
         "comparison_decided_by": (("variant", "comparison"), comp_reason, {"units": "1", "long_name": "which margin leaves the ordering undetermined (empty: decided)"}),
         "stationary": (("variant", "scene"), steady, {"units": "1", "long_name": f"1 if the recorded RMS deviation is stationary: its halves' means differ by at most "
                                                                                  f"{stationarity_tolerance:g} of the mean or within their {confidence:.0%} Welch interval (every quantity)"}),
+        "cycle_spread": (("variant", "quantity", "scene"), spread, {"units": "1", "long_name": "(largest - smallest) / mean of the recorded per-cycle RMS deviation"}),
         "half_change": (("variant", "quantity", "scene"), half_change, {"units": "1", "long_name": "|mean of the second half - mean of the first half| / mean of the recorded RMS deviation"}),
     }
     for key, arr in summary.items():
@@ -448,6 +455,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(title="Claims of the clearance paper, per parameter variant", close_to_ideal_ratio=ratio, ci_method=CI_METHOD,
                     crank_mass_kg=runs[(variants[0], "ideal")].attrs["crank_mass_kg"],
-                    decision_rule=DECISION_RULE, confidence=confidence, batch_cycles=batch, stationarity_tolerance=stationarity_tolerance,
-                    numerical_error_method="per scene: |mean over the common recorded cycles of (tight - pipeline tolerance)|; of a difference: the sum over its scenes")
+                    decision_rule=DECISION_RULE, confidence=confidence, batch_cycles=batch, stationarity_tolerance=stationarity_tolerance, periodic_spread=PERIODIC_SPREAD,
+                    numerical_error_method="per scene: |mean over the common recorded cycles of (tight - pipeline tolerance)|; of a difference: the sum over its scenes",
+                    tight_settings="; ".join(sorted({f"{r.attrs['integrator']} rtol {r.attrs['integrator_rtol']:g}, atol {r.attrs['integrator_atol']:g}" for r in tight})))
     return ds
