@@ -39,6 +39,7 @@ import numpy as np
 import pandas as pd
 from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
+NAMES = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
 files = inputs()
 claims = load(files["result"])
 wp = load(files["accuracy"])
@@ -58,18 +59,29 @@ summary = claims[[v for v in claims.data_vars if v.startswith("summary_")]]
 # %% [markdown]
 # ## Summary: each claim per parameter variant
 #
-# Each scene settles until the running mean of its per-cycle RMS deviation is steady, then records its cycles. A claim
-# holds where every ordering it is made of (RMS and peak deviation from the ideal curve) holds on the means beyond both
-# the confidence interval and the numerical error; where a margin decides an ordering, the claim is undetermined.
+# Each scene settles until the running mean of its per-cycle RMS deviation is steady, then records its cycles; the
+# record must also be stationary (its two halves agree). A claim holds where every ordering it is made of (RMS and peak
+# deviation from the ideal curve) holds on the means beyond both the confidence interval and the numerical error; where
+# a margin decides an ordering, the claim is undetermined, and "decided by" names the margin (the verdict class is the
+# shared "undetermined (numerics)" whichever margin it is).
 
 # %%
 answer(fnd)
 for v in variants:
     comparison_table(cmp[cmp.model == v], caption=f"variant {v}: 1 = the claim holds on the means; the error is 1 where the confidence interval or the numerical error decides an ordering")
+unsteady = [f"{esc(v)} {esc(s_)} ({'not settled' if not int(summary.summary_settled.sel(variant=v, run=s_)) else 'not stationary'})"
+            for v in variants for s_ in claims.scene.values
+            if not int(summary.summary_settled.sel(variant=v, run=s_)) or not int(claims.stationary.sel(variant=v, scene=s_))]
+e0_spec = lub_cfg["assumed"]["e0_m"]
+md(("**Scenes without a valid interval** (their orderings are not decided): " + ", ".join(unsteady) + "." if unsteady else
+    "Every scene settled and its record is stationary.")
+   + " " + " ".join(f"In the {esc(v)} variant, lubricated_2 reaches an eccentricity ratio of {float(fnd.lubricated_2_eccentricity_max.sel(variant=v)):.2f} at the nominal e0, "
+                    f"above the film cap {float(fnd.film_cap_at_e0_high.sel(variant=v)):.2f} at e0 = {max(e0_spec['range']):g} m, the top of our e0 range."
+                    for v in variants if int(fnd.beyond_film_cap_at_e0_high.sel(variant=v))))
 oat_table(unc, {c: f"{c} ({v})" for c in ("acceleration_order", "torque_order", "lubrication_close")}, model=fnd.attrs["paper_model"])
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
-    "*slender*: J = mL²/12, the physically consistent variant. Each verdict is broken down below by measure, cycle and tolerance."
+    "*slender*: J = mL²/12, the variant whose dry penetration stays below the clearance (our validity limit). Each verdict is broken down below by measure, cycle and tolerance."
 )
 
 # %%
@@ -78,15 +90,24 @@ stat = stat.rename(columns={"mean_deviation": "mean", "ci_half_width": f"{claims
                             "lag1_autocorrelation": "lag-1 autocorrelation", "recorded_cycles": "cycles"})
 table(stat, {"mean": "{:.4g}", f"{claims.attrs['confidence']:.0%} half-width": "{:.3g}", "numerical error": "{:.3g}", "lag-1 autocorrelation": "{:.2f}", "cycles": "{:.0f}"},
       caption="Mean over the recorded cycles of the deviation from the ideal curve (rad/s² for the acceleration, N·m for the torque), its confidence "
-              "half-width (empty: the scene did not settle) and its numerical error")
+              "half-width (empty: the scene did not settle or its record is not stationary) and its numerical error at the tight tolerance "
+              f"({esc(claims.attrs['tight_settings'])})")
+steady = claims.half_change.to_dataframe().reset_index().merge(claims.cycle_spread.to_dataframe().reset_index(), on=["variant", "quantity", "scene"])
+steady["stationary"] = [("yes" if int(claims.stationary.sel(variant=v, scene=s_)) else "no") for v, s_ in zip(steady.variant, steady.scene)]
+steady.columns = ["variant", "quantity", "scene", "change between the record's halves / mean", "(largest − smallest) / mean per cycle", "stationary"]
+table(steady, {"change between the record's halves / mean": "{:.3f}", "(largest − smallest) / mean per cycle": "{:.3g}"},
+      caption=f"Stationarity of each recorded RMS deviation: not stationary where the halves' means differ by more than {claims.attrs['stationarity_tolerance']:g} "
+              f"of the mean and beyond their {claims.attrs['confidence']:.0%} Welch interval (either quantity)")
 md(f"**Interval:** {esc(claims.attrs['ci_method'])} (batches of {claims.attrs['batch_cycles']} cycles). **Decision:** {esc(claims.attrs['decision_rule'])}. "
    f"**Numerical error:** {esc(claims.attrs['numerical_error_method'])}.")
-comp = claims[["comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome"]].to_dataframe().reset_index()
+comp = claims[["comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome", "comparison_decided_by"]].to_dataframe().reset_index()
 comp["outcome"] = comp.pop("comparison_outcome").map({1: "holds", 0: "fails", -1: "undetermined"})
 comp = comp.rename(columns={"comparison_difference": "difference of the means", "comparison_statistical": "statistical margin",
-                            "comparison_numerical": "numerical error", "comparison_claim": "claim"})
+                            "comparison_numerical": "numerical error", "comparison_claim": "claim", "comparison_decided_by": "decided by"})
 table(comp, {"difference of the means": "{:.4g}", "statistical margin": "{:.3g}", "numerical error": "{:.3g}"},
-      caption="Every ordering the claims are made of: difference of the means (> 0 as claimed), its margins and outcome (empty margin: a scene did not settle)")
+      caption="Every ordering the claims are made of: difference of the means (> 0 as claimed), its margins, outcome and what leaves it undetermined "
+              "(empty margin: a scene did not settle or is not stationary). The thresholds of claim 3 are our reading of 'close to the ideal': "
+              f"a lubricated scene below {claims.attrs['close_to_ideal_ratio']:g} × its dry one, and lubricated_2 above lubricated_1 (the ripples the paper sees at joint 2)")
 
 # %%
 for v in variants:
@@ -97,7 +118,7 @@ for v in variants:
             for k, sc in enumerate(claims.scene.values):
                 vals = claims.cycle_deviation.sel(variant=v, measure=m, quantity=q, scene=sc).values
                 ax.semilogy(claims.cycle.values, vals, "o-", ms=3, lw=0.8, color=f"C{k}", label=str(sc))
-            ax.set_title(f"{v}: {m} deviation of the {q.replace('_', ' ')} per cycle")
+            ax.set_title(f"{v}: {m.upper() if m == 'rms' else m} deviation of the {NAMES[q]} per cycle")
             ax.set_xlabel("recorded cycle (after settling)")
             ax.set_ylabel(f"{m} deviation ({unit})")
             ax.grid(alpha=0.3, which="both")
@@ -119,7 +140,7 @@ rows += [("ground", f"{dry_cfg['ground_m']} m", "decoded"), ("crank speed", f"{d
          ("restitution, friction", f"{j['restitution']}, {j['friction']}", "decoded"),
          ("viscosity", f"{lub_cfg['joints']['viscosity_Pa_s']} Pa·s", "decoded"), ("contact law", j["contact_law"], "paper")]
 assumed = {**dry_cfg.get("assumed", {}), **lub_cfg.get("assumed", {})}
-rows += [(k, f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in assumed.items()]
+rows += [(k.replace("_", " "), f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in assumed.items()]
 rows += [("centres of mass", "mid-link", "assumed"), ("gravity", "on (the scenes name it)", "assumed: the paper's 'no-load' means no external load"),
          ("start", "crank and coupler extended (rocker dead point), journals centred", "paper / assumed")]
 table(pd.DataFrame(rows, columns=["parameter", "value", "source"]))
@@ -141,7 +162,7 @@ md(
 * *"Pure squeeze film"* (text) against the printed wedge term (eq. 22): we keep both the squeeze and the wedge term.
 
 Hertz stiffness of eq. (9): K = {float(first.summary_hertz_stiffness.sel(run='dry_1')):.3g} N/m^1.5. The
-ideal joint forces reach {float(first.summary_ideal_force_A.sel(run='ideal')):.3g} N at A and {float(first.summary_ideal_force_B.sel(run='ideal')):.3g} N at B
+ideal joint forces reach {float(first.summary_ideal_force_A.sel(run='ideal')):.3g} N at joint 1 and {float(first.summary_ideal_force_B.sel(run='ideal')):.3g} N at joint 2
 ({esc(variants[0])} inertias): at such forces the Hertz penetration exceeds the clearance (section 4).
 """
 )
@@ -150,6 +171,8 @@ ideal joint forces reach {float(first.summary_ideal_force_A.sel(run='ideal')):.3
 # ## 2. Figs. 5–10 regenerated
 
 # %%
+SHOWN = int(scenes[(variants[0], "dry_both")].attrs["shown_cycles"])
+RECORDED = int(dry_cfg["statistics"]["record_cycles"])
 for v in variants:
     fig, axes = plt.subplots(2, 3, figsize=(15, 7), sharex=True, constrained_layout=True)
     for col, (jt, dry, lub) in enumerate((("joint 1", "dry_1", "lubricated_1"), ("joint 2", "dry_2", "lubricated_2"), ("both joints", "dry_both", "lubricated_both"))):
@@ -160,19 +183,20 @@ for v in variants:
             ax.plot(x, scenes[(v, dry)][var], "C1", lw=0.7, label="dry clearance")
             ax.plot(x, scenes[(v, lub)][var], "C2", lw=1.0, label="lubricated")
             ax.plot(x, ideal_s[var], "k--", lw=1.0, label="ideal")
-            ax.set_title(f"{v}: {var.replace('_', ' ')}, {jt}")
-            ax.set_ylabel(f"{var.replace('_', ' ')} ({unit})")
+            ax.set_title(f"{v}: {NAMES[var]}, {jt}")
+            ax.set_ylabel(f"{NAMES[var]} ({unit})")
             ax.grid(alpha=0.3)
-        axes[1, col].set_xlabel("crank angle over the recorded cycles (deg)")
+        axes[1, col].set_xlabel(f"crank angle over the first {SHOWN} recorded cycles (deg)")
     axes[0, 0].legend(fontsize=8)
     plt.show()
-    caption("Rocker angular acceleration (top) and crank torque (bottom) over the recorded cycles for dry (orange), lubricated (green) and ideal (black dashed) joints, per joint configuration (Figs. 5–10 of the paper). The next figure shows the differences from the ideal, which the claims are about.")
+    caption(f"Rocker angular acceleration (top) and crank torque (bottom) over the first {SHOWN} of at least {RECORDED} recorded cycles (after settling) for dry (orange), lubricated (green) and ideal (black dashed) joints, per joint configuration (Figs. 5–10 of the paper). The next figure shows the differences from the ideal, which the claims are about.")
 
 # %% [markdown]
 # ### What the claims are about: the deviation from the ideal curve
 #
 # The claims compare how far each clearance configuration moves the response away from the ideal one, so these panels
-# show scene minus ideal for each joint configuration (dry left of each pair, lubricated right), over the recorded cycles.
+# show scene minus ideal for each joint configuration (dry left of each pair, lubricated right), over the first cycles
+# after settling (the number is in the caption).
 
 # %%
 for v in variants:
@@ -183,15 +207,16 @@ for v in variants:
         for col, kind in enumerate(("dry", "lubricated")):
             ax = axes[row, col]
             for k, (joint, colour) in enumerate((("1", "C0"), ("2", "C3"), ("both", "k"))):
-                ax.plot(x, scenes[(v, f"{kind}_{joint}")][var].values - scenes[(v, f"{kind}_{joint}")][f"ideal_{var}"].values, color=colour, lw=0.7, label=f"clearance at joint {joint}")
-            ax.set_title(f"{v}: {kind}, {var.replace('_', ' ')} − ideal")
+                ax.plot(x, scenes[(v, f"{kind}_{joint}")][var].values - scenes[(v, f"{kind}_{joint}")][f"ideal_{var}"].values, color=colour, lw=0.7, label="clearance at both joints" if joint == "both" else f"clearance at joint {joint}")
+            ax.set_title(f"{v}: {kind}, {NAMES[var]} − ideal")
             ax.set_ylabel(f"deviation ({unit})")
             ax.grid(alpha=0.3)
-        axes[1, 0].set_xlabel("crank angle over the recorded cycles (deg)")
-        axes[1, 1].set_xlabel("crank angle over the recorded cycles (deg)")
+        axes[1, 0].set_xlabel(f"crank angle over the first {SHOWN} recorded cycles (deg)")
+        axes[1, 1].set_xlabel(f"crank angle over the first {SHOWN} recorded cycles (deg)")
     axes[0, 0].legend(fontsize=8)
     plt.show()
-    caption(f"{v} variant: deviation of the rocker acceleration (top) and the crank torque (bottom) from the ideal linkage, for clearance at "
+    caption(f"{v} variant: deviation of the rocker acceleration (top) and the crank torque (bottom) from the ideal linkage over the first {SHOWN} of at least "
+            f"{RECORDED} recorded cycles, for clearance at "
             "joint 1 (blue), joint 2 (red) and both (black), dry (left) and lubricated (right). Torque positive driving the crank counter-clockwise.")
 
 # %% [markdown]
@@ -204,15 +229,20 @@ per_run = per_run[per_run.run != "ideal"]
 per_run["cycle-to-cycle change (first → last)"] = [f"{a:.2f} → {b:.3f}" for a, b in zip(per_run.summary_first_change, per_run.summary_last_change)]
 show = per_run[["variant", "run", "summary_integrator", "summary_steps", "summary_settle_cycles", "summary_settled", "summary_recorded_cycles",
                 "cycle-to-cycle change (first → last)", "summary_max_drift", "summary_n_contact", "summary_n_friction", "summary_n_lubrication"]].copy()
-show["summary_settled"] = np.where(show.summary_settled == 1, "yes", "no (by the latest cycle)")
+show["summary_settled"] = ["no (by the latest cycle)" if ok != 1 else ("yes" if int(claims.stationary.sel(variant=v, scene=r)) else "yes, but the record is not stationary")
+                           for v, r, ok in zip(show.variant, show.run, show.summary_settled)]
 show.columns = ["variant", "scene", "integrator", "steps", "settle cycles", "settled", "recorded cycles", "cycle-to-cycle change (first → last)",
                 "max drift |Φ| (m)", "contact evaluations", "friction evaluations", "lubrication evaluations"]
 table(show, {"max drift |Φ| (m)": "{:.1e}", "steps": "{:.0f}", "settle cycles": "{:.0f}", "recorded cycles": "{:.0f}", "contact evaluations": "{:.0f}", "friction evaluations": "{:.0f}", "lubrication evaluations": "{:.0f}"})
 md(
-    f"Each scene settles by its criterion ({esc(scenes[(variants[0], 'dry_both')].attrs['settle_criterion'])}); the settle and recorded cycles "
-    "per scene are in the table above the figures. The cycle-to-cycle change of the rocker acceleration falls from the start-up transient to "
-    "the level of the persistent impact-to-impact variation of the dry scenes, which never becomes exactly periodic; the claims are "
-    "therefore judged on the means over the recorded cycles with their intervals. "
+    f"Settling criterion: {esc(scenes[(variants[0], 'dry_both')].attrs['settle_criterion'])}. "
+    + (f"Not settled by the latest cycle: {', '.join(f'{esc(v)} {esc(r)}' for v, r, ok in zip(per_run.variant, per_run.run, per_run.summary_settled) if ok != 1)}. " if (per_run.summary_settled != 1).any() else "Every scene settled by its criterion. ")
+    + (f"Settled but with a record that is not stationary (treated as not settled): {', '.join(f'{esc(v)} {esc(s_)}' for v in variants for s_ in claims.scene.values if not int(claims.stationary.sel(variant=v, scene=s_)) and int(summary.summary_settled.sel(variant=v, run=s_)))}. "
+       if any(not int(claims.stationary.sel(variant=v, scene=s_)) and int(summary.summary_settled.sel(variant=v, run=s_)) for v in variants for s_ in claims.scene.values) else "")
+    + f"Periodic to within {claims.attrs['periodic_spread']:.0%} (the per-cycle RMS deviation of both quantities spreads by less over the record): "
+    + (", ".join(f"{esc(v)} {esc(s_)}" for v in variants for s_ in claims.scene.values
+                 if bool((claims.cycle_spread.sel(variant=v, scene=s_) < claims.attrs["periodic_spread"]).all())) or "none")
+    + "; the other scenes vary from cycle to cycle, so the claims are judged on the means over the recorded cycles with their intervals. "
     + ("The evaluation counters show that an effect a scene does not name is never evaluated: the lubrication count is zero "
        "in every dry scene, and friction is zero in every lubricated one." if not fnd.stray_evaluations.any() else
        "**The evaluation counters show effects evaluated in scenes that do not name them** (lubrication in a dry scene or "
@@ -235,8 +265,8 @@ ideal_forces.columns = ["variant", "largest ideal reaction at joint 1 (N)", "lar
 table(ideal_forces, {c: "{:.3g}" for c in ideal_forces.columns if c != "variant"})
 md(" ".join(
     f"Variant `{v}`: the deepest dry penetration is {float(fnd.dry_penetration_max.sel(variant=v)):.2f} of the clearance, so the "
-    + ("penetration stays below the clearance: the parameter set is physically consistent" if int(fnd.physically_consistent.sel(variant=v))
-       else "Hertz law is used far outside its range: the parameter set is not physically consistent")
+    + ("penetration stays below the clearance (our validity limit)" if int(fnd.physically_consistent.sel(variant=v))
+       else "penetration exceeds the clearance (our validity limit): the Hertz law is used far outside its range")
     + "; its lubricated journals "
     + (f"never touch (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c)." if float(fnd.lubricated_eccentricity_max.sel(variant=v)) < 1
        else f"reach the bushing (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c).")
@@ -257,7 +287,7 @@ validity = pd.DataFrame([
      "warning": ds.attrs["validity_warnings"] or "inside both models"}
     for (v, s), ds in sorted(scenes.items()) if s != "ideal"])
 table(validity, {"value": "{:.3g}", "time beyond the film cap (%)": "{:.3g}"},
-      caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:g} c)")
+      caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:g} c, our reading of where Hertz contact ends)")
 outside = validity[validity.warning != "inside both models"]
 md("**Scenes outside the model's validity:** " + ", ".join(f"`{esc(v)}/{esc(s)}`" for v, s in zip(outside.variant, outside.scene)) + "."
    if len(outside) else "Every scene stays inside the range of its contact and film models.")
@@ -274,7 +304,11 @@ md(
     "**Friction in the lubricated scenes.** They name no friction, so where the journal touches the bushing the dry contact acts without it. "
     "The largest change of the crank torque friction could make there (c_f × largest lubricated contact force × (crank length + journal radius)) "
     "is " + ", ".join(f"{float(fnd.friction_bound_ratio.sel(variant=v)):.2g} ({esc(str(v))})" for v in fnd.variant.values)
-    + " times the smallest mean RMS torque deviation of the lubricated scenes, the measure claim 3 compares."
+    + " times the smallest mean RMS torque deviation of the lubricated scenes, the measure claim 3 compares. The lever bounds both joints: friction "
+    "dissipates c_f F_N times the slip speed, at most the journal radius times the two links' relative angular speed, so the crank torque it costs "
+    f"stays within c_f F_N × (crank length + journal radius) while the coupler and rocker turn less than crank length / journal radius = "
+    f"{dry_cfg['bodies']['crank']['length_m'] / dry_cfg['joints']['journal_radius_m']:.0f} times faster than the crank (for joint 2 the crank length is no "
+    "geometric arm, only this bound)."
 )
 
 # %% [markdown]
@@ -316,7 +350,9 @@ for scene in wp.scene.values:
                  f"{float(wp.pointwise_error_max.sel(scene=scene)):.1e}.")
 md(
     f"Reference: {wp.attrs['reference']}. The pipeline settings are {wp.attrs['pipeline_settings']}.\n\n" + "\n".join(lines) + "\n\n"
-    "The error shown is that of the RMS deviation from the ideal curve, the measure the claims use. The pointwise error "
+    f"The error shown is that of the RMS deviation from the ideal curve over {wp.attrs['horizon_cycles']} cycle from the start, before the journals "
+    "start their impacts; the error table of the claims (numerical error, pipeline against the tight tolerance "
+    f"{esc(claims.attrs['tight_settings'])}) is over recorded cycles after settling, where impacts make it larger. The pointwise error "
     "of the rocker acceleration stays large for every setting in the dry scene: once contacts start, the impact sequence "
     "is sensitive to the smallest difference. That is why the claims are judged per cycle, on RMS and peak, at two "
     "tolerances. In the lubricated scene RK4 would need steps below 1e-8 s, because the film damping makes the "
@@ -328,7 +364,7 @@ md(
 #
 # The same ideal four-bar (bodies, joints, gravity, constant-speed driver, initial state at the dead point) integrated
 # forward in time by Exudyn, a C++ multibody engine, against our inverse dynamics at the same instants. It runs with
-# the optional extra (`make crosscheck`); the dry scenes follow below, the lubricated ones are not modelled there.
+# the optional extra (`make crosscheck`), which also compares the dry scenes; the lubricated ones are not modelled there.
 
 # %%
 if "crosscheck_ideal" in files:
@@ -355,7 +391,7 @@ else:
     md("This render ran without the cross-check (the default reproduction does not need Exudyn): run `make crosscheck` to add it.")
 
 # %% [markdown]
-# ### The dry scenes in both engines
+# ### The dry scenes in both engines (with the cross-check only)
 #
 # In Exudyn each dry clearance joint is a force element whose user function applies the same contact law as ours
 # (Hertz stiffness, Lankarani–Nikravesh damping on the latched impact velocity, Ambrosio's friction with its moment).

@@ -308,3 +308,28 @@ def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():
     tiled = periodic_ideal(SLENDER, per, 3, True)
     for key in ("rocker_acceleration", "crank_torque", "energy"):
         assert np.abs(tiled[key] - whole[key]).max() < 1e-9 * np.abs(whole[key]).max()
+
+
+def test_a_drifting_record_is_not_stationary_and_a_noisy_steady_one_is():
+    """The stationarity check on the recorded cycles: a 6x growth and a regime switch (1900 -> 950 at cycle 6)
+    fail it; stationary noise (20 % per cycle, 200 seeds) passes it in nearly every draw."""
+    from linkwork.papers.clearance.statistics import stationary
+
+    n = 21
+    assert not stationary(np.geomspace(1.0, 6.0, n), 0.2, 0.95)[0]
+    rng = np.random.default_rng(0)
+    switch = np.where(np.arange(n) < 5, 1900.0, 950.0) * (1 + 0.05 * rng.standard_normal(n))
+    assert not stationary(switch, 0.2, 0.95)[0]
+    passed = [stationary(100.0 * (1 + 0.2 * rng.standard_normal(n)), 0.2, 0.95)[0] for _ in range(200)]
+    assert np.mean(passed) > 0.95
+    ok, change = stationary(np.vstack([np.full(n, 3.0), np.geomspace(1.0, 6.0, n)]), 0.2, 0.95)
+    assert not ok and change[0] == 0.0 and change[1] > 0.5
+
+
+def test_an_undetermined_ordering_names_the_margin_that_decides_it():
+    from linkwork.papers.clearance.studies import claim_reason, undecided_reason
+
+    assert undecided_reason(1.0, 2.0, 0.5, []) == "statistical margin"
+    assert undecided_reason(1.0, 0.5, 2.0, []) == "numerical error"
+    assert undecided_reason(1.0, float("inf"), 0.1, ["dry_both"]) == "statistics (not settled / not stationary: dry_both)"
+    assert claim_reason(["", "numerical error", "statistical margin", "numerical error"]) == "numerical error; statistical margin"

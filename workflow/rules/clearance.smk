@@ -55,7 +55,7 @@ rule clearance_claims:
         "results/clearance/claims.nc",
     params:
         study="linkwork.papers.clearance.studies:claims",
-        cfg=section("clearance", "statistics.batch_cycles", "statistics.confidence", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
+        cfg=section("clearance", "statistics.batch_cycles", "statistics.confidence", "statistics.stationarity_tolerance", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
     script:
         STUDY
 
@@ -86,7 +86,7 @@ rule clearance_compare:
         "results/clearance/findings.nc",
     params:
         study="linkwork.papers.clearance.findings:compare",
-        cfg=section("clearance", "joints.friction", "joints.journal_radius_m", "bodies.crank.length_m"),
+        cfg=section("clearance", "joints.friction", "joints.journal_radius_m", "bodies.crank.length_m", "assumed.e0_m"),
     script:
         STUDY
 

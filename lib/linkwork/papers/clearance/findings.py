@@ -23,16 +23,29 @@ LUBRICATED_SCENES = ("lubricated_1", "lubricated_2", "lubricated_both")
 def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, tuple[float, str]]]:
     """Per variant and claim: 1 where a margin decides the claim (its difference within the confidence interval
     or the numerical error of an ordering it is made of), else 0."""
-    source = f"{claims.attrs['confidence']:.0%} interval over the recorded cycles and the numerical error (pipeline vs tight tolerance)"
+    source = f"{claims.attrs['confidence']:.0%} interval over the recorded cycles and the numerical error (pipeline vs tight tolerance: {claims.attrs.get('tight_settings', 'see the claims')})"
     return {str(v): {str(c): (float(claims.undecided.sel(variant=v, claim=c)), source) for c in claims.claim.values} for v in claims.variant.values}
 
 
 def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], claims: xr.Dataset, uncertainty: xr.Dataset | None = None) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table per variant and its verdict counts."""
     table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty)
+    table = with_reasons(table, claims)
     findings = counts_dataset(table).merge(physics(claims, cfg, uncertainty))
     findings.attrs.update(findings_attrs("Clearance paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings)))
     return table, findings
+
+
+def with_reasons(table: pd.DataFrame, claims: xr.Dataset) -> pd.DataFrame:
+    """The comparison table with 'decided by' filled, where a claim is undetermined, by the margin that leaves
+    it so (a scene not settled or not stationary, the statistical margin, the numerical error)."""
+    if "claim_decided_by" not in claims:
+        return table
+    out = table.copy()
+    for i, row in out.iterrows():
+        if row.verdict == "undetermined (numerics)" and row.model in claims.variant.values and row["id"] in claims.claim.values:
+            out.at[i, "decided_by"] = str(claims.claim_decided_by.sel(variant=row.model, claim=row["id"]).item())
+    return out
 
 
 def friction_bound(claims: xr.Dataset, friction: float, lever: float) -> np.ndarray:
@@ -70,6 +83,11 @@ def physics(claims: xr.Dataset, cfg: Mapping[str, Any] | None = None, uncertaint
     lever = cfg.get("bodies", {}).get("crank", {}).get("length_m", np.nan) + joints.get("journal_radius_m", np.nan)
     bound = friction_bound(claims, joints.get("friction", np.nan), lever)
     lo, hi = e0_dependence(uncertainty, claims.variant.values)
+    e0 = cfg.get("assumed", {}).get("e0_m", {})
+    e0_high = max(e0.get("range", [np.nan])) if e0 else np.nan
+    # the cap at the top of the e0 range: c = e0 / (1 - cap) at the nominal e0
+    cap_high = 1.0 - e0_high * (1.0 - cap.values) / e0.get("value", np.nan) if e0 else np.full(cap.shape, np.nan)
+    full = claims.summary_beyond_film_cap_fraction.sel(run=list(LUBRICATED_SCENES)) if "summary_beyond_film_cap_fraction" in claims else None
     v = ("variant",)
     return xr.Dataset({
         "dry_penetration_max": (v, dry.values, {"units": "1", "long_name": "deepest dry penetration over the radial clearance"}),
@@ -82,11 +100,17 @@ def physics(claims: xr.Dataset, cfg: Mapping[str, Any] | None = None, uncertaint
         "lubricated_2_eccentricity_max": (v, ecc2.values, {"units": "1", "long_name": "largest eccentricity ratio |e|/c in lubricated_2"}),
         "film_cap": (v, cap.values, {"units": "1", "long_name": "eccentricity ratio at which the film force is capped, 1 - e0/c (nominal e0)"}),
         "beyond_film_cap": (v, (ecc2.values > cap.values).astype(int), {"units": "1", "long_name": "1 if lubricated_2 runs beyond the film cap"}),
+        "film_cap_at_e0_high": (v, cap_high, {"units": "1", "long_name": "film cap 1 - e0/c at the largest e0 of its range"}),
+        "beyond_film_cap_at_e0_high": (v, (ecc2.values > cap_high).astype(int),
+                                       {"units": "1", "long_name": "1 if lubricated_2's nominal largest eccentricity ratio exceeds the film cap at the largest e0"}),
+        **({"beyond_film_cap_fraction": (("variant", "scene"), full.values, {"units": "1", "long_name": "fraction of the recorded time beyond the film cap (nominal e0)"})}
+           if full is not None else {}),
         "lubricated_2_torque_rms_low": (v, lo, {"units": "N m", "long_name": "smallest mean RMS torque deviation of lubricated_2 over the input samples"}),
         "lubricated_2_torque_rms_high": (v, hi, {"units": "N m", "long_name": "largest mean RMS torque deviation of lubricated_2 over the input samples"}),
         "friction_bound_ratio": (v, bound, {"units": "1", "long_name": "c_f x largest lubricated contact force x (crank length + journal radius) / smallest lubricated mean RMS torque deviation"}),
         "stray_evaluations": (v, stray.values, {"units": "1", "long_name": "lubrication evaluations in dry scenes plus friction evaluations in lubricated ones"}),
-    }, coords={"variant": ("variant", claims.variant.values, {"units": "1", "long_name": "parameter variant"})})
+    }, coords={"variant": ("variant", claims.variant.values, {"units": "1", "long_name": "parameter variant"}),
+               "scene": ("scene", np.array(LUBRICATED_SCENES, dtype=object), {"units": "1", "long_name": "lubricated scene"})})
 
 
 def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
@@ -97,12 +121,26 @@ def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
     def consistency(variant: str) -> str:
         ok = bool(findings.physically_consistent.sel(variant=variant))
         depth = float(findings.dry_penetration_max.sel(variant=variant))
-        return (f"physically consistent (dry penetration at most {depth:.2f} of the clearance)" if ok else
-                f"not physically consistent (the dry penetration reaches {depth:.1f} times the clearance, far outside Hertz contact)")
+        return (f"the dry penetration stays below the clearance (our validity limit: at most {depth:.2f} of it)" if ok else
+                f"the dry penetration reaches {depth:.1f} times the clearance, beyond our validity limit of {PENETRATION_LIMIT:g} clearance (far outside Hertz contact)")
 
     lead = "No claim is confirmed." if confirmed.empty else f"{len(confirmed)} of the claims are confirmed ({', '.join(sorted(set(confirmed.model)))})."
     return (
         f"{lead} On the slender-rod variant, {consistency(DEFENSIBLE)}, the three claims: {count_text(table, DEFENSIBLE)}. "
         f"With the inertias as decoded from the text, {consistency(PAPER_MODEL)}: {count_text(table, PAPER_MODEL)}. The paper prints no "
-        f"number, so each claim is judged on our own measures of its figures."
+        f"number, so each claim is judged on our own measures of its figures.{film_cap_text(findings)}"
     )
+
+
+def film_cap_text(findings: xr.Dataset) -> str:
+    """Lubricated scenes beyond the film cap all of their recorded time (their claim 3 is judged on dry contact)."""
+    if "beyond_film_cap_fraction" not in findings:
+        return ""
+    parts = []
+    for v in findings.variant.values:
+        frac = findings.beyond_film_cap_fraction.sel(variant=v)
+        always = [str(s) for s in findings.scene.values if float(frac.sel(scene=s)) >= 1.0]
+        if always:
+            parts.append(f" With the {v} inertias, {' and '.join(always)} run beyond the film cap during 100 % of the recorded time: "
+                         "claim 3 there is judged on the dry contact, not on a film.")
+    return "".join(parts)

@@ -11,6 +11,11 @@ interval of the mean is a batch-means t-interval: the recorded cycles are cut in
 consecutive cycles, and the interval is mean +- t_(1 - (1 - confidence)/2, n_b - 1) s_b / sqrt(n_b) over the
 n_b batch means (s_b their sample standard deviation).  With ``batch = 1`` it is the ordinary t-interval.
 
+A settled scene can still drift or switch regime over its record (a slowly growing deviation, an impact pattern
+that changes halfway).  The record is *stationary* where, for every quantity, the means of its first and second
+half differ by at most ``tolerance`` times the mean of the whole record or by no more than the Welch t-interval of
+that difference (per-cycle values); a record that is not stationary is treated like an unsettled scene.
+
 An ordering a > b (or a linear combination) is *decided* only where the difference of the means exceeds both
 its statistical margin (the t-interval of the difference, Welch-Satterthwaite degrees of freedom) and its
 numerical error (the sum of the scenes' numerical errors).  A claim made of several orderings holds where all
@@ -67,6 +72,37 @@ def mean_ci(values: np.ndarray, batch: int, confidence: float) -> tuple[float, f
     se = float(means.std(ddof=1) / np.sqrt(n_b))
     dof = float(n_b - 1)
     return float(x.mean()), float(stats.t.ppf(0.5 + confidence / 2, dof) * se), se, dof
+
+
+def half_change(values: np.ndarray, confidence: float) -> tuple[float, float]:
+    """(|mean of the second half - mean of the first half| / |mean|, Welch t half-width of that difference / |mean|)
+    of a per-cycle record (an odd middle cycle is left out of both halves); NaN for fewer than 4 cycles."""
+    x = np.asarray(values, dtype=float)
+    x = x[np.isfinite(x)]
+    h = x.size // 2
+    if h < 2:
+        return float("nan"), float("nan")
+    a, b = x[:h], x[-h:]
+    scale = abs(float(x.mean()))
+    va, vb = a.var(ddof=1) / h, b.var(ddof=1) / h
+    total = va + vb
+    if total == 0.0:
+        half = 0.0
+    else:
+        dof = total**2 / (va**2 / (h - 1) + vb**2 / (h - 1))
+        half = float(stats.t.ppf(0.5 + confidence / 2, dof) * np.sqrt(total))
+    if scale == 0.0:
+        return (0.0, 0.0) if float(b.mean() - a.mean()) == 0.0 and half == 0.0 else (float("inf"), float("inf"))
+    return abs(float(b.mean() - a.mean())) / scale, half / scale
+
+
+def stationary(values: np.ndarray, tolerance: float, confidence: float) -> tuple[bool, np.ndarray]:
+    """(stationary?, relative half change per row) of a record ((rows, cycle) or (cycle,)): a row fails where its
+    half change exceeds both ``tolerance`` and its own Welch half-width (see the module docstring)."""
+    rows = np.atleast_2d(np.asarray(values, dtype=float))
+    changes = np.array([half_change(r, confidence) for r in rows])
+    ok = all(not (np.isfinite(c) and c > tolerance and c > w) for c, w in changes)
+    return bool(ok), changes[:, 0]
 
 
 def lag1_autocorrelation(values: np.ndarray) -> float:

@@ -19,6 +19,9 @@ DRY = ("dry_1", "dry_2", "dry_both")
 LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
 COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = ("rocker_acceleration", "crank_torque")
+#: A scene whose recorded per-cycle RMS deviation spreads by less than this fraction of its mean is reported as
+#: periodic to within it (a description of the result; no decision uses it).
+PERIODIC_SPREAD = 0.01
 
 
 #: Attributes of a per-joint variable: NaN where the scene gives the joint no clearance.
@@ -217,15 +220,35 @@ def judge(scene_stats: Mapping[tuple[str, str, str], tuple[float, float, float, 
     """The claims from per-scene statistics ((measure, quantity, scene) -> (mean, standard error, degrees of
     freedom, numerical error)): each ordering's difference, statistical half-width, numerical error and outcome,
     and per claim the outcome on the means alone (``point``) and the decided outcome (``outcome``)."""
-    from .statistics import HOLDS, conjunction, decide, difference
+    from .statistics import HOLDS, UNDETERMINED, conjunction, decide, difference
 
     rows = []
     for claim, label, measure, quantity, terms in comparisons(ratio):
         d, stat, num = difference([(c, *scene_stats[(measure, quantity, name)]) for c, name in terms], confidence)
-        rows.append({"claim": claim, "label": label, "difference": d, "statistical": stat, "numerical": num, "outcome": decide(d, stat, num)})
+        outcome = decide(d, stat, num)
+        unsteady = [name for _, name in terms if not np.isfinite(scene_stats[(measure, quantity, name)][1])]
+        rows.append({"claim": claim, "label": label, "difference": d, "statistical": stat, "numerical": num, "outcome": outcome,
+                     "reason": undecided_reason(d, stat, num, unsteady) if outcome == UNDETERMINED else ""})
     point = [float(all(r["difference"] > 0 for r in rows if r["claim"] == c)) for c in CLAIMS]
     outcome = [conjunction([r["outcome"] for r in rows if r["claim"] == c]) for c in CLAIMS]
-    return {"rows": rows, "point": point, "outcome": outcome, "decided": [float(o != -1) for o in outcome], "holds_decidedly": [float(o == HOLDS) for o in outcome]}
+    reasons = [claim_reason([r["reason"] for r in rows if r["claim"] == c]) if o == UNDETERMINED else "" for c, o in zip(CLAIMS, outcome, strict=True)]
+    return {"rows": rows, "point": point, "outcome": outcome, "decided": [float(o != -1) for o in outcome], "holds_decidedly": [float(o == HOLDS) for o in outcome],
+            "reason": reasons}
+
+
+def undecided_reason(diff: float, stat_margin: float, numerical_error: float, unsteady: Sequence[str]) -> str:
+    """Which margin leaves an ordering undetermined: a scene without a valid interval (not settled or not
+    stationary), the statistical margin, or the numerical error (the larger one where both exceed |diff|)."""
+    if unsteady:
+        return f"statistics (not settled / not stationary: {', '.join(unsteady)})"
+    if abs(diff) <= stat_margin and (abs(diff) > numerical_error or stat_margin >= numerical_error):
+        return "statistical margin"
+    return "numerical error"
+
+
+def claim_reason(reasons: Sequence[str]) -> str:
+    """The distinct reasons of a claim's undetermined orderings, in order of first appearance."""
+    return "; ".join(dict.fromkeys(r for r in reasons if r))
 
 
 def recorded(run: xr.Dataset) -> np.ndarray:
@@ -246,7 +269,7 @@ def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[st
     """Per variant and scene: cost, settling, drift, effect counters and joint extremes (what the report tabulates)."""
     shape, jshape = (len(variants), len(scenes)), (len(variants), len(scenes), len(JOINT_IDS))
     out = {k: np.full(shape, np.nan) for k in ("steps", "first_change", "last_change", "max_drift", "n_contact", "n_friction", "n_lubrication", "ideal_force_A", "ideal_force_B", "film_cap", "hertz_stiffness",
-                                             "settle_cycles", "settled", "recorded_cycles", "max_abs_torque")}
+                                             "settle_cycles", "settled", "recorded_cycles", "max_abs_torque", "beyond_film_cap_fraction")}
     out["integrator"] = np.full(shape, "", dtype=object)
     out["contact_label"] = np.full(jshape, "", dtype=object)
     out.update({k: np.full(jshape, np.nan) for k in ("max_penetration_ratio", "max_eccentricity_ratio", "max_contact_force", "max_film_force", "contact_value")})
@@ -262,6 +285,7 @@ def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[st
                 out["ideal_force_B"][v, s] = float(ds.ideal_joint_force_B.max())
                 continue
             out["film_cap"][v, s] = ds.attrs.get("film_eccentricity_cap", np.nan)
+            out["beyond_film_cap_fraction"][v, s] = ds.attrs.get("validity_beyond_film_cap_fraction", np.nan)
             out["hertz_stiffness"][v, s] = ds.attrs["hertz_stiffness"]
             out["steps"][v, s] = ds.attrs["steps"]
             out["first_change"][v, s], out["last_change"][v, s] = float(ds.cycle_change[0]), float(ds.cycle_change[-1])
@@ -299,6 +323,7 @@ SUMMARY_ATTRS = {
     "integrator": ("1", "integrator of the run"),
     "film_cap": ("1", "eccentricity ratio at which the film force is capped, 1 - e0/c"),
     "hertz_stiffness": ("N m-1.5", "Hertz stiffness K of eq. (9)"),
+    "beyond_film_cap_fraction": ("1", "fraction of the recorded time at which a lubricated journal runs beyond the film cap"),
     "max_penetration_ratio": ("1", "largest (|e| - c) / c over the recorded cycles: > 0 is penetration into the bushing, < 0 a gap that never closed"),
     "max_eccentricity_ratio": ("1", "largest eccentricity ratio |e| / c"),
     "contact_label": ("1", "how the deepest contact reads: 'max penetration / c' (the journal entered the bushing) or 'min gap / c' (it never touched)"),
@@ -308,16 +333,25 @@ SUMMARY_ATTRS = {
 }
 
 
-def scene_statistics(run: xr.Dataset, batch: int, confidence: float) -> np.ndarray:
+def scene_stationarity(run: xr.Dataset, tolerance: float, confidence: float) -> tuple[bool, np.ndarray]:
+    """(stationary?, relative change between the record's halves per quantity) of the RMS deviation of a scene's
+    recorded cycles (the measure the settling criterion uses); see ``statistics.stationary``."""
+    from .statistics import stationary
+
+    return stationary(recorded(run)[0], tolerance, confidence)
+
+
+def scene_statistics(run: xr.Dataset, batch: int, confidence: float, steady: bool = True) -> np.ndarray:
     """(measure, quantity, [mean, half-width, standard error, degrees of freedom, lag-1 autocorrelation, cycles])
-    of a scene's recorded per-cycle deviations; an unsettled scene gets an infinite half-width (its mean drifts)."""
+    of a scene's recorded per-cycle deviations; an unsettled scene, or one whose record is not stationary
+    (``steady`` False), gets an infinite half-width (its mean drifts)."""
     from .statistics import lag1_autocorrelation, mean_ci
 
     values = recorded(run)
     out = np.empty(values.shape[:2] + (6,))
     for idx in np.ndindex(values.shape[:2]):
         mean, half, se, dof = mean_ci(values[idx], batch, confidence)
-        if not run.attrs["settled"]:
+        if not run.attrs["settled"] or not steady:
             half, se = float("inf"), float("inf")
         out[idx] = (mean, half, se, dof, lag1_autocorrelation(values[idx]), values.shape[-1])
     return out
@@ -341,6 +375,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
 
     st = cfg["statistics"]
     batch, confidence, ratio = st["batch_cycles"], st["confidence"], cfg["claims"]["close_to_ideal_ratio"]
+    stationarity_tolerance = st["stationarity_tolerance"]
     variants = list(cfg["variants"])
     runs, tight_runs = _by_key(scenes), _by_key(tight)
     n_max = max(recorded(runs[(v, s)]).shape[-1] for v in variants for s in COMPARED)
@@ -350,15 +385,26 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     labels = [c[1] for c in comparisons(ratio)]
     comp = np.full((len(variants), len(labels), 4), np.nan)  # difference, statistical, numerical, outcome
     holds, decided = np.zeros((len(variants), len(CLAIMS))), np.zeros((len(variants), len(CLAIMS)))
+    steady = np.zeros((len(variants), len(COMPARED)), dtype=int)
+    half_change = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
+    spread = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
+    comp_reason = np.full((len(variants), len(labels)), "", dtype=object)
+    claim_reasons = np.full((len(variants), len(CLAIMS)), "", dtype=object)
     for v, variant in enumerate(variants):
         for s, name in enumerate(COMPARED):
             run = runs[(variant, name)]
             values = recorded(run)
             per_cycle[v, :, :, s, : values.shape[-1]] = values
-            stats[v, :, :, s] = scene_statistics(run, batch, confidence)
+            ok, half_change[v, :, s] = scene_stationarity(run, stationarity_tolerance, confidence)
+            rms = values[0]
+            spread[v, :, s] = (rms.max(axis=-1) - rms.min(axis=-1)) / np.abs(rms.mean(axis=-1))
+            steady[v, s] = int(ok)
+            stats[v, :, :, s] = scene_statistics(run, batch, confidence, steady=ok)
             num[v, :, :, s] = numerical_error(run, tight_runs[(variant, name)])
         verdict = judge(stats_for_judging(stats[v], num[v]), ratio, confidence)
         comp[v] = [[r["difference"], r["statistical"], r["numerical"], r["outcome"]] for r in verdict["rows"]]
+        comp_reason[v] = [r["reason"] for r in verdict["rows"]]
+        claim_reasons[v] = verdict["reason"]
         holds[v], decided[v] = verdict["point"], verdict["decided"]
     all_scenes = sorted({name for (_, name) in runs}, key=lambda n: (n != "ideal", n))
     summary = _scene_summary(runs, variants, all_scenes)
@@ -368,21 +414,27 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
                                                           "nan_meaning": "the scene recorded fewer cycles"}),
         "mean_deviation": (sd, stats[..., 0], {"units": "SI of the quantity", "long_name": "mean over the recorded cycles"}),
         "ci_half_width": (sd, np.where(np.isfinite(stats[..., 1]), stats[..., 1], np.nan), {"units": "SI of the quantity", "long_name": f"half-width of the {confidence:.0%} confidence interval of the mean",
-                                                                                            "nan_meaning": "the scene did not settle: its mean is not a statistic (no ordering with it is decided)"}),
+                                                                                            "nan_meaning": "the scene did not settle or its record is not stationary: its mean is not a statistic (no ordering with it is decided)"}),
         "standard_error": (sd, np.where(np.isfinite(stats[..., 2]), stats[..., 2], np.nan), {"units": "SI of the quantity", "long_name": "standard error of the mean (batch means)",
-                                                                                             "nan_meaning": "the scene did not settle"}),
+                                                                                             "nan_meaning": "the scene did not settle or its record is not stationary"}),
         "ci_dof": (sd, stats[..., 3], {"units": "1", "long_name": "degrees of freedom of the interval (batches - 1)"}),
         "lag1_autocorrelation": (sd, stats[..., 4], {"units": "1", "long_name": "lag-1 autocorrelation of the per-cycle values", "nan_meaning": "the values are constant"}),
         "recorded_cycles": (sd, stats[..., 5], {"units": "1", "long_name": "cycles recorded after settling"}),
         "numerical_error": (sd, num, {"units": "SI of the quantity", "long_name": "|mean of (tight - pipeline)| over the common recorded cycles"}),
         "comparison_difference": (("variant", "comparison"), comp[..., 0], {"units": "SI of the quantity", "long_name": "difference of the means the ordering is about (> 0: as claimed)"}),
         "comparison_statistical": (("variant", "comparison"), np.where(np.isfinite(comp[..., 1]), comp[..., 1], np.nan),
-                                   {"units": "SI of the quantity", "long_name": f"{confidence:.0%} half-width of the difference", "nan_meaning": "a scene of the ordering did not settle (undetermined)"}),
+                                   {"units": "SI of the quantity", "long_name": f"{confidence:.0%} half-width of the difference", "nan_meaning": "a scene of the ordering did not settle or is not stationary (undetermined)"}),
         "comparison_numerical": (("variant", "comparison"), comp[..., 2], {"units": "SI of the quantity", "long_name": "numerical error of the difference"}),
         "comparison_outcome": (("variant", "comparison"), comp[..., 3].astype(int), {"units": "1", "long_name": "1 holds, 0 fails, -1 undetermined (within a margin)"}),
         "holds": (("variant", "claim"), holds, {"units": "1", "long_name": "1 if every ordering of the claim holds on the means"}),
         "decided": (("variant", "claim"), decided, {"units": "1", "long_name": "1 if the claim's outcome is beyond the statistical and numerical margins"}),
         "undecided": (("variant", "claim"), 1.0 - decided, {"units": "1", "long_name": "1 if a margin decides the claim (the verdict's error bar)"}),
+        "claim_decided_by": (("variant", "claim"), claim_reasons, {"units": "1", "long_name": "which margin leaves the claim undetermined (empty: decided)"}),
+        "comparison_decided_by": (("variant", "comparison"), comp_reason, {"units": "1", "long_name": "which margin leaves the ordering undetermined (empty: decided)"}),
+        "stationary": (("variant", "scene"), steady, {"units": "1", "long_name": f"1 if the recorded RMS deviation is stationary: its halves' means differ by at most "
+                                                                                 f"{stationarity_tolerance:g} of the mean or within their {confidence:.0%} Welch interval (every quantity)"}),
+        "cycle_spread": (("variant", "quantity", "scene"), spread, {"units": "1", "long_name": "(largest - smallest) / mean of the recorded per-cycle RMS deviation"}),
+        "half_change": (("variant", "quantity", "scene"), half_change, {"units": "1", "long_name": "|mean of the second half - mean of the first half| / mean of the recorded RMS deviation"}),
     }
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
@@ -403,6 +455,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(title="Claims of the clearance paper, per parameter variant", close_to_ideal_ratio=ratio, ci_method=CI_METHOD,
                     crank_mass_kg=runs[(variants[0], "ideal")].attrs["crank_mass_kg"],
-                    decision_rule=DECISION_RULE, confidence=confidence, batch_cycles=batch,
-                    numerical_error_method="per scene: |mean over the common recorded cycles of (tight - pipeline tolerance)|; of a difference: the sum over its scenes")
+                    decision_rule=DECISION_RULE, confidence=confidence, batch_cycles=batch, stationarity_tolerance=stationarity_tolerance, periodic_spread=PERIODIC_SPREAD,
+                    numerical_error_method="per scene: |mean over the common recorded cycles of (tight - pipeline tolerance)|; of a difference: the sum over its scenes",
+                    tight_settings="; ".join(sorted({f"{r.attrs['integrator']} rtol {r.attrs['integrator_rtol']:g}, atol {r.attrs['integrator_atol']:g}" for r in tight})))
     return ds
