@@ -133,7 +133,7 @@ md(
 # %% [markdown]
 # ## 2. Table 1 against one joint fit of the printed parameters
 #
-# l4, l7, θ4 and θ7 are printed to 0.01 (mm, deg); the other lengths are whole millimetres, taken as exact design values.
+# l4, l7, θ4 and θ7 are printed with two decimals (mm, deg); the other lengths are whole millimetres, taken as exact design values.
 # The rounding of those four numbers is *one* fixed error for the whole table, so we fit them once, by least squares
 # (`scipy.optimize.least_squares`), to Table 1's 48 printed angles (24 θ3 and 24 θ6), each held within the rounding interval of its
 # printed digits (`beatup.printed_rounding` in the config). Every one of the 144 cells is then judged against that one model.
@@ -254,7 +254,7 @@ md("The largest printed-cell errors, each contradicted by the paper's own neighb
 # %% [markdown]
 # ## 3. Headline numbers, in one crank sense
 #
-# The paper does not say which way the crank turns. Its 167.28° from front to back dead centre holds in one sense only, so we
+# The paper does not say which way the crank turns. Its printed crank angle from front to back dead centre holds in one sense only, so we
 # take that sense for every claim that depends on it and give the other sense as a note, not as a second verdict. A tolerance
 # whose source starts with *our reading* is ours, not the paper's.
 
