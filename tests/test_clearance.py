@@ -251,6 +251,10 @@ def test_an_ordering_is_decided_only_beyond_both_margins():
     d, half, num = difference([(1.0, 10.0, 1.0, 4.0, 0.5), (-1.0, 7.0, 1.0, 4.0, 0.25)], 0.95)
     assert d == 3.0 and num == 0.75 and half == pytest.approx(st.t.ppf(0.975, 8.0) * np.sqrt(2.0))
     assert difference([(1.0, 1.0, np.inf, 1.0, 0.0), (-1.0, 0.0, 0.1, 4.0, 0.0)], 0.95)[1] == np.inf  # unsettled scene
+    from linkwork.papers.clearance.statistics import _t_quantile
+
+    for dof in (1.0, 2.5, 7.3, 40.0):  # scipy.special's inverse t against scipy.stats (real Welch dof included)
+        assert _t_quantile(0.95, dof) == pytest.approx(st.t.ppf(0.975, dof), rel=1e-12)
 
 
 def test_gap_and_penetration_are_named_by_their_sign():

@@ -27,13 +27,21 @@ from __future__ import annotations
 from collections.abc import Sequence
 
 import numpy as np
-from scipy import stats
 
 #: The method of the confidence interval, recorded in the result's attributes.
 CI_METHOD = ("batch-means t-interval: recorded cycles cut into batches of consecutive cycles; mean +- t(n_b - 1) s_b / sqrt(n_b) "
              "over the n_b batch means; a difference of two scenes by Welch-Satterthwaite")
 DECISION_RULE = "an ordering is decided where |difference of the means| exceeds both its confidence half-width and the sum of the scenes' numerical errors"
 UNDETERMINED, FAILS, HOLDS = -1, 0, 1
+
+
+def _t_quantile(confidence: float, dof: float) -> float:
+    """The two-sided ``confidence`` quantile of Student's t with ``dof`` (real) degrees of freedom: the value
+    scipy.stats.t.ppf(0.5 + confidence / 2, dof) returns, from scipy.special (importing scipy.stats costs a
+    scene job about a second)."""
+    from scipy.special import stdtrit
+
+    return float(stdtrit(dof, 0.5 + confidence / 2))
 
 
 def running_change(values: np.ndarray, window: int) -> np.ndarray:
@@ -71,7 +79,7 @@ def mean_ci(values: np.ndarray, batch: int, confidence: float) -> tuple[float, f
     means = x[: n_b * batch].reshape(n_b, batch).mean(axis=1)
     se = float(means.std(ddof=1) / np.sqrt(n_b))
     dof = float(n_b - 1)
-    return float(x.mean()), float(stats.t.ppf(0.5 + confidence / 2, dof) * se), se, dof
+    return float(x.mean()), float(_t_quantile(confidence, dof) * se), se, dof
 
 
 def half_change(values: np.ndarray, confidence: float) -> tuple[float, float]:
@@ -90,7 +98,7 @@ def half_change(values: np.ndarray, confidence: float) -> tuple[float, float]:
         half = 0.0
     else:
         dof = total**2 / (va**2 / (h - 1) + vb**2 / (h - 1))
-        half = float(stats.t.ppf(0.5 + confidence / 2, dof) * np.sqrt(total))
+        half = float(_t_quantile(confidence, dof) * np.sqrt(total))
     if scale == 0.0:
         return (0.0, 0.0) if float(b.mean() - a.mean()) == 0.0 and half == 0.0 else (float("inf"), float("inf"))
     return abs(float(b.mean() - a.mean())) / scale, half / scale
@@ -126,7 +134,7 @@ def difference(terms: Sequence[tuple[float, float, float, float, float]], confid
     if total == 0.0:
         return float(d), 0.0, float(num)
     dof = total**2 / sum(v**2 / f for v, (_, _, _, f, _) in zip(var, terms, strict=True) if v > 0)
-    return float(d), float(stats.t.ppf(0.5 + confidence / 2, dof) * np.sqrt(total)), float(num)
+    return float(d), float(_t_quantile(confidence, dof) * np.sqrt(total)), float(num)
 
 
 def decide(diff: float, stat_margin: float, numerical_error: float) -> int:
