@@ -282,3 +282,31 @@ def test_slurm_profile_sets_no_site():
     text = (PROJECT / "profiles" / "slurm" / "config.yaml").read_text()
     for key in ("slurm_partition", "slurm_account", "clusters", "slurm_cluster"):
         assert all(key not in line.split("#")[0] for line in text.splitlines()), key
+
+
+@pytest.mark.parametrize("outside", [False, True])
+def test_the_figure_check_stops_a_render_that_draws_outside_the_canvas(tmp_path, outside):
+    """render_report draws each figure once at its own size; with LINKWORK_CHECK_FIGURES=1 a figure whose text
+    lies beyond its canvas (here a label at x = 1.6 of the axes) fails the render, naming the figure."""
+    import subprocess
+    import sys
+
+    x = 1.6 if outside else 0.5
+    notebook = tmp_path / "tiny.py"
+    notebook.write_text(textwrap.dedent(f"""\
+        # %%
+        import matplotlib.pyplot as plt
+        fig, ax = plt.subplots(figsize=(3, 2), layout="constrained")
+        ax.set_title("probe")
+        ax.text({x}, 0.5, "a label", transform=ax.transAxes)
+        plt.show()
+        """))
+    env = {**os.environ, "LINKWORK_CHECK_FIGURES": "1"}
+    proc = subprocess.run([sys.executable, str(PROJECT / "workflow/scripts/render_report.py"), str(notebook), str(tmp_path / "tiny.html")],
+                          env=env, capture_output=True, text=True, timeout=300)
+    if outside:
+        assert proc.returncode != 0 and "figure 'probe' draws over" in proc.stderr, proc.stderr[-2000:]
+        assert not (tmp_path / "tiny.html").exists()
+    else:
+        assert proc.returncode == 0, proc.stderr[-2000:]
+        assert "data:image/png;base64" in (tmp_path / "tiny.html").read_text() or "image/png" in (tmp_path / "tiny.html").read_text()

@@ -56,6 +56,7 @@ def _env(root: Path, trace: Path | None = None) -> dict[str, str]:
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     paths = ([str(TRACING)] if trace else []) + [str(root / "lib")]  # the copy's lib, not the installed one
     env["PYTHONPATH"] = os.pathsep.join(paths)
+    env["LINKWORK_CHECK_FIGURES"] = "1"  # every rendered figure must draw inside its canvas (render_report)
     if trace:
         env["LINKWORK_TRACE_DIR"] = str(trace)
     return env

@@ -7,7 +7,9 @@ The cells run in this process, in an IPython shell with the inline matplotlib ba
 start: a report is one job and one process).  Inputs reach the report as absolute paths in the environment
 variable LINKWORK_REPORT (JSON: {"inputs": {...}}); a list input is a list of paths.  A cell that raises
 stops the render with the cell and the error.  Code cells are hidden in the HTML; figures are embedded as
-data URIs.  Cell ids are derived from the notebook's path and the cell's position, so rendering the same
+data URIs, drawn once at the figure's own size (the layout is constrained: IPython's default 'tight' bounding
+box draws every figure twice); with LINKWORK_CHECK_FIGURES=1 (the tests) a figure that draws outside its
+canvas stops the render.  Cell ids are derived from the notebook's path and the cell's position, so rendering the same
 report twice writes the same bytes.  The HTML is written atomically.
 """
 
@@ -39,6 +41,26 @@ def _outputs(captured, nbformat) -> list:
     return out
 
 
+#: Figures of the running cell that draw outside their canvas (filled only with LINKWORK_CHECK_FIGURES=1).
+_OUTSIDE: list[str] = []
+#: How far (inches) a figure's drawn extent may pass its canvas edge before the check calls it clipped.
+CANVAS_SLACK_IN = 0.02
+
+
+def _figure_png(fig) -> str:
+    """The figure as base64 PNG at its own size, no second 'tight' draw; the canvas check where asked for."""
+    from IPython.core.pylabtools import print_figure
+
+    png = print_figure(fig, fmt="png", bbox_inches=None, base64=True)
+    if os.environ.get("LINKWORK_CHECK_FIGURES") == "1":
+        drawn = fig.get_tightbbox(fig.canvas.get_renderer())
+        width, height = fig.get_size_inches()
+        if drawn.x0 < -CANVAS_SLACK_IN or drawn.y0 < -CANVAS_SLACK_IN or drawn.x1 > width + CANVAS_SLACK_IN or drawn.y1 > height + CANVAS_SLACK_IN:
+            title = fig._suptitle.get_text() if fig._suptitle else (fig.axes[0].get_title() if fig.axes else "")
+            _OUTSIDE.append(f"figure {title!r} draws over ({drawn.x0:.2f}, {drawn.y0:.2f})-({drawn.x1:.2f}, {drawn.y1:.2f}) in, its canvas is {width:.2f} x {height:.2f} in")
+    return png
+
+
 def execute(nb, folder: Path) -> None:
     """Run every code cell of ``nb`` in a fresh IPython shell whose working folder is ``folder``."""
     import nbformat
@@ -52,12 +74,17 @@ def execute(nb, folder: Path) -> None:
     from matplotlib_inline.backend_inline import configure_inline_support
 
     configure_inline_support(shell, "module://matplotlib_inline.backend_inline")
+    from matplotlib.figure import Figure
+
+    shell.display_formatter.formatters["image/png"].for_type(Figure, _figure_png)
     for index, cell in enumerate(nb.cells):
         if cell.cell_type != "code":
             continue
         with capture_output() as captured:
             result = shell.run_cell(cell.source, store_history=False, silent=False)
         cell.outputs = _outputs(captured, nbformat)
+        if _OUTSIDE:
+            raise CellError(f"cell {index}: " + "; ".join(_OUTSIDE))
         if not result.success:
             error = result.error_in_exec or result.error_before_exec
             if type(error).__name__ == "UnreadableResult":  # a corrupted input: its one line says how to rebuild it
