@@ -269,7 +269,8 @@ def test_gap_and_penetration_are_named_by_their_sign():
 
 
 def test_validity_exit_numbers_are_in_the_findings():
-    """physics() on a hand-made claims set: penetration, torque, film cap and the friction bound come out as computed."""
+    """physics() on a hand-made claims set: penetration, torque, film cap, where friction acted in a lubricated scene,
+    and an effect evaluated in a scene that does not name it, come out as computed."""
     import xarray as xr
 
     from linkwork.papers.clearance.findings import physics
@@ -291,15 +292,18 @@ def test_validity_exit_numbers_are_in_the_findings():
         "summary_film_cap": per_run([np.nan] * 4 + [0.95] * 3),
         "summary_max_abs_torque": per_run([100.0, 1.0e4, 1.5e4, 2.0e3, 1.0, 1.0, 1.0]),
         "summary_n_lubrication": per_run([0.0] * 7),
-        "summary_n_friction": per_run([0.0] * 7),
+        "summary_n_friction": per_run([0.0, 5.0, 5.0, 5.0, 0.0, 7.0, 0.0]),  # friction acted in lubricated_2
         "mean_deviation": (("variant", "measure", "quantity", "scene"), np.full((1, 2, 2, 6), 10.0)),
     }, coords={"variant": ["decoded"], "run": runs, "joint": [1, 2], "measure": ["rms", "peak"], "quantity": list(QUANTITIES), "scene": list(COMPARED)},
         attrs={"crank_mass_kg": 1.0})
-    cfg = {"joints": {"friction": 0.001, "journal_radius_m": 0.01}, "bodies": {"crank": {"length_m": 0.19}}}
-    f = physics(claims, cfg).sel(variant="decoded")
+    scenes = load_yaml("config/config.yaml")["clearance"]["scenes"]
+    f = physics(claims, {"scenes": scenes}).sel(variant="decoded")
     assert float(f.dry_penetration_max) == 1.5 and float(f.dry_torque_max) == 1.5e4 and float(f.crank_mass) == 1.0
     assert float(f.lubricated_2_eccentricity_max) == 0.98 and int(f.beyond_film_cap) == 1
-    assert float(f.friction_bound_ratio) == pytest.approx(0.001 * 1000.0 * 0.2 / 10.0)
+    assert f.lubricated_friction_evaluations.values.tolist() == [0.0, 7.0, 0.0] and float(f.stray_evaluations) == 0.0
+    # the same counts where the lubricated scenes named no friction: those 7 evaluations are stray
+    no_friction = {k: {**v, "effects": [e for e in v["effects"] if e != "friction" or k.startswith("dry")]} for k, v in scenes.items()}
+    assert float(physics(claims, {"scenes": no_friction}).sel(variant="decoded").stray_evaluations) == 7.0
 
 
 def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():

@@ -5,8 +5,8 @@ the same scenes (the dry ones or the lubricated ones); it reruns only those scen
 and keeps their deviation from the ideal curve (RMS and peak per recorded cycle).  Its config holds only
 those scenes' keys and the samples' moved values come as arguments, so an edit reruns only the batches whose
 scenes read the edited key; samples that move the same scenes share one process (and its compiled scenes).  The gather step judges the claims for every sample, taking the nominal runs' deviations for
-every other scene, so an edit of a claim's threshold reruns no scene.  The joint length and the film cap e0 enter the lubricated scenes, the friction thresholds v0 and v1 the
-dry ones.
+every other scene, so an edit of a claim's threshold reruns no scene.  The joint length and the film cap e0 enter the lubricated scenes, the friction thresholds v0 and v1 every
+scene with clearance (the lubricated ones name friction for their dry contact).
 """
 
 from __future__ import annotations
