@@ -165,10 +165,13 @@ def test_scene_keys_follow_the_effects():
     from linkwork.papers.clearance.adapter import parameters, scene_keys
 
     section = load_yaml("config/config.yaml")["clearance"]
+    section["scenes"]["film_only"] = {"clearance_joints": [1], "effects": ["lubrication", "contact", "gravity"], "integrator": "stiff"}
     dry = scene_keys(section, "slender", "dry_1")
     lub = scene_keys(section, "slender", "lubricated_1")
+    film_only = scene_keys(section, "slender", "film_only")
     ideal = scene_keys(section, "decoded", "ideal")
-    assert "joints.friction" in dry and "joints.friction" not in lub and "joints.friction" not in ideal
+    assert "joints.friction" in dry and "joints.friction" in lub and "joints.friction" not in film_only and "joints.friction" not in ideal
+    assert "assumed.v0_m_s" in lub and "assumed.v0_m_s" not in film_only
     assert "joints.viscosity_Pa_s" in lub and "joints.viscosity_Pa_s" not in dry
     assert not any(k.startswith("integrators") for k in ideal) and "integrators.explicit" in dry
     assert "bodies.crank.inertia_kg_m2" in ideal and "bodies.crank.inertia_kg_m2" not in dry  # slender computes J

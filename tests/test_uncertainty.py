@@ -67,8 +67,10 @@ def test_a_clearance_batch_moves_only_the_scenes_that_read_its_input():
     assert len(jobs) == 8 * len(SECTION["variants"])  # four inputs at two ends; the nominal sample reruns nothing
     for variant in SECTION["variants"]:
         assert jobs[("assumed.e0_m.value low", variant)] == ["lubricated_1", "lubricated_2", "lubricated_both"]
-        assert jobs[("assumed.v1_m_s.value high", variant)] == ["dry_1", "dry_2", "dry_both"]
-    # one batch per variant and set of moved scenes: joint length and e0 share the lubricated one, v0 and v1 the dry one
+        # v1 enters every scene that names friction: the dry ones and the lubricated ones (their dry contact)
+        friction = [n for n, spec in SECTION["scenes"].items() if "friction" in spec["effects"]]
+        assert jobs[("assumed.v1_m_s.value high", variant)] == friction == ["dry_1", "dry_2", "dry_both", "lubricated_1", "lubricated_2", "lubricated_both"]
+    # one batch per variant and set of moved scenes: joint length and e0 share the lubricated one, v0 and v1 the one of all six
     assert [(j["variant"], len(j["samples"])) for j in found] == [(v, 4) for v in SECTION["variants"] for _ in range(2)]
 
 

@@ -56,7 +56,7 @@ def _figure_png(fig) -> str:
         drawn = fig.get_tightbbox(fig.canvas.get_renderer())
         width, height = fig.get_size_inches()
         if drawn.x0 < -CANVAS_SLACK_IN or drawn.y0 < -CANVAS_SLACK_IN or drawn.x1 > width + CANVAS_SLACK_IN or drawn.y1 > height + CANVAS_SLACK_IN:
-            title = fig._suptitle.get_text() if fig._suptitle else (fig.axes[0].get_title() if fig.axes else "")
+            title = fig.get_suptitle() or (fig.axes[0].get_title() if fig.axes else "")
             _OUTSIDE.append(f"figure {title!r} draws over ({drawn.x0:.2f}, {drawn.y0:.2f})-({drawn.x1:.2f}, {drawn.y1:.2f}) in, its canvas is {width:.2f} x {height:.2f} in")
     return png
 
