@@ -7,8 +7,8 @@ The cells run in this process, in an IPython shell with the inline matplotlib ba
 start: a report is one job and one process).  Inputs reach the report as absolute paths in the environment
 variable LINKWORK_REPORT (JSON: {"inputs": {...}}); a list input is a list of paths.  A cell that raises
 stops the render with the cell and the error.  Code cells are hidden in the HTML; figures are embedded as
-data URIs, drawn once at the figure's own size (the layout is constrained: IPython's default 'tight' bounding
-box draws every figure twice); with LINKWORK_CHECK_FIGURES=1 (the tests) a figure that draws outside its
+data URIs at the figure's own size (the layout is constrained, so IPython's default 'tight' bounding box, an
+extra pass over every artist's extent, adds nothing); with LINKWORK_CHECK_FIGURES=1 (the tests) a figure that draws outside its
 canvas stops the render.  Cell ids are derived from the notebook's path and the cell's position, so rendering the same
 report twice writes the same bytes.  The HTML is written atomically.
 """
@@ -48,7 +48,7 @@ CANVAS_SLACK_IN = 0.02
 
 
 def _figure_png(fig) -> str:
-    """The figure as base64 PNG at its own size, no second 'tight' draw; the canvas check where asked for."""
+    """The figure as base64 PNG at its own size, no 'tight' extent pass; the canvas check where asked for."""
     from IPython.core.pylabtools import print_figure
 
     png = print_figure(fig, fmt="png", bbox_inches=None, base64=True)
