@@ -19,8 +19,9 @@ from IPython.display import HTML, Markdown, display
 
 from linkwork.pipeline.results import load as load_result
 
-VERDICT_COLOURS = {"matches": "#d9f2d9", "deviates": "#f9d6d5", "not reproducible": "#eeeeee",
-                   "undetermined (numerics)": "#fff2cc", "depends on assumptions": "#dbe9f6"}
+#: One colour per verdict class (linkwork.pipeline.compare.VERDICTS), for tables and the index's matrix.
+VERDICT_COLOURS = {"matches": "#a6dba0", "matches as printed": "#d9f0d3", "depends on assumptions": "#c6dbef", "not reconciled": "#9e9ac8",
+                   "undetermined (numerics)": "#fee391", "deviates as printed": "#fcbba1", "deviates": "#ef8a62", "not reproducible": "#d9d9d9"}
 RELATION = {"eq": "±", "ge": "≥", "le": "≤"}
 
 
@@ -105,7 +106,9 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
     """Published numbers beside ours with the verdict's ingredients: tolerance and its source, our numerical
     error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
     ``scale`` multiplies every value (a unit change for display, e.g. 1e3 for m -> mm)."""
+    scenarios = list(dict.fromkeys(rows["scenario"])) if "scenario" in rows else [""]
     out = pd.DataFrame({
+        **({"scenario": rows.scenario} if len(scenarios) > 1 else {}),
         "quantity": rows.quantity,
         "published": [f"{_num(p * scale, digits)} ({'≥ ' + _num((p - t) * scale, 3) if r == 'ge' else '± ' + _num(t * scale, 2)})"
                       for p, t, r in zip(rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)))],
@@ -121,21 +124,40 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
     table(out, caption=caption)
 
 
-def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str, float] | None = None, caption: str | None = None) -> None:
-    """Each assumed input moved alone over its range: the range it gives each listed quantity.
+def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str, float] | None = None, caption: str | None = None,
+              scenario: int = 0) -> None:
+    """Each assumed input moved alone over its range (in one scenario, the first by default): the range it gives
+    each listed quantity.  The input column lists config keys (marked as such).
 
     ``quantities``: published id -> column label; ``scale``: id -> display factor."""
     scale = scale or {}
     index = {str(q): i for i, q in enumerate(unc.quantity.values)}
+    low = unc.oat_low.values[scenario] if "scenario" in unc.oat_low.dims else unc.oat_low.values
+    high = unc.oat_high.values[scenario] if "scenario" in unc.oat_high.dims else unc.oat_high.values
     rows = []
     for k, name in enumerate(unc.input.values):
-        row = {"input": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": str(unc.input_reason.values[k])}
+        row = {"input (config key)": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": str(unc.input_reason.values[k])}
         for qid, label in quantities.items():
             q = index[f"{model}|{qid}"]
             f = scale.get(qid, 1.0)
-            row[label] = f"{_num(unc.oat_low.values[k, q] * f, 4)} … {_num(unc.oat_high.values[k, q] * f, 4)}"
+            row[label] = f"{_num(low[k, q] * f, 4)} … {_num(high[k, q] * f, 4)}"
         rows.append(row)
-    table(pd.DataFrame(rows), caption=caption or f"each assumed input moved alone over its range ({int(unc.samples)} samples in all, Latin hypercube included)")
+    table(pd.DataFrame(rows), caption=caption or f"Each assumed input moved alone over its range, the others at their assumed values ({design_text(unc)}).")
+
+
+def design_text(unc) -> str:
+    """The sample design of an uncertainty study in words, from what it holds (counts of each kind of sample)."""
+    labels = [str(x) for x in unc.sample.values]
+    lhs = sum(" lhs " in f" {x.split(' | ')[-1]} " for x in labels)
+    corners = sum(x.split(" | ")[-1].startswith("corner ") for x in labels)
+    scen = unc.sizes.get("scenario", 1)
+    parts = [f"{int(unc.samples)} samples in all" + (f" over {scen} scenarios" if scen > 1 else ""), "nominal and one at a time"]
+    if corners:
+        parts.append(f"{corners} box corners")
+    parts.append(f"{lhs} Latin-hypercube points" if lhs else "no Latin hypercube")
+    if "low_at" in unc:
+        parts.append(f"then bounded searches of each headline value's extremes (at most {int(unc.attrs.get('search_evaluations', 0))} evaluations each)")
+    return "; ".join(parts)
 
 
 def answer(findings) -> None:

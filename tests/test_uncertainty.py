@@ -2,33 +2,141 @@
 judging the claims directly on rerun scenes."""
 
 import copy
+import itertools
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from conftest import load_yaml
-from linkwork.pipeline.uncertainty import Input, apply, batches, labelled_inputs, sample_count, samples
+from linkwork.pipeline.compare import classify, compare
+from linkwork.pipeline.uncertainty import Input, apply, batches, labelled_inputs, sample_count, samples, scenarios
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
 PUBLISHED = load_yaml("config/published/clearance.yaml")
 
 
-def test_design_one_at_a_time_then_latin_hypercube_within_the_ranges():
-    ins = [Input("a.value", 1.0, 0.5, 2.0, "r"), Input("b.value", 1e-3, 1e-5, 1e-2, "r"), Input("c.value", "x", np.nan, np.nan, "r", ("x", "y", "z"))]
-    design = samples(ins, lhs_points=20, seed=3)
-    assert len(design) == sample_count(ins, 20) == 1 + 2 + 2 + 2 + 20
-    assert design[0].label == "nominal" and design[0].values == {}
-    for s in design[1:7]:  # one at a time: exactly the input named in `moved`
-        assert list(s.values) == [s.moved]
-    lhs = design[7:]
-    a = np.array([s.values["a.value"] for s in lhs])
-    b = np.array([s.values["b.value"] for s in lhs])
-    assert a.min() >= 0.5 and a.max() <= 2.0 and b.min() >= 1e-5 and b.max() <= 1e-2
-    # Latin hypercube: each of the 20 equal strata of a holds exactly one point; b is stratified in log
-    assert sorted(np.floor((a - 0.5) / 1.5 * 20).astype(int)) == list(range(20))
-    assert sorted(np.floor(np.log(b / 1e-5) / np.log(1e3) * 20).astype(int)) == list(range(20))
-    assert {s.values["c.value"] for s in lhs} == {"x", "y", "z"}
-    assert [s.label for s in samples(ins, 20, 3)] == [s.label for s in design]  # fixed seed: same design
+def test_design_choices_are_scenarios_never_sampled_values():
+    ins = [Input("a.value", 1.0, 0.5, 2.0, "r"), Input("b.value", 1e-3, 1e-5, 1e-2, "r"),
+           Input("c.value", "y", np.nan, np.nan, "r", ("x", "y", "z"), labels=("c is x", "c is y", "c is z"))]
+    design = samples(ins, lhs_points=20, seed=3, corner_limit=4)
+    per_scenario = 1 + 2 + 2 + 4 + 20  # nominal, one at a time, the 4 corners, the Latin hypercube
+    assert len(design) == sample_count(ins, 20, corner_limit=4) == 3 * per_scenario
+    assert [s.label for s in scenarios(ins)] == ["c is y", "c is x", "c is z"]  # the nominal choice first
+    assert design[0].label == "nominal" and design[0].values == {"c.value": "y"}
+    for k, scen in enumerate(("y", "x", "z")):
+        block = design[k * per_scenario:(k + 1) * per_scenario]
+        assert {s.values["c.value"] for s in block} == {scen}  # a choice is never moved within a scenario
+        assert all(s.moved != "c.value" for s in block)
+        for s in block[1:5]:  # one at a time: exactly the input named in `moved` besides the scenario's choice
+            assert set(s.values) == {s.moved, "c.value"}
+        corners = block[5:9]
+        assert sorted((s.values["a.value"], s.values["b.value"]) for s in corners) == sorted(itertools.product((0.5, 2.0), (1e-5, 1e-2)))
+        lhs = block[9:]
+        a = np.array([s.values["a.value"] for s in lhs])
+        b = np.array([s.values["b.value"] for s in lhs])
+        # Latin hypercube: each of the 20 equal strata of a holds exactly one point; b is stratified in log
+        assert sorted(np.floor((a - 0.5) / 1.5 * 20).astype(int)) == list(range(20))
+        assert np.allclose(sorted(np.log(b / 1e-5) / np.log(1e3) * 20 // 1), range(20))
+    assert [s.label for s in samples(ins, 20, 3, 4)] == [s.label for s in design]  # fixed seed: same design
+    assert len(samples(ins, 0, 3, corner_limit=3)) == 3 * 5  # more corners than the limit: none
+
+
+def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, evaluations=200, choices=None):
+    """A toy paper: inputs ``names`` in ``ranges`` (config section {name: labelled entry}), its results the
+    variables of ``fun(**inputs)``; the study's samples, summary and bounded searches as a paper's gather runs them."""
+    import xarray as xr
+
+    from linkwork.pipeline.search import searcher
+    from linkwork.pipeline.uncertainty import batch_dataset, gathered
+
+    cfg = {n: {"value": float(np.mean(r)), "status": "assumed", "reason": "toy", "range": list(r)} for n, r in zip(names, ranges)}
+    if choices:
+        cfg["mode"] = {"value": choices[0], "status": "assumed", "reason": "toy", "choices": list(choices)}
+    cfg["uncertainty"] = {"lhs_points": lhs_points, "batch_size": 1000, "seed": 1, "search": {"corner_limit": corner_limit, "evaluations": evaluations, "xtol": 1e-4}}
+    ins = list(labelled_inputs({k: v for k, v in cfg.items() if k != "uncertainty"}))
+
+    def results(c):
+        args = {n: float(c[n]["value"]) for n in names}
+        if choices:
+            args["mode"] = c["mode"]["value"]
+        return [xr.Dataset({k: ((), float(v)) for k, v in fun(**args).items()})]
+
+    batch = batch_dataset(cfg, ins, samples(ins, lhs_points, 1, corner_limit), published, results)
+    return gathered(ins, [batch], "toy", searcher(cfg, published, ins, results))
+
+
+def _entry(name, value, tol, relation="eq"):
+    return {"id": name, "quantity": name, "value": value, "unit": "1", "where": "text", "tolerance": {"abs": tol}, "relation": relation,
+            "measure": {"variable": name, "reduce": "value"}}
+
+
+def test_the_interval_finds_a_corner_that_the_samples_miss():
+    """A lowest resonance sqrt(k / m) of a chain: its minimum over the box sits at the soft, heavy corner
+    (closed form), which one-at-a-time samples and a small Latin hypercube do not reach."""
+    ranges = [(5e3, 5e4), (5.0, 12.0), (2e7, 2e8), (1.5, 2.5)]
+    fun = lambda k, m, kn, eta: {"w": float(np.sqrt(1 / (1 / k + 1 / kn) / (m * eta**2)))}  # noqa: E731
+    ds = _toy_study(fun, ["k", "m", "kn", "eta"], ranges, {"quantities": [_entry("w", 40.0, 4.0)]}, lhs_points=6)
+    exact_low = fun(5e3, 12.0, 2e7, 2.5)["w"]
+    exact_high = fun(5e4, 5.0, 2e8, 1.5)["w"]
+    samples_low = float(ds.value.sel(quantity="|w").min())
+    assert samples_low > 1.2 * exact_low  # the samples alone miss the corner ...
+    assert float(ds.low.sel(quantity="|w").squeeze()) == pytest.approx(exact_low, rel=1e-6)  # ... the search finds it
+    assert float(ds.high.sel(quantity="|w").squeeze()) == pytest.approx(exact_high, rel=1e-6)
+    assert ds.low_at.sel(quantity="|w").values.ravel() == pytest.approx([5e3, 12.0, 2e7, 2.5], rel=1e-6)
+
+
+def test_the_interval_finds_an_interior_saddle_corner_by_search():
+    """f = 4 (a - 1/2)(b - 1/2): every one-at-a-time sample gives 0, the maximum 1 sits at two corners and the
+    minimum -1 at the other two; no monotone corner exists, the bounded search from the samples finds them."""
+    fun = lambda a, b: {"f": 4 * (a - 0.5) * (b - 0.5)}  # noqa: E731
+    ds = _toy_study(fun, ["a", "b"], [(0.0, 1.0), (0.0, 1.0)], {"quantities": [_entry("f", 0.0, 0.1)]}, lhs_points=4)
+    assert float(ds.high.sel(quantity="|f").squeeze()) == pytest.approx(1.0, abs=1e-6)
+    assert float(ds.low.sel(quantity="|f").squeeze()) == pytest.approx(-1.0, abs=1e-6)
+
+
+def test_consistent_set_reconciles_the_rows_that_can_match_together():
+    """Three rows over inputs a, b in [0, 1]: r1 matches where a < 0.3, r2 where a < 0.5 and b < 0.3, r3 where
+    a > 0.7.  The best consistent set matches r1 and r2 at once; r3 matches alone, only where r1 and r2 fail."""
+    fun = lambda a, b: {"r1": a, "r2": max(a - 0.2, b), "r3": a}  # noqa: E731
+    published = {"quantities": [_entry("r1", 0.0, 0.3), _entry("r2", 0.0, 0.3), _entry("r3", 1.0, 0.3)]}
+    ds = _toy_study(fun, ["a", "b"], [(0.0, 1.0), (0.0, 1.0)], published)
+    assert int(ds.consistent_count.values.ravel()[0]) == 2
+    flags = {q: float(ds.in_consistent_set.sel(quantity=f"|{q}").values.ravel()[0]) for q in ("r1", "r2", "r3")}
+    assert flags == {"r1": 1.0, "r2": 1.0, "r3": 0.0}
+    best = dict(zip(ds.input.values, ds.consistent_at.values.reshape(-1)))
+    assert best["a.value"] < 0.3 and best["b.value"] < 0.3
+    from linkwork.pipeline.compare import compare
+
+    table = compare(published, xr.Dataset({"r1": 0.5, "r2": 0.5, "r3": 0.5}), uncertainty=ds).set_index("id")
+    assert table.loc["r1", "verdict"] == table.loc["r2", "verdict"] == "depends on assumptions"
+    assert table.loc["r3", "verdict"] == "not reconciled"
+
+
+def test_a_scenario_gets_its_own_block_of_rows():
+    """A choice is a scenario: the comparison judges each scenario on its own nominal point and box."""
+    fun = lambda a, mode: {"y": a + (10.0 if mode == "shifted" else 0.0)}  # noqa: E731
+    published = {"quantities": [_entry("y", 0.5, 1.0)]}
+    ds = _toy_study(fun, ["a"], [(0.0, 1.0)], published, choices=("plain", "shifted"))
+    assert list(ds.scenario.values) == ["plain", "shifted"]
+    table = compare(published, xr.Dataset({"y": 0.5}), uncertainty=ds)
+    assert list(table.scenario) == ["plain", "shifted"]
+    assert list(table.verdict) == ["matches", "deviates"]
+    assert table.reproduced.iloc[1] == pytest.approx(10.5)
+
+
+def test_printed_rounding_is_its_own_class():
+    """A value inside its tolerance at the printed inputs that only a rounding input moves out: 'matches as
+    printed', not 'depends on assumptions'."""
+    ins = [Input("p.value", 1.0, 0.995, 1.005, "printed to 0.01", kind="rounding")]
+    published = {"quantities": [_entry("y", 1.0, 0.003)]}
+    from linkwork.pipeline.uncertainty import evaluated_dataset, summary
+
+    chosen = samples(ins, 0, 1)
+    ds = summary([evaluated_dataset([{("", "y"): s.values.get("p.value", 1.0)} for s in chosen], ins, chosen)], ins)
+    table = compare(published, xr.Dataset({"y": 1.0}), uncertainty=ds)
+    assert table.verdict.iloc[0] == "matches as printed"
+    assert classify(1.0, 0.003, "eq", 1.004, 0.0, 0.995, 1.005, rounding_only=True) == "deviates as printed"
 
 
 def test_apply_replaces_only_existing_paths_on_a_copy():

@@ -184,6 +184,32 @@ def test_real_run_builds_every_output(built):
     assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "clearance", "heald", "transplanter"))
 
 
+def test_reports_and_readme_findings_hold_no_code_names_in_prose(built):
+    """No rendered report and no README finding shows a snake_case identifier, a config key path or an unrendered
+    template in prose (tables marked as config-key listings excepted); every page title names its paper."""
+    from prose import leaks, page_title, visible_text
+
+    from linkwork.papers import PAPERS
+
+    problems = {}
+    for name in REPORTS:
+        page = (built / f"results/reports/{name}.html").read_text()
+        found = leaks(visible_text(page))
+        title = page_title(page)
+        if not title or title.lower() == "notebook":
+            found.append(f"page title {title!r}")
+        if found:
+            problems[name] = found
+    findings = (built / "results/readme_findings.md").read_text()
+    if leaks(findings):
+        problems["README findings"] = leaks(findings)
+    assert not problems, problems
+    for paper in PAPERS:  # the title names the paper: one of its title's words of five letters or more
+        title = page_title((built / f"results/reports/{paper}.html").read_text()).lower()
+        words = {w for w in re.findall(r"[a-z]{5,}", PAPERS[paper].lower())}
+        assert words & set(re.findall(r"[a-z]{5,}", title)), (paper, title)
+
+
 def test_second_run_has_nothing_to_do(built):
     assert planned_jobs(built) == {}
 

@@ -39,5 +39,5 @@ def section(paper, *paths):
 # On a cluster (profiles/slurm) these run on the submitting host: each reads finished results and computes for
 # about a second (benchmarks/measured/job_resources.json), less than a submission costs. Locally: no effect.
 localrules:
-    all, readme_findings, accuracy_summary, sweep_gather, uncertainty_gather, clearance_claims, clearance_crosscheck_summary,
+    all, readme_findings, accuracy_summary, sweep_gather, clearance_claims, clearance_crosscheck_summary,
     stiffness_compare, beatup_compare, heald_compare, transplanter_compare, clearance_compare,

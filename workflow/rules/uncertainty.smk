@@ -41,7 +41,8 @@ def uncertainty_batch_count(paper):
         return len(CLEARANCE_UNCERTAINTY)
     study = importlib.import_module(f"linkwork.papers.{paper}.uncertainty")
     settings = config[paper]["uncertainty"]
-    return len(uncertainty_batches(sample_count(study.inputs(config[paper]), settings["lhs_points"]), settings["batch_size"]))
+    count = sample_count(study.inputs(config[paper]), settings["lhs_points"], settings["search"]["corner_limit"])
+    return len(uncertainty_batches(count, settings["batch_size"]))
 
 
 def uncertainty_inputs(wildcards):
@@ -54,9 +55,11 @@ def uncertainty_inputs(wildcards):
 
 def uncertainty_gather_inputs(wildcards):
     batches = expand("results/uncertainty/{paper}/batch_{index}.nc", paper=wildcards.paper, index=range(uncertainty_batch_count(wildcards.paper)))
-    extra = {}
+    extra = {"published": f"config/published/{wildcards.paper}.yaml"}  # the searches read the acceptance regions
     if wildcards.paper == "clearance":  # the nominal deviations; the claims are judged here, so a threshold edit reruns no scene
-        extra = {"claims": "results/clearance/claims.nc", "published": "config/published/clearance.yaml"}
+        extra["claims"] = "results/clearance/claims.nc"
+    if wildcards.paper == "transplanter":  # the searches' evaluations start from our optimum, as the samples do
+        extra["optim"] = "results/transplanter/optim.nc"
     return {"batches": batches, **extra, "code": code(f"linkwork.papers.{wildcards.paper}.uncertainty")}
 
 
@@ -78,6 +81,7 @@ rule uncertainty_batch:
 
 
 rule uncertainty_gather:
+    priority: LONG_JOB_PRIORITY
     input:
         unpack(uncertainty_gather_inputs),
     output:

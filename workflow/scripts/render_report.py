@@ -99,6 +99,16 @@ def stable_ids(nb, name: str) -> None:
         cell.id = hashlib.sha256(f"{name}:{index}".encode()).hexdigest()[:16]
 
 
+def page_title(nb) -> str:
+    """The page's title: the report's first heading (its markdown '# ...' line), without markdown emphasis."""
+    for cell in nb.cells:
+        if cell.cell_type == "markdown":
+            for line in cell.source.splitlines():
+                if line.startswith("# "):
+                    return line[2:].replace("*", "").replace("`", "").strip()
+    return "linkwork report"
+
+
 def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     import jupytext
     from nbconvert import HTMLExporter
@@ -115,6 +125,7 @@ def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     except CellError as exc:
         sys.exit(f"render_report: {notebook}: {exc}")
     stable_ids(nb, notebook.name)
+    nb.metadata["title"] = page_title(nb)  # nbconvert's page title (else "Notebook")
     exporter = HTMLExporter(template_name=template.parent.name, extra_template_basedirs=[str(template.resolve().parent.parent)], exclude_input=True,
                             exclude_input_prompt=True, exclude_output_prompt=True)
     html, _ = exporter.from_notebook_node(nb)

@@ -23,14 +23,22 @@ A table column is a variable name, or ``{variable, unit, tolerance}`` when the
 columns differ in unit or precision.
 
 Verdict classes (``classify``): with the acceptance region A of a published value (value +- tolerance, or
-one-sided for ``ge``/``le``), our value N at the nominal inputs, our numerical error bar e and the range
-[low, high] of our value over the assumed inputs' ranges,
+one-sided for ``ge``/``le``), our value N at the nominal inputs of a scenario, our numerical error bar e and the
+range [low, high] of our value over the box of the continuous inputs (``linkwork.pipeline.search``),
 
 ``not reproducible``          N is undefined (the paper lacks what is needed);
 ``undetermined (numerics)``   [N - e, N + e] is partly inside A and partly outside;
 ``matches``                   [low - e, high + e] lies inside A;
 ``deviates``                  [low - e, high + e] lies outside A;
-``depends on assumptions``    otherwise: the verdict changes within the assumed inputs' ranges.
+``matches as printed``        N lies in A, and only the rounding of printed values (their last digit) moves it out;
+``deviates as printed``       N lies outside A, and only the rounding of printed values moves it in;
+``depends on assumptions``    the verdict changes within the assumed inputs' ranges, and the row matches in a
+                              consistent set (one point of the box under which as many of the paper's rows
+                              match at once as under the best such point);
+``not reconciled``            the row matches somewhere in the box, but only where other rows of the paper fail:
+                              no consistent set includes it.
+
+A modelling choice is a named scenario (one block of rows each), never a range.
 
 Published numbers are read here and nowhere else in the library; they never
 enter a computation.
@@ -46,12 +54,24 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-VERDICTS = ("matches", "deviates", "undetermined (numerics)", "depends on assumptions", "not reproducible")
+VERDICTS = ("matches", "matches as printed", "depends on assumptions", "not reconciled", "undetermined (numerics)", "deviates as printed",
+            "deviates", "not reproducible")
+#: Each class in a few plain words, for legends and the index.
+VERDICT_MEANING = {
+    "matches": "within the tolerance over the whole range of the assumed inputs, with our error bar",
+    "matches as printed": "within the tolerance at the printed values; the last printed digit of an input moves it out",
+    "depends on assumptions": "matches under a consistent set of assumptions, fails under others",
+    "not reconciled": "matches only under assumptions where other rows of the paper fail",
+    "undetermined (numerics)": "our own numerical error bar straddles the tolerance",
+    "deviates as printed": "outside the tolerance at the printed values; only the last printed digit moves it in",
+    "deviates": "outside the tolerance whatever the assumed inputs",
+    "not reproducible": "the paper lacks what reproducing it needs",
+}
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
-    "model", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance", "tolerance_source",
+    "model", "scenario", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance", "tolerance_source",
     "reproduced", "deviation", "relative_deviation", "numerical_error", "numerical_source",
-    "input_low", "input_high", "input_source", "decided_by", "verdict",
+    "input_low", "input_high", "input_source", "decided_by", "in_consistent_set", "verdict",
 ]
 
 
@@ -117,8 +137,12 @@ def _outside(lo: float, hi: float, region: tuple[float, float]) -> bool:
     return hi < region[0] or lo > region[1]
 
 
-def classify(published: float, tolerance: float, relation: str, nominal: float, error: float, low: float, high: float) -> str:
-    """The verdict class of one comparison (see the module docstring); NaN ``error`` counts as 0."""
+def classify(published: float, tolerance: float, relation: str, nominal: float, error: float, low: float, high: float,
+             rounding_only: bool = False, consistent: bool | None = None) -> str:
+    """The verdict class of one comparison (see the module docstring); NaN ``error`` counts as 0.
+
+    ``rounding_only``: only the rounding of printed values moves the row across its boundary; ``consistent``:
+    whether the row matches in a maximal consistent assumption set (None: not searched, taken as yes)."""
     if not np.isfinite(nominal):
         return "not reproducible"
     region = acceptance(published, tolerance, relation)
@@ -131,18 +155,25 @@ def classify(published: float, tolerance: float, relation: str, nominal: float, 
         return "matches"
     if _outside(lo, hi, region):
         return "deviates"
-    return "depends on assumptions"
+    if rounding_only:
+        return "matches as printed" if _inside(nominal - e, nominal + e, region) else "deviates as printed"
+    return "not reconciled" if consistent is False else "depends on assumptions"
 
 
-def decided_by(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> str:
-    """Which inputs, moved alone within their ranges, change the verdict (else the one that moves our value most)."""
+def crossing_inputs(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> list[str]:
+    """The inputs (key paths) that, moved alone within their ranges, change the verdict."""
     e = abs(error) if np.isfinite(error) else 0.0
     base_inside = _inside(nominal - e, nominal + e, region)
 
     def changes(lo: float, hi: float) -> bool:  # moving this input alone reaches the other side of the boundary
         return not _inside(lo - e, hi + e, region) if base_inside else not _outside(lo - e, hi + e, region)
 
-    crossing = [input_name(name) for name, (lo, hi) in oat.items() if np.isfinite(lo) and changes(lo, hi)]
+    return [name for name, (lo, hi) in oat.items() if np.isfinite(lo) and changes(lo, hi)]
+
+
+def decided_by(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> str:
+    """Which inputs, moved alone within their ranges, change the verdict (else the one that moves our value most)."""
+    crossing = [input_name(name) for name in crossing_inputs(region, nominal, error, oat)]
     if crossing:
         return ", ".join(crossing)
     spans = {input_name(name): hi - lo for name, (lo, hi) in oat.items() if np.isfinite(lo) and hi > lo}
@@ -188,46 +219,77 @@ def compare(
     errors: Mapping[str, tuple[float, str]] | None = None,
     uncertainty: xr.Dataset | None = None,
 ) -> pd.DataFrame:
-    """The comparison table for one result Dataset (one model variant).
+    """The comparison table for one result Dataset (one model variant), one block of rows per scenario.
 
     ``errors``: published id -> (our numerical error bar in the published unit, where it comes from); an id
     missing here has no estimate (NaN; it cannot make a verdict 'undetermined').  ``uncertainty``: the
-    gathered input-uncertainty study (linkwork.pipeline.uncertainty.summary) or None (no assumed input).
+    gathered input-uncertainty study (linkwork.pipeline.uncertainty.summary, searched) or None (no assumed
+    input).  The first scenario's values are read from ``ds``; another scenario's from the study's nominal
+    point of that scenario (with the first scenario's numerical error bars).
     """
-    errors = errors or {}
+    scenario_labels = [str(x) for x in uncertainty.scenario.values] if uncertainty is not None and "scenario" in uncertainty.dims else [""]
+    rows = [row for n, label in enumerate(scenario_labels) for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label)]
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def _study_at(uncertainty: xr.Dataset | None, n: int, key: str) -> dict[str, Any] | None:
+    """What the uncertainty study holds for one quantity key ('model|id') in scenario ``n`` (None if nothing)."""
+    if uncertainty is None or "input" not in uncertainty.dims or uncertainty.sizes["input"] == 0:
+        return None
+    keys = [str(q) for q in uncertainty.quantity.values]
+    if key not in keys:
+        return None
+    q = keys.index(key)
+    inputs = [str(i) for i in uncertainty.input.values]
+    kinds = [str(k) for k in uncertainty.input_kind.values] if "input_kind" in uncertainty else ["assumed"] * len(inputs)
+    consistent = float(uncertainty.in_consistent_set.values[n, q]) if "in_consistent_set" in uncertainty else math.nan
+    return {
+        "nominal": float(uncertainty.nominal.values[n, q]),
+        "low": float(uncertainty.low.values[n, q]), "high": float(uncertainty.high.values[n, q]),
+        "oat": {name: (float(uncertainty.oat_low.values[n, k, q]), float(uncertainty.oat_high.values[n, k, q])) for k, name in enumerate(inputs)},
+        "rounding": {name for name, kind in zip(inputs, kinds, strict=True) if kind == "rounding"},
+        "consistent": None if not np.isfinite(consistent) else bool(consistent),
+        "source": f"{int(uncertainty.samples)} samples over {len(inputs)} inputs" + (", then bounded searches" if "low_at" in uncertainty else ""),
+    }
+
+
+def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, errors: Mapping[str, tuple[float, str]],
+                   uncertainty: xr.Dataset | None, n: int, scenario: str) -> list[dict[str, Any]]:
+    """The comparison rows of one model variant in scenario ``n`` (named ``scenario``)."""
     rows = []
-    inputs = [str(i) for i in uncertainty.input.values] if uncertainty is not None and "input" in uncertainty.dims else []
-    quantities = {str(q): i for i, q in enumerate(uncertainty.quantity.values)} if uncertainty is not None else {}
     for entry in [*published.get("quantities", []), *expand_tables(published)]:
         value = float(entry["value"])
-        reproduced = evaluate_measure(ds, entry["measure"])
+        study = _study_at(uncertainty, n, f"{model}|{entry['id']}")
+        reproduced = evaluate_measure(ds, entry["measure"]) if n == 0 or study is None else study["nominal"]
         tol = tolerance_of(entry)
         relation = entry.get("relation", "eq")
         error, error_source = errors.get(entry["id"], (math.nan, "no estimate"))
+        if n > 0:
+            error_source = f"{error_source} (the first scenario's)"
         low = high = reproduced
-        source, decider = "no assumed input enters this number", ""
-        key = f"{model}|{entry['id']}"
-        if key in quantities and inputs:
-            q = quantities[key]
-            low, high = float(uncertainty.low.values[q]), float(uncertainty.high.values[q])
-            source = f"{int(uncertainty.samples)} samples over {len(inputs)} assumed inputs"
-            oat = {name: (float(uncertainty.oat_low.values[k, q]), float(uncertainty.oat_high.values[k, q])) for k, name in enumerate(inputs)}
+        source, decider, consistent, rounding_only = "no assumed input enters this number", "", None, False
+        if study is not None:
+            low, high, source, consistent = study["low"], study["high"], study["source"], study["consistent"]
+            region = acceptance(value, tol, relation)
+            crossing = crossing_inputs(region, reproduced, error, study["oat"])
+            rounding_only = bool(study["rounding"]) and set(study["oat"]) <= study["rounding"] or bool(crossing) and set(crossing) <= study["rounding"]
         elif entry["measure"] is None:
             source = "not reproducible: nothing to propagate"
-        verdict_class = classify(value, tol, relation, reproduced, error, low, high)
-        if verdict_class == "depends on assumptions":
-            decider = decided_by(acceptance(value, tol, relation), reproduced, error, oat)
+        verdict_class = classify(value, tol, relation, reproduced, error, low, high, rounding_only, consistent)
+        if verdict_class in ("depends on assumptions", "not reconciled", "matches as printed", "deviates as printed"):
+            decider = decided_by(acceptance(value, tol, relation), reproduced, error, study["oat"])
         deviation = reproduced - value
         rows.append(
             {
-                "model": model, "id": entry["id"], "role": entry.get("role", "headline"), "quantity": entry["quantity"], "where": entry["where"],
-                "published": value, "relation": relation, "unit": entry["unit"], "tolerance": tol, "tolerance_source": entry.get("tolerance_source", HALF_DIGIT),
-                "reproduced": reproduced, "deviation": deviation, "relative_deviation": deviation / value if value != 0 else math.nan,
-                "numerical_error": error, "numerical_source": error_source, "input_low": low, "input_high": high, "input_source": source,
-                "decided_by": decider, "verdict": verdict_class,
+                "model": model, "scenario": scenario, "id": entry["id"], "role": entry.get("role", "headline"), "quantity": entry["quantity"],
+                "where": entry["where"], "published": value, "relation": relation, "unit": entry["unit"], "tolerance": tol,
+                "tolerance_source": entry.get("tolerance_source", HALF_DIGIT), "reproduced": reproduced, "deviation": deviation,
+                "relative_deviation": deviation / value if value != 0 else math.nan, "numerical_error": error, "numerical_source": error_source,
+                "input_low": low, "input_high": high, "input_source": source, "decided_by": decider,
+                "in_consistent_set": np.nan if consistent is None else float(consistent), "verdict": verdict_class,
             }
         )
-    return pd.DataFrame(rows, columns=COLUMNS)
+    return rows
 
 
 def verdict_counts(table: pd.DataFrame) -> dict[str, int]:
@@ -264,32 +326,44 @@ ROLES = ("headline", "table cell")
 
 
 def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
-    """Verdict counts per model, role (headline claims apart from table cells) and class."""
+    """Verdict counts per model, scenario, role (headline claims apart from table cells) and class."""
     models = list(dict.fromkeys(table["model"]))
-    counts = np.array([[[int(((table.model == m) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS] for r in ROLES] for m in models])
+    scens = list(dict.fromkeys(table["scenario"])) if "scenario" in table else [""]
+    scen_of = table["scenario"] if "scenario" in table else pd.Series([""] * len(table), index=table.index)
+    counts = np.array([[[[int(((table.model == m) & (scen_of == s) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS]
+                         for r in ROLES] for s in scens] for m in models])
     return xr.Dataset(
-        {"verdict_count": (("count_model", "role", "verdict"), counts, {"units": "1", "long_name": "comparison rows per model, role and verdict class"})},
+        {"verdict_count": (("count_model", "count_scenario", "role", "verdict"), counts,
+                           {"units": "1", "long_name": "comparison rows per model, scenario, role and verdict class"})},
         coords={"count_model": ("count_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the comparison block"}),
+                "count_scenario": ("count_scenario", np.array(scens, dtype=object), {"units": "1", "long_name": "named scenario ('' : the paper's single reading)"}),
                 "role": ("role", np.array(ROLES, dtype=object), {"units": "1", "long_name": "headline claim or table cell (a trivial check)"}),
                 "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict class"})},
     )
 
 
-def count_text(table: pd.DataFrame, model: str, role: str = "headline") -> str:
-    """'3 match, 1 deviates, 2 depend on assumptions' for one model's rows of one role (classes that occur)."""
+#: Each class as a count reads in prose ('3 match').
+COUNT_WORDS = {"matches": "match", "matches as printed": "match as printed", "depends on assumptions": "depend on assumptions",
+               "not reconciled": "not reconciled with the other rows", "undetermined (numerics)": "undetermined by numerics",
+               "deviates as printed": "deviate as printed", "deviates": "deviate", "not reproducible": "not reproducible"}
+
+
+def count_text(table: pd.DataFrame, model: str, role: str = "headline", scenario: str | None = None) -> str:
+    """'3 match, 1 deviates, 2 depend on assumptions' for one model's rows of one role (classes that occur) in one
+    scenario (default: the first, the nominal choices)."""
     part = table[(table.model == model) & (table.role == role)]
-    words = {"matches": "match", "deviates": "deviate", "undetermined (numerics)": "undetermined by numerics",
-             "depends on assumptions": "depend on assumptions", "not reproducible": "not reproducible"}
-    return ", ".join(f"{int((part.verdict == v).sum())} {words[v]}" for v in VERDICTS if (part.verdict == v).any())
+    if "scenario" in part and len(part):
+        part = part[part.scenario == (part.scenario.iloc[0] if scenario is None else scenario)]
+    return ", ".join(f"{int((part.verdict == v).sum())} {COUNT_WORDS[v]}" for v in VERDICTS if (part.verdict == v).any())
 
 
 def lead_word(rows: pd.DataFrame) -> str:
     """The first word of an answer from a set of verdicts: 'Yes.' if every row matches, 'No.' if none
     matches and none could (no row depends on assumptions or is undetermined), 'Partly.' otherwise."""
     verdicts = set(rows.verdict)
-    if verdicts == {"matches"}:
+    if verdicts <= {"matches", "matches as printed"}:
         return "Yes."
-    if "matches" not in verdicts and not verdicts & {"depends on assumptions", "undetermined (numerics)"}:
+    if not verdicts & {"matches", "matches as printed", "depends on assumptions", "undetermined (numerics)", "deviates as printed", "not reconciled"}:
         return "No."
     return "Partly."
 

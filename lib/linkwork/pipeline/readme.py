@@ -38,7 +38,7 @@ def _num_like(value: float, published: float) -> str:
 
 
 def _range(low: float, high: float, source: str) -> str:
-    if not source.endswith("assumed inputs"):
+    if "samples over" not in source:
         return "none assumed" if source.startswith("no assumed") else "–"
     return f"{_num(low)} … {_num(high)}"
 
@@ -50,21 +50,36 @@ def _published(row: Any) -> str:
     return f"{sign}{_num_like(row.published, row.published)}{unit}"
 
 
+def _blocks(comparison: Any, defensible: str, own: str) -> list[tuple[str, str]]:
+    """The (model, scenario) blocks of a paper's headline rows: the defensible model first, then the paper's own."""
+    head = comparison[comparison.role == "headline"]
+    scen = head["scenario"] if "scenario" in head else [""] * len(head)
+    found = list(dict.fromkeys(zip(head.model, scen)))
+    order = {defensible: 0, own: 1}
+    return sorted(found, key=lambda b: order.get(b[0], 2))
+
+
 def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
-    """Markdown for one paper: the answer, then every headline number on the defensible model (and the paper's own)."""
+    """Markdown for one paper: the answer, then every headline number: ours on the defensible model in its first
+    scenario with its range over the assumed inputs, and the verdict in every model variant and named scenario."""
     defensible = findings.attrs["defensible_model"]
     own = findings.attrs["paper_model"]
-    rows = comparison[(comparison.role == "headline") & (comparison.model == defensible)]
+    if "scenario" not in comparison:
+        comparison = comparison.assign(scenario="")
+    comparison = comparison.assign(scenario=comparison.scenario.fillna("").astype(str))
+    blocks = _blocks(comparison, defensible, own)
+    first = blocks[0]
+    rows = comparison[(comparison.role == "headline") & (comparison.model == first[0]) & (comparison.scenario == first[1])]
+    name = lambda b: " · ".join(x for x in b if x)  # noqa: E731
     lines = [f"### {paper}: {title}", "", findings.attrs["answer"], ""]
-    head = "| published number | published | ours | over the assumed inputs | verdict |"
-    if own and own != defensible:
-        head = f"| published number | published | ours ({defensible}) | over the assumed inputs | verdict ({defensible}) | ours ({own}) | verdict ({own}) |"
+    label = f" ({name(first)})" if name(first) else ""
+    verdicts = [f"verdict ({name(b)})" if name(b) else "verdict" for b in blocks]
+    head = f"| published number | published | ours{label} | over the assumed inputs | " + " | ".join(verdicts) + " |"
     lines += [head, "|" + "---|" * (head.count("|") - 1)]
-    other = comparison[(comparison.role == "headline") & (comparison.model == own)].set_index("id") if own and own != defensible else None
+    indexed = {b: comparison[(comparison.role == "headline") & (comparison.model == b[0]) & (comparison.scenario == b[1])].set_index("id") for b in blocks}
     for row in rows.itertuples():
-        cells = [row.quantity, _published(row), _num_like(row.reproduced, row.published), _range(row.input_low, row.input_high, row.input_source), row.verdict]
-        if other is not None:
-            cells += [_num(other.loc[row.id, "reproduced"]), other.loc[row.id, "verdict"]]
+        cells = [row.quantity, _published(row), _num_like(row.reproduced, row.published), _range(row.input_low, row.input_high, row.input_source)]
+        cells += [indexed[b].loc[row.id, "verdict"] if row.id in indexed[b].index else "–" for b in blocks]
         lines.append("| " + " | ".join(str(c).replace("|", "∣") for c in cells) + " |")
     return "\n".join(lines)
 
@@ -89,5 +104,7 @@ def generated(cfg: Mapping[str, Any], **inputs: Any) -> str:
     for p in PAPERS:
         table = inputs[f"comparison_{p}"]
         table["model"] = table["model"].fillna("").astype(str)
+        if "scenario" in table:
+            table["scenario"] = table["scenario"].fillna("").astype(str)
         comparisons[p] = table
     return findings_block(PAPERS, {p: inputs[f"findings_{p}"] for p in PAPERS}, comparisons) + "\n"

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from ...pipeline.search import searcher
 from ...pipeline.uncertainty import Input, gathered, run_batch
 
 
@@ -17,7 +18,7 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     """Each printed parameter within half a unit of its last printed digit."""
     return [
         Input(f"sixbar.{key}", float(cfg["sixbar"][key]), float(cfg["sixbar"][key]) - half, float(cfg["sixbar"][key]) + half,
-              "printed to the last digit given; half a unit either side")
+              "printed to the last digit given; half a unit either side", kind="rounding")
         for key, half in cfg["printed_rounding"].items()
     ]
 
@@ -34,6 +35,7 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
     return run_batch(cfg, published, index, inputs(cfg), results)
 
 
-def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
-    """Rule study: every batch, with the ranges."""
-    return gathered(inputs(cfg), batches, "Beat-up: rounding of the printed parameters, propagated")
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any]):
+    """Rule study: every batch, with each headline value's extremes over the rounding box (bounded searches)."""
+    ins = inputs(cfg)
+    return gathered(ins, batches, "Beat-up: rounding of the printed parameters, propagated", searcher(cfg, published, ins, results))

@@ -10,6 +10,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from ...pipeline.search import searcher
 from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
 
@@ -31,6 +32,7 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
     return run_batch(cfg, published, index, inputs(cfg), results)
 
 
-def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
-    """Rule study: every batch, with the ranges."""
-    return gathered(inputs(cfg), batches, "Heald: assumed chain parameters, propagated")
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any]):
+    """Rule study: every batch, with each headline value's extremes over the box and the consistent sets (bounded searches)."""
+    ins = inputs(cfg)
+    return gathered(ins, batches, "Heald: assumed chain parameters, propagated", searcher(cfg, published, ins, results))

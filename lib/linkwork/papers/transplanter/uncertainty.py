@@ -14,6 +14,7 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from ...pipeline.search import searcher
 from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
 PROPAGATED = ("youngs_modulus_Pa", "density_kg_m3", "gravity_m_s2", "reference_diameter_m", "compared_solution", "damping_ratio")
@@ -49,6 +50,9 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int, opti
     return run_batch(cfg, published, index, inputs(cfg), lambda c: results(c, published, start))
 
 
-def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
-    """Rule study: every batch, with the ranges."""
-    return gathered(inputs(cfg), batches, "Transplanter: material, gravity and [x_S1], propagated")
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], optim: Any):
+    """Rule study: every batch, with each headline value's extremes over the box per scenario and the consistent sets
+    (bounded searches; each evaluation optimised from the nominal SLSQP optimum)."""
+    ins, start = inputs(cfg), optim.d_slsqp.values * 1e-3
+    search = searcher(cfg, published, ins, lambda c: results(c, published, start))
+    return gathered(ins, batches, "Transplanter: material, gravity and [x_S1], propagated", search)

@@ -1,0 +1,289 @@
+"""Bounded searches over the assumed inputs' box, per scenario: each value's minimum and maximum, and the best
+consistent assumption set of a paper's rows.
+
+The box is the unit cube of the continuous inputs (``Input.to_value`` maps a unit coordinate to the input's
+range, log-uniformly where the range spans more than a decade).  A paper's model is one function of a point of
+the box returning every compared quantity at once, so one cache serves every search.
+
+* **Extremes.**  A value's interval over the assumed inputs is its minimum and maximum over the box.  Each search
+  starts from the best of the samples (nominal, one at a time, corners, Latin hypercube) and of the *monotone
+  corner* (every input at the end of its range that moved the value the wanted way when moved alone), then runs
+  scipy's bounded Powell method for at most ``evaluations`` model evaluations.  The samples only start it.
+* **Consistent set.**  Per scenario and model variant, one point of the box under which the most rows match at
+  once (a row matches at a point when its value lies in its acceptance region; numerical error bars are the
+  comparison's, not the search's).  The count is maximised through a capped violation (each row's distance
+  outside its region in units of its tolerance, at most 1), from the best starts.  A row that matches somewhere
+  in the box but not at the best point is searched again with its own violation weighted: it belongs to a
+  maximal consistent set only if that search matches as many rows with it.
+
+Published values enter here only as the comparison's acceptance regions (``linkwork.pipeline.compare``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any
+
+import numpy as np
+
+#: A value the model could not compute (NaN) counts as this far from any target in a search.
+FAR = 1e30
+#: Weight of the one row a forced consistent-set search must match.
+FORCE_WEIGHT = 100.0
+#: Coordinates this many step tolerances from a face of the box are tried on the face after a search.
+SNAP = 10.0
+#: Starts of a consistent-set search: the best points evaluated so far.
+CONSISTENT_STARTS = 3
+
+
+class Evaluator:
+    """A cached model on the unit box: ``ev(u)`` -> every quantity's value at the point ``u`` (clipped to the box)."""
+
+    def __init__(self, fun: Callable[[np.ndarray], np.ndarray], dim: int):
+        self.fun, self.dim, self.cache = fun, dim, {}
+
+    def __call__(self, u: np.ndarray) -> np.ndarray:
+        u = np.clip(np.asarray(u, dtype=float).reshape(self.dim), 0.0, 1.0)
+        key = tuple(np.round(u, 12))
+        if key not in self.cache:
+            self.cache[key] = np.asarray(self.fun(u), dtype=float)
+        return self.cache[key]
+
+    def seed(self, points: np.ndarray, values: np.ndarray) -> None:
+        """Values already computed (the samples) enter the cache."""
+        for u, v in zip(points, values, strict=True):
+            self.cache.setdefault(tuple(np.round(np.clip(u, 0.0, 1.0), 12)), np.asarray(v, dtype=float))
+
+    @property
+    def evaluations(self) -> int:
+        return len(self.cache)
+
+    def points(self) -> tuple[np.ndarray, np.ndarray]:
+        """Every point evaluated so far and its values (rows)."""
+        keys = list(self.cache)
+        return np.array(keys, dtype=float).reshape(len(keys), self.dim), np.array([self.cache[k] for k in keys])
+
+
+def _powell(objective: Callable[[np.ndarray], float], start: np.ndarray, evaluations: int, xtol: float) -> None:
+    """Run scipy's bounded Powell method on the unit box from ``start`` (the objective records what it sees)."""
+    from scipy.optimize import Bounds, minimize
+
+    if evaluations <= 0 or start.size == 0:
+        return
+    minimize(objective, start, method="Powell", bounds=Bounds(np.zeros(start.size), np.ones(start.size)),
+             options={"maxfev": evaluations, "xtol": xtol, "ftol": 1e-10})
+
+
+def monotone_corner(oat_low_u: np.ndarray, oat_high_u: np.ndarray, nominal_u: np.ndarray, sign: float) -> np.ndarray:
+    """The corner that moves a value the ``sign`` way (+1: up) input by input: each input at the end of its range
+    whose one-at-a-time value was larger (for +1), at its nominal unit coordinate where neither end moved it.
+
+    ``oat_low_u``, ``oat_high_u``: the value with each input at the low and high end of its range, others nominal."""
+    u = np.asarray(nominal_u, dtype=float).copy()
+    up = sign * (np.asarray(oat_high_u) - np.asarray(oat_low_u))
+    u[up > 0] = 1.0
+    u[up < 0] = 0.0
+    return u
+
+
+def extreme(ev: Evaluator, q: int, sign: float, starts: Sequence[np.ndarray], evaluations: int, xtol: float) -> tuple[float, np.ndarray]:
+    """The largest (``sign`` = +1) or smallest (-1) value of quantity ``q`` over the box: the best of ``starts``,
+    then a bounded Powell search from it.  Returns (value, unit point)."""
+    best = {"f": -np.inf, "u": None}
+
+    def objective(u: np.ndarray) -> float:
+        v = ev(u)[q]
+        if np.isfinite(v) and sign * v > best["f"]:
+            best["f"], best["u"] = sign * v, np.clip(u, 0.0, 1.0)
+        return -sign * v if np.isfinite(v) else FAR
+
+    for u in starts:
+        objective(np.asarray(u, dtype=float))
+    if best["u"] is None:
+        return np.nan, np.full(ev.dim, np.nan)
+    _powell(objective, best["u"].copy(), evaluations, xtol)
+    objective(snapped(best["u"], xtol))
+    return sign * best["f"], best["u"]
+
+
+def snapped(u: np.ndarray, xtol: float) -> np.ndarray:
+    """``u`` with every coordinate within SNAP x ``xtol`` of a face of the unit box moved onto it (a search that
+    stops at its tolerance next to a corner then tries the corner itself)."""
+    u = np.asarray(u, dtype=float).copy()
+    u[u < SNAP * xtol] = 0.0
+    u[u > 1.0 - SNAP * xtol] = 1.0
+    return u
+
+
+def violations(values: np.ndarray, lower: np.ndarray, upper: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    """Each row's distance outside its acceptance region [lower, upper], in units of ``scale`` (0 inside; a NaN
+    value counts as 1)."""
+    values = np.asarray(values, dtype=float)
+    with np.errstate(invalid="ignore"):
+        out = np.maximum.reduce([lower - values, values - upper, np.zeros_like(values)]) / scale
+    return np.where(np.isfinite(values), out, 1.0)
+
+
+def consistent_set(ev: Evaluator, rows: Sequence[int], lower: np.ndarray, upper: np.ndarray, scale: np.ndarray,
+                   evaluations: int, xtol: float, force: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The point of the box under which most of ``rows`` (quantity indices) match at once.
+
+    Maximises the count of rows inside their regions through the capped violation sum; with ``force`` (a
+    position in ``rows``) that row's violation is weighted by FORCE_WEIGHT.  Returns (unit point, matched flags
+    of ``rows`` there)."""
+    rows = list(rows)
+    weight = np.ones(len(rows))
+    if force is not None:
+        weight[force] = FORCE_WEIGHT
+
+    def score(u: np.ndarray) -> tuple[int, float]:
+        viol = violations(ev(u)[rows], lower, upper, scale)
+        matched = viol == 0
+        return (int(matched.sum()) + (0 if force is None or matched[force] else -len(rows) - 1), float(np.sum(weight * np.minimum(viol, 1.0))))
+
+    points, _ = ev.points()
+    ranked = sorted(points, key=lambda u: (-score(u)[0], score(u)[1]))[:CONSISTENT_STARTS]
+    for start in ranked:
+        _powell(lambda u: score(u)[1], np.asarray(start, dtype=float).copy(), evaluations, xtol)
+    points, _ = ev.points()
+    best = min(points, key=lambda u: (-score(u)[0], score(u)[1]))
+    return best, violations(ev(best)[rows], lower, upper, scale) == 0
+
+
+def acceptance_regions(published: Mapping[str, Any], keys: Sequence[str]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per quantity key ('model|id'): the lower and upper end of its acceptance region and its tolerance (NaN
+    for a key that is not a headline entry)."""
+    from .compare import acceptance, tolerance_of
+
+    entries = {e["id"]: e for e in published.get("quantities", []) if e.get("measure") is not None}
+    lower, upper, tol = (np.full(len(keys), np.nan) for _ in range(3))
+    for k, key in enumerate(keys):
+        entry = entries.get(key.split("|", 1)[1])
+        if entry is not None:
+            t = tolerance_of(entry)
+            lower[k], upper[k] = acceptance(float(entry["value"]), t, entry.get("relation", "eq"))
+            tol[k] = max(t, 1e-12 * abs(float(entry["value"])), 1e-300)
+    return lower, upper, tol
+
+
+def _unit_points(ds: Any, inputs: Sequence[Any], rows: Sequence[int]) -> np.ndarray:
+    """The unit coordinates of the given samples (rows of ``ds.input_value``)."""
+    values = ds.input_value.values[list(rows)]
+    return np.array([[inp.to_unit(x) for inp, x in zip(inputs, row, strict=True)] for row in values]).reshape(len(rows), len(inputs))
+
+
+def _end_values(ds: Any, labels: Sequence[str], prefix: str, inputs: Sequence[Any], end: str, fallback: np.ndarray) -> np.ndarray:
+    """Per continuous input (rows) the values with that input alone at one ``end`` ('low' or 'high') of its range."""
+    out = np.tile(fallback, (len(inputs), 1))
+    for k, inp in enumerate(inputs):
+        label = f"{prefix}{inp.path} {end}"
+        if label in labels:
+            out[k] = ds.value.values[labels.index(label)]
+    return out
+
+
+def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
+           results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any]) -> Any:
+    """The gathered study ``ds`` (linkwork.pipeline.uncertainty.summary) with each headline value's low and high
+    replaced by its extremes over the box (bounded searches from the samples), where they were found, and per
+    scenario and model variant the best consistent assumption set.  ``settings``: ``evaluations`` per search and
+    ``xtol`` (unit-box step tolerance).  Table cells keep the samples' range (corners included)."""
+    from .uncertainty import _prefix, apply, continuous, evaluate, scenarios
+
+    ranged, scens = continuous(inputs), scenarios(inputs)
+    keys = [str(k) for k in ds.quantity.values]
+    labels, of = [str(x) for x in ds.sample.values], [str(x) for x in ds.sample_scenario.values]
+    lower, upper, tol = acceptance_regions(published, keys)
+    headline = [q for q in range(len(keys)) if np.isfinite(tol[q])]
+    models = list(dict.fromkeys(k.split("|", 1)[0] for k in keys))
+    low, high = ds.low.values.copy(), ds.high.values.copy()
+    shape_at = (len(scens), len(ranged), len(keys))
+    low_at, high_at = np.full(shape_at, np.nan), np.full(shape_at, np.nan)
+    matched_best = np.full((len(scens), len(keys)), np.nan)
+    in_set = np.full((len(scens), len(keys)), np.nan)
+    count = np.zeros((len(scens), len(models)))
+    candidates = np.zeros((len(scens), len(models)))
+    best_at = np.full((len(scens), len(models), len(ranged)), np.nan)
+    evaluations = np.zeros(len(scens))
+    budget, xtol = int(settings["evaluations"]), float(settings["xtol"])
+    for n, scen in enumerate(scens):
+        rows = [i for i, o in enumerate(of) if o == scen.label]
+        if not rows:
+            continue
+
+        def fun(u: np.ndarray, scen=scen) -> np.ndarray:
+            moved = {inp.path: inp.to_value(x) for inp, x in zip(ranged, u, strict=True)}
+            found = evaluate(published, results(apply(cfg, {**scen.values, **moved})))
+            return np.array([found.get(tuple(k.split("|", 1)), np.nan) for k in keys])
+
+        ev = Evaluator(fun, len(ranged))
+        ev.seed(_unit_points(ds, ranged, rows), ds.value.values[rows])
+        prefix = _prefix(scen, n == 0)
+        nominal_u = np.array([inp.to_unit(inp.nominal) for inp in ranged])
+        nominal_v = ds.nominal.values[n]
+        ends = (_end_values(ds, labels, prefix, ranged, "low", nominal_v), _end_values(ds, labels, prefix, ranged, "high", nominal_v))
+        points, values = ev.points()
+        for q in headline:
+            if not np.isfinite(nominal_v[q]) or not ranged:
+                continue
+            for sign in (-1.0, 1.0):
+                finite = np.isfinite(values[:, q])
+                start = points[finite][np.argmax(sign * values[finite, q])] if finite.any() else nominal_u
+                corner = monotone_corner(ends[0][:, q], ends[1][:, q], nominal_u, sign)
+                v, u = extreme(ev, q, sign, [start, corner], budget, xtol)
+                at = np.array([inp.to_value(x) for inp, x in zip(ranged, u, strict=True)]) if np.isfinite(v) else np.full(len(ranged), np.nan)
+                if sign < 0 and np.isfinite(v):
+                    low[n, q], low_at[n, :, q] = min(v, low[n, q]) if np.isfinite(low[n, q]) else v, at
+                elif np.isfinite(v):
+                    high[n, q], high_at[n, :, q] = max(v, high[n, q]) if np.isfinite(high[n, q]) else v, at
+        for m, model in enumerate(models):
+            rows_m = [q for q in headline if keys[q].startswith(f"{model}|") and np.isfinite(nominal_v[q])]
+            # robust deviations (the whole interval outside the region) cannot join a consistent set
+            rows_m = [q for q in rows_m if not (high[n, q] < lower[q] or low[n, q] > upper[q])]
+            candidates[n, m] = len(rows_m)
+            if not rows_m:
+                continue
+            lo, hi, sc = lower[rows_m], upper[rows_m], tol[rows_m]
+            best, ok = consistent_set(ev, rows_m, lo, hi, sc, budget if ranged else 0, xtol)
+            count[n, m] = ok.sum()
+            best_at[n, m] = [inp.to_value(x) for inp, x in zip(ranged, best, strict=True)]
+            for j, q in enumerate(rows_m):
+                matched_best[n, q] = float(ok[j])
+                in_set[n, q] = float(ok[j])
+                if not ok[j] and ranged:
+                    _, forced = consistent_set(ev, rows_m, lo, hi, sc, budget, xtol, force=j)
+                    in_set[n, q] = float(forced[j] and forced.sum() >= ok.sum())
+        evaluations[n] = ev.evaluations
+    return _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings)
+
+
+def _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings):
+    """The study Dataset with the searches' results (see ``refine``)."""
+    out = ds.copy()
+    out["low"] = (("scenario", "quantity"), low, {**ds.low.attrs, "long_name": "smallest value over the assumed inputs' box (bounded search from the samples)"})
+    out["high"] = (("scenario", "quantity"), high, {**ds.high.attrs, "long_name": "largest value over the assumed inputs' box (bounded search from the samples)"})
+    out["low_at"] = (("scenario", "input", "quantity"), low_at, {"units": "SI of the input", "long_name": "the inputs where the smallest value was found",
+                                                                "nan_meaning": "not searched (a table cell, or no continuous input)"})
+    out["high_at"] = (("scenario", "input", "quantity"), high_at, {"units": "SI of the input", "long_name": "the inputs where the largest value was found",
+                                                                  "nan_meaning": "not searched (a table cell, or no continuous input)"})
+    nan = {"nan_meaning": "not a candidate (a table cell, not reproducible, or a robust deviation)"}
+    out["matched_in_best_set"] = (("scenario", "quantity"), matched_best, {"units": "1", "long_name": "1 if the row matches under the scenario's best consistent assumption set", **nan})
+    out["in_consistent_set"] = (("scenario", "quantity"), in_set, {"units": "1", "long_name": "1 if the row matches in some consistent set of as many rows as the best", **nan})
+    out["consistent_count"] = (("scenario", "row_model"), count, {"units": "1", "long_name": "rows matched at once under the best consistent assumption set"})
+    out["consistent_candidates"] = (("scenario", "row_model"), candidates, {"units": "1", "long_name": "headline rows that are not robust deviations"})
+    out["consistent_at"] = (("scenario", "row_model", "input"), best_at, {"units": "SI of the input", "long_name": "the best consistent assumption set"})
+    out["evaluations"] = (("scenario",), evaluations, {"units": "1", "long_name": "distinct model evaluations per scenario (samples and searches)"})
+    out = out.assign_coords(row_model=("row_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the compared rows"}))
+    out.attrs["interval_method"] = (f"headline values: minimum and maximum over the box by bounded Powell searches (at most {int(settings['evaluations'])} "
+                                    "evaluations each) started from the samples' extremes and the monotone corner; table cells: the samples (corners included)")
+    out.attrs["search_evaluations"] = int(settings["evaluations"])
+    out.attrs["search_xtol"] = float(settings["xtol"])
+    out.attrs["consistent_set_rule"] = ("a row matches at a point when its value lies in its acceptance region; the best set maximises the rows "
+                                        "matched at once (capped violations, bounded Powell from the best points evaluated)")
+    return out
+
+
+def searcher(cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
+             results: Callable[[Mapping[str, Any]], Sequence[Any]]) -> Callable[[Any], Any]:
+    """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``)."""
+    return lambda ds: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"])
