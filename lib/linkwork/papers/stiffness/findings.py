@@ -170,6 +170,7 @@ def pinned_comparison(published: Mapping[str, Any], result: xr.Dataset, errors: 
     missing = ~np.isfinite(rows.reproduced.to_numpy(dtype=float))
     rows.loc[missing, "input_source"] = (f"no pinned counterpart: with pins at A and B and O' free the chain has mobility {free}, "
                                          "so no member resists a horizontal force at O'")
+    rows.loc[missing, "numerical_error"] = np.nan
     rows.loc[missing, "numerical_source"] = "none (no value)"
     return rows
 
