@@ -64,7 +64,8 @@ axes[1].axhline(pub["K_c_max"]["value"] / 1e4, color="k", ls="--", lw=1, label="
 axes[1].axhline(pub["K_c_min"]["value"] / 1e4, color="k", ls="--", lw=1)
 axes[1].axhline(pub["K_c_mean"]["value"] / 1e4, color="k", ls=":", lw=1, label="published mean")
 axes[1].set_ylim(bottom=0)
-axes[0].set_ylim(top=1.3 * max(float(ds.K_h_fine.max()), pub["K_h_max"]["value"]) / 1e6)  # room for the legend above the curves
+low, high = axes[0].get_ylim()
+axes[0].set_ylim(low, high + 0.45 * (high - low))  # room for the legend above the curves
 for ax in axes:
     ax.legend(fontsize=7.5, loc="lower right" if ax is axes[1] else "upper right")
 plt.show()
