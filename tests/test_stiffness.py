@@ -463,6 +463,7 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
                           env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"}, capture_output=True, text=True, timeout=600)
     assert proc.returncode == 0, proc.stderr[-3000:]
     page = out.read_text()
+    assert "Traceback" not in page and 'vnd.jupyter.stderr" tabindex' not in page  # no warning or error printed
     body = page[page.index("<body"):]
     text = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<style.*?</style>|<script.*?</script>", "", body, flags=re.S))))
     answer = re.sub(r"\s+", " ", fnd.attrs["answer"])

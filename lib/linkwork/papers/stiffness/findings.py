@@ -77,7 +77,8 @@ def conclusion_verdicts(table: pd.DataFrame, forms: list[str]) -> list[str]:
     return out
 
 
-def conclusion_counted_once(table: pd.DataFrame, forms: list[str], physical: dict[str, str] | None = None) -> pd.DataFrame:
+def conclusion_counted_once(table: pd.DataFrame, forms: list[str],
+                            physical: dict[str, str] | None = None) -> pd.DataFrame:
     """The comparison rows to count: the conclusion's two claims (K_h, K_c) replaced by one row per form with its
     combined verdict, so each form's count holds the conclusion once, beside its stiffness numbers.
 
@@ -163,13 +164,14 @@ def pinned_dataset(result: xr.Dataset) -> xr.Dataset:
     return xr.Dataset({"K_c": k, "beta": result.beta, "gamma": result.gamma})
 
 
-def pinned_comparison(published: Mapping[str, Any], result: xr.Dataset, errors: Mapping[str, tuple[float, str]]) -> pd.DataFrame:
+def pinned_comparison(published: Mapping[str, Any], result: xr.Dataset,
+                      errors: Mapping[str, tuple[float, str]]) -> pd.DataFrame:
     """The comparison block of the pinned form; its K_h rows say why they have no value (the mobility)."""
     rows = compare_datasets(published, [pinned_dataset(result)], errors={PINNED: errors})
     free = int(result.mobility.isel(mobility_case=0))
     missing = ~np.isfinite(rows.reproduced.to_numpy(dtype=float))
-    rows.loc[missing, "input_source"] = (f"no pinned counterpart: with pins at A and B and O' free the chain has mobility {free}, "
-                                         "so no member resists a horizontal force at O'")
+    rows.loc[missing, "input_source"] = (f"no pinned counterpart: with pins at A and B and O' free the chain has "
+                                         f"mobility {free}, so no member resists a horizontal force at O'")
     rows.loc[missing, "numerical_error"] = np.nan
     rows.loc[missing, "numerical_source"] = "none (no value)"
     return rows
@@ -229,7 +231,8 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
         data["implied_youngs_modulus_tables_max"] = scalar(implied.sel(implied_form="tables").max(), "Pa", "largest modulus implied, paper's own model")
     jump = float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force")) if PAPER_MODEL in forms else 0.0
     data["tables_in_equilibrium"] = scalar(jump <= EQUILIBRIUM_JUMP, "1", f"1 if the paper's tables give no moment jump at B above {EQUILIBRIUM_JUMP:g} N m per N")
-    data["tables_moment_jump"] = scalar(jump, "N m per N", "largest jump of the bending moment at the rigid joint B in the paper's tables (unit force)")
+    data["tables_moment_jump"] = scalar(jump, "N m per N",
+                                        "largest jump of the bending moment at the rigid joint B in the paper's tables (unit force)")
     conclusion = headline[headline.id.isin(CONCLUSION)]
     verdicts = conclusion_verdicts(table, forms)
     data["conclusion_holds"] = ("form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
@@ -239,15 +242,18 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     by_joints = joint_verdicts(dict(zip(forms, verdicts, strict=True)))
     data["conclusion_by_joints"] = ("joint_model", np.array([by_joints[j] for j in JOINT_MODELS], dtype=object),
                                     {"units": "1", "long_name": "the paper's conclusion per joint model (the scenario that decides it)"})
-    data["conclusion_decided_by_joints"] = scalar(len(set(by_joints.values())) > 1, "1", "1 if the joint model (welded or pinned) changes the conclusion's verdict")
+    data["conclusion_decided_by_joints"] = scalar(len(set(by_joints.values())) > 1, "1",
+                                                  "1 if the joint model (welded or pinned) changes the conclusion's verdict")
     data["conclusion_counted_for_defensible"] = ((), by_joints["pinned"], {"units": "1", "long_name": (
         "the conclusion's verdict counted in the defensible model's block: the one on the real, pinned joints")})
     data["pinned_K_h_exists"] = scalar(0, "1", "0: K_h has no pinned counterpart (the pinned chain with O' free is a mechanism)")
-    data["pinned_free_mobility"] = scalar(int(result.mobility.isel(mobility_case=0)), "1", "mobility of the pinned chain with the crank held and O' free")
+    data["pinned_free_mobility"] = scalar(int(result.mobility.isel(mobility_case=0)), "1",
+                                          "mobility of the pinned chain with the crank held and O' free")
     ratios = np.array([float(result[f"{k}_max_over_min"].sel(form=f)) for k in ("K_h", "K_c") for f in welded])
     data["welded_max_over_min_least"] = scalar(ratios.min(), "1", "smallest max/min of K_h or K_c over the paper's frames, welded forms")
     data["welded_max_over_min_most"] = scalar(ratios.max(), "1", "largest max/min of K_h or K_c over the paper's frames, welded forms")
-    data["pinned_max_over_min"] = scalar(float(result.K_pinned_max_over_min), "1", "max/min of the pinned output stiffness over the paper's frames")
+    data["pinned_max_over_min"] = scalar(float(result.K_pinned_max_over_min), "1",
+                                         "max/min of the pinned output stiffness over the paper's frames")
     data["table3_all_match"] = scalar(bool((first.verdict == "matches").all()), "1", "1 if every Table 3 angle is reproduced within half the printed digit")
     if "implied_youngs_modulus_tables_min" in data:
         lo, hi = (float(data[k][1]) for k in ("implied_youngs_modulus_tables_min", "implied_youngs_modulus_tables_max"))
