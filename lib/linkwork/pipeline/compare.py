@@ -328,8 +328,8 @@ ROLES = ("headline", "table cell")
 def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
     """Verdict counts per model, scenario, role (headline claims apart from table cells) and class."""
     models = list(dict.fromkeys(table["model"]))
-    scens = list(dict.fromkeys(table["scenario"])) if "scenario" in table else [""]
-    scen_of = table["scenario"] if "scenario" in table else pd.Series([""] * len(table), index=table.index)
+    scen_of = table["scenario"].fillna("").astype(str) if "scenario" in table else pd.Series([""] * len(table), index=table.index)
+    scens = list(dict.fromkeys(scen_of))
     counts = np.array([[[[int(((table.model == m) & (scen_of == s) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS]
                          for r in ROLES] for s in scens] for m in models])
     return xr.Dataset(
