@@ -313,3 +313,18 @@ def test_the_figure_check_stops_a_render_that_draws_outside_the_canvas(tmp_path,
     else:
         assert proc.returncode == 0, proc.stderr[-2000:]
         assert "data:image/png;base64" in (tmp_path / "tiny.html").read_text() or "image/png" in (tmp_path / "tiny.html").read_text()
+
+
+def test_values_only_strips_labels_but_keeps_what_a_rule_names():
+    """A study receives values: a labelled entry keeps its value (and only the label fields a rule names)."""
+    from linkwork.configformat import labelled_entries, values_only
+
+    section = {"fe": {"damping_ratio": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"},
+                      "steps": 3},
+               "gravity": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}}
+    out = values_only(section)
+    assert out == {"fe": {"damping_ratio": {"value": 0.02}, "steps": 3}, "gravity": {"value": 0.0}}
+    assert values_only(section, keep=["fe.damping_ratio.range"])["fe"]["damping_ratio"] == {"value": 0.02, "range": [0.01, 0.05]}
+    assert section["fe"]["damping_ratio"]["reason"] == "r"  # a copy: the config is untouched
+    assert list(labelled_entries(section)) == ["fe.damping_ratio", "gravity"]
+    assert labelled_entries(section)["gravity"]["choice_labels"] == ["off", "on"]

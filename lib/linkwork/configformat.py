@@ -42,3 +42,40 @@ def pick(section: Mapping[str, Any], paths: Iterable[str]) -> dict[str, Any]:
             node = node.setdefault(part, {})
         node[parts[-1]] = copy.deepcopy(value)
     return out
+
+
+#: The fields of a labelled entry beside its value: what the uncertainty design and the reports read, not a study.
+LABEL_FIELDS = ("status", "reason", "range", "range_reason", "choices", "choice_labels")
+
+
+def is_labelled(node: Any) -> bool:
+    """Whether a config node is a labelled entry ``{value, status, reason, ...}``."""
+    return isinstance(node, Mapping) and {"value", "status", "reason"} <= set(node)
+
+
+def values_only(section: Mapping[str, Any], keep: Iterable[str] = ()) -> dict[str, Any]:
+    """A copy of ``section`` in which every labelled entry holds only its ``value`` (a study reads values; the
+    uncertainty design reads ranges and choices; the reports read reasons), except the label fields named by the
+    dotted paths in ``keep`` ('fe.damping_ratio.range' keeps that entry's range)."""
+    kept = {tuple(p.split(".")) for p in keep}
+
+    def strip(node: Any, path: tuple[str, ...]) -> Any:
+        if is_labelled(node):
+            return {k: copy.deepcopy(v) for k, v in node.items() if k == "value" or (*path, k) in kept}
+        if isinstance(node, Mapping):
+            return {k: strip(v, (*path, k)) for k, v in node.items()}
+        return copy.deepcopy(node)
+
+    return strip(section, ())
+
+
+def labelled_entries(section: Mapping[str, Any], prefix: str = "") -> dict[str, dict[str, Any]]:
+    """Every labelled entry of a section, whole, by dotted key path (depth first, in order)."""
+    out: dict[str, dict[str, Any]] = {}
+    for key, node in section.items():
+        path = f"{prefix}{key}"
+        if is_labelled(node):
+            out[path] = copy.deepcopy(dict(node))
+        elif isinstance(node, Mapping):
+            out.update(labelled_entries(node, path + "."))
+    return out
