@@ -328,3 +328,16 @@ def test_values_only_strips_labels_but_keeps_what_a_rule_names():
     assert section["fe"]["damping_ratio"]["reason"] == "r"  # a copy: the config is untouched
     assert list(labelled_entries(section)) == ["fe.damping_ratio", "gravity"]
     assert labelled_entries(section)["gravity"]["choice_labels"] == ["off", "on"]
+
+
+def test_assumptions_hold_every_labelled_entry_whole():
+    from linkwork.pipeline.assumptions import assumptions
+
+    section = {"a": {"value": 1.0, "status": "sourced", "reason": "printed"},
+               "b": {"c": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"}},
+               "g": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["gravity off", "gravity on"]},
+               "n": 3}
+    ds = assumptions(section)
+    assert list(ds.entry.values) == ["a", "b.c", "g"]
+    assert list(ds.range.values) == ["", "0.01–0.05", "gravity off / gravity on"]
+    assert list(ds.reason.values) == ["printed", "r", "g"] and ds.range_reason.values[1] == "rr"
