@@ -178,3 +178,63 @@ def test_cam_window_and_notes():
     amp, low = variables["cam_harmonic_amplitude"].values, variables["cam_harmonic_window_low"].values
     assert low[6] == pytest.approx(amp[8])  # h = 7: the strongest higher one is h = 9
     assert low[-1] == 0.0
+
+
+# --- eq. (2) holds only for a massless driven node (issue 22) ---------------------------------------------------
+
+
+def test_eq2_is_the_chain_mobility_when_the_driven_node_has_no_mass():
+    """With m_D = m_E6 = m_F6 = 0 the network's mobility of model B (with the node-mass element, of mass 0) is eq. (2)
+    to round-off."""
+    from linkwork.papers.heald.model import eq2_node_mass_difference
+
+    diff, _ = eq2_node_mass_difference({**P, "m_D": 0.0, "m_E6": 0.0, "m_F6": 0.0}, W)
+    assert diff < 1e-8
+
+
+def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
+    """With the assumed rod masses on D the network differs from eq. (2); the difference is the closed form
+    |j w m K_2 / (1 + j w m K_2)| (a second route), it exceeds 10 near the chain's shifted antiresonance and tends to
+    m / (m + sum of branch masses) at low frequency."""
+    from linkwork.papers.heald.model import eq2_mobility, eq2_node_mass_difference, eq2_with_node_mass, model_b_parameters, node_mass, reduced_masses
+
+    u = {**P, "c_joint": 0.0, "c_O": 0.0}
+    diff, at = eq2_node_mass_difference(P, W)
+    k2, _, _ = eq2_mobility(u, W)
+    closed = np.abs(eq2_with_node_mass(u, W) - k2) / np.abs(k2)
+    assert diff == pytest.approx(float(closed.max()), rel=1e-6)
+    assert at == pytest.approx(float(W[np.argmax(closed)]))
+    assert diff > 10.0
+    m = node_mass(P)
+    low = np.array([W[0] * 1e-3])
+    k_low, _, _ = eq2_mobility(u, low)
+    branch_mass = sum(reduced_masses(model_b_parameters(u))) + P["M_P"]
+    assert float(np.abs(eq2_with_node_mass(u, low) - k_low)[0] / np.abs(k_low)[0]) == pytest.approx(m / (m + branch_mass), rel=1e-4)
+
+
+# --- the inputs each model reads (issue 22: model B's table lists only these) ---------------------------------
+
+
+@pytest.mark.parametrize("model", ["A", "B"])
+def test_listed_inputs_are_exactly_those_that_move_the_model(model):
+    """Each labelled parameter moved by 30 % (c_joint, 0 at its assumed value, set to 50 N s/m): the model's drive force,
+    joint forces and resonances move for every listed input and for no other (the listing in the report's input
+    tables is this one)."""
+    from linkwork.engines.chains import resonances
+    from linkwork.papers.heald.model import MODEL_INPUTS
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    def state(cfg_params):
+        p = parameters({**CFG, "parameters": cfg_params})
+        q, e, f, _ = joint_forces(model, p, "elastic", W, 1e-4)
+        vel, force = resonances(build(model, {**p, "c_joint": 0.0, "c_O": 0.0}, "elastic"))
+        return np.concatenate([np.abs(q), np.abs(e), np.abs(f), vel, force, [lowest_resonance(model, p)]])
+
+    base = state(CFG["parameters"])
+    moving = set()
+    for name, entry in CFG["parameters"].items():
+        value = entry["value"] * 1.3 if entry["value"] else 50.0
+        moved_state = state({**CFG["parameters"], name: {**entry, "value": value}})
+        if np.max(np.abs(moved_state - base) / np.maximum(np.abs(base), 1e-300)) > 1e-9:
+            moving.add(name)
+    assert moving == set(MODEL_INPUTS[model])

@@ -31,6 +31,8 @@ SCAN = 9
 #: Sweeps that move one assumed input alone (the reaction ratio moves reaction_E with reaction_F at its assumed value);
 #: the clearance sweep moves both clearances together and has no single input.
 SWEEP_INPUT = {"reaction_ratio": "reaction_E", "heald_mass": "M_P", "warp_stiffness": "k_O"}
+#: What the findings carry over from the chain study on eq. (2)'s massless-node condition.
+EQ2_NODE_MASS = ("eq2_relative_difference", "eq2_node_mass_difference", "eq2_node_mass_difference_at", "eq2_node_mass", "eq2_node_mass_antiresonance")
 CLAIM_SHORT = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": "the speed limit"}
 
 
@@ -258,6 +260,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
             "sweep": ("sweep", np.array(SWEEPS, dtype=object), {"units": "1", "long_name": "swept parameter"}),
         },
     )
+    findings = findings.merge(chain[list(EQ2_NODE_MASS)])
     findings = findings.merge(counts_dataset(table))
     findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy))
     findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain, findings)))

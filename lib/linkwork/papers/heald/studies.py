@@ -12,7 +12,7 @@ from ...engines.chains import resonances, solve_network
 from ...units import RAD_S_PER_RPM
 from .adapter import amplitude, omega_grid, parameters, sweep_values
 from .dynamics import cam_harmonics, damped_modes, harmonic_transfer, kinetostatic_reactions, periodic_peaks, self_consistent_reactions
-from .model import JOINTS, build, eq2_mobility, joint_stiffness, model_b_parameters
+from .model import JOINTS, build, eq2_mobility, eq2_node_mass_difference, joint_stiffness, model_b, model_b_parameters, node_mass
 
 
 def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.ndarray, amplitude: float):
@@ -134,6 +134,14 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
     data["eq2_relative_difference"] = xr.DataArray(
         float(np.max(np.abs(1 / r.input_force - k_eq2) / np.abs(k_eq2))), attrs={"units": "1", "long_name": "max |K_network - K_eq2| / |K_eq2|, model B, undamped"}
     )
+    node_diff, node_at = eq2_node_mass_difference(p, w)
+    data["eq2_node_mass_difference"] = xr.DataArray(node_diff, attrs={
+        "units": "1", "long_name": "max over the band of |K_chain - K_eq2| / |K_eq2| with the rod's masses m_D + m_E6 + m_F6 on the driven node (undamped, frequency grid)"})
+    data["eq2_node_mass_difference_at"] = xr.DataArray(node_at, attrs={"units": "rad s-1", "long_name": "drive frequency at which that difference peaks on the grid"})
+    data["eq2_node_mass"] = xr.DataArray(node_mass(p), attrs={"units": "kg", "long_name": "mass on the driven node, m_D + m_E6 + m_F6"})
+    _, anti = resonances(model_b(undamped, "elastic", with_node_mass=True))
+    data["eq2_node_mass_antiresonance"] = xr.DataArray(float(anti[0]), attrs={
+        "units": "rad s-1", "long_name": "lowest antiresonance (K -> infinity) of eq. (2)'s chain with the node mass; the relative difference is unbounded there"})
     data["eq2_numerator_frequencies"] = xr.DataArray(num_w, dims="numerator_factor", attrs={"units": "rad s-1", "long_name": "w09, w010, w011 of eq. (2) (velocity resonances)"})
     data["eq2_denominator_frequencies"] = xr.DataArray(den_w, dims="denominator_factor", attrs={"units": "rad s-1", "long_name": "w07, w08 of eq. (2) (force resonances)"})
     data["eq2_interlaced"] = xr.DataArray(int(interlaced(num_w, den_w)), attrs={"units": "1", "long_name": "1 if zeros and poles of eq. (2) interlace, starting with a zero"})
