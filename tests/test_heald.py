@@ -238,3 +238,91 @@ def test_listed_inputs_are_exactly_those_that_move_the_model(model):
         if np.max(np.abs(moved_state - base) / np.maximum(np.abs(base), 1e-300)) > 1e-9:
             moving.add(name)
     assert moving == set(MODEL_INPUTS[model])
+
+
+# --- the drive frequency as a scenario (issue 22) ------------------------------------------------------------
+
+
+def test_half_shaft_drive_is_the_shaft_drive_at_half_the_speed():
+    """A drive at half the shaft frequency gives at shaft speed W what the shaft drive gives at W / 2 (a second
+    route: the frequency axis rescaled by hand, the operating speed of model B's kinetostatic reactions with it), and
+    the shaft speed at which the drive meets the lowest resonance doubles."""
+    from linkwork.papers.heald.adapter import DRIVE_RATIO, drive_ratio
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    half = {**P, "drive_ratio": DRIVE_RATIO["half-shaft"]}
+    for model in ("A", "B"):
+        got = joint_forces(model, half, "elastic", W, 1e-4)
+        ref = joint_forces(model, {**P, "omega_op": P["omega_op"] / 2}, "elastic", W / 2, 1e-4)
+        for a, b in zip(got[:3], ref[:3], strict=True):
+            np.testing.assert_allclose(a, b, rtol=1e-12)
+        assert lowest_resonance(model, half) == pytest.approx(2 * lowest_resonance(model, P), rel=1e-12)
+    assert P["drive_ratio"] == 1.0
+    assert drive_ratio({**CFG, "drive": {"frequency": {**CFG["drive"]["frequency"], "value": "half-shaft"}}}) == 0.5
+    with pytest.raises(ValueError, match="unknown drive frequency"):
+        drive_ratio({**CFG, "drive": {"frequency": {**CFG["drive"]["frequency"], "value": "quarter"}}})
+
+
+def test_drive_choice_is_a_labelled_scenario_the_uncertainty_study_sees():
+    """The drive frequency is a labelled choice with readable labels, and the study's inputs carry it as a choice
+    (the core runs it as a scenario, never samples a number for it)."""
+    from linkwork.papers.heald.adapter import DRIVE_RATIO
+    from linkwork.papers.heald.uncertainty import inputs
+
+    entry = CFG["drive"]["frequency"]
+    assert set(entry["choices"]) == set(DRIVE_RATIO) and len(entry["choice_labels"]) == len(entry["choices"])
+    drive = [i for i in inputs(CFG) if i.path == "drive.frequency.value"]
+    assert len(drive) == 1 and drive[0].choices == tuple(entry["choices"])
+
+
+# --- corners of the declared ranges (issue 22: the core's bounded search needs a known target) -----------------
+
+
+def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
+    """At R = 10 N, Delta = 0.3 mm, k_n = 2e7 N/m, eta = 2.5, k_O = 5e3 N/m and every mass at its heaviest (M_P = 12 kg)
+    model A with D held is one degree of freedom: the frame P with the levers' springs and masses reduced to it,
+    w^2 = (k_O + (k_E + k_F) / eta^2) / (M_out + (m_E7 + m_F8) / eta^2), about 31 rad/s (the samples reported 72-721)."""
+    from linkwork.engines.chains import vulfson_stiffness
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    corner = dict(P)
+    for name, entry in CFG["parameters"].items():
+        if name.startswith(("m_", "M_")):
+            corner[name] = entry["range"][1]
+    corner.update(reaction_E=10.0, reaction_F=10.0, clearance_E=3e-4, clearance_F=3e-4, k_n=2e7, eta7=2.5, eta8=2.5, k_O=5e3, M_P=12.0)
+    k_tau = float(vulfson_stiffness(10.0, 3e-4, 2e7))
+    m_out = corner["M_G"] + corner["m_H9"] + corner["M_K"] + corner["m_L10"] + corner["M_P"]
+    closed = np.sqrt((5e3 + 2 * k_tau / 2.5**2) / (m_out + (corner["m_E7"] + corner["m_F8"]) / 2.5**2))
+    assert lowest_resonance("A", corner) == pytest.approx(closed, rel=1e-9)
+    assert 30.0 < closed < 32.0
+
+
+# --- the dwell-cam clause with damped joints (issue 22) ------------------------------------------------------
+
+
+def test_largest_dip_is_the_largest_relative_fall():
+    from linkwork.papers.heald.studies import largest_dip
+
+    assert largest_dip(np.array([1.0, 2.0, 3.0])) == 0.0
+    assert largest_dip(np.array([1.0, 4.0, 3.0, 5.0]), np.array([2.0, 1.0, 3.0, 4.0])) == pytest.approx(0.5)
+
+
+def test_joint_damping_shrinks_the_cam_dips_of_model_b():
+    """Model B's joint branches: undamped, the cam's 9th harmonic meeting them near the top of the band makes the
+    peak joint forces fall by tens of per cent; with c_joint = 500 N s/m their damping ratio is c / (2 sqrt(k m))
+    (closed form) and the fall is below 1 %."""
+    from linkwork.papers.heald.model import joint_stiffness, model_b_parameters, reduced_masses
+    from linkwork.papers.heald.studies import cam_measures, joint_branch_damping
+
+    cam = CFG["cam"]
+    c = cam_harmonics(cam["rise_fraction"]["value"], cam["harmonics"], cam["samples"])
+    dips = []
+    for cj in (0.0, 500.0):
+        q = {**P, "c_joint": cj}
+        values, _ = cam_measures("B", q, harmonic_transfer("B", q, W, cam["harmonics"]), c * 1e-4 / abs(c[0]), cam["samples"], cam["significant_harmonic"])
+        dips.append(values["largest_dip"])
+    assert dips[0] > 0.1 and dips[1] < 0.01
+    q = {**P, "c_joint": 500.0}
+    b = model_b_parameters(q)
+    k, m = joint_stiffness(b, "E", "elastic"), reduced_masses(b)[0]
+    assert joint_branch_damping("B", q) == pytest.approx(500.0 / (2 * np.sqrt(k * m)), rel=1e-6)

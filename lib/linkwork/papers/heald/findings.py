@@ -225,6 +225,11 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
     def grid(col):
         return np.array(list(col), dtype=object).reshape(shape)
 
+    damp = []
+    for c in chain.joint_damping.values:
+        at = xr.Dataset({k: chain[f"{v}_by_joint_damping"].sel(joint_damping=c, drop=True) for k, v in names.items()})
+        damp.append(grid(compare_datasets(published, [at], errors=errors).verdict))
+
     return xr.Dataset(
         {
             "verdict_sine_nominal": (("model", "claim"), grid(sine.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, harmonic drive"}),
@@ -232,8 +237,33 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
             "verdict_cam_over_rise": (("model", "claim"), grid(over), {"units": "1", "long_name": "verdict with the cam drive over the rise fraction's range (other inputs assumed)"}),
             "value_cam_nominal": (("model", "claim"), np.array(list(cam_table.reproduced), dtype=float).reshape(shape), {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"}),
             "verdict_limit_by_harmonic": (("model", "harmonic"), by_h, {"units": "1", "long_name": "verdict on the speed limit at the assumed parameters if harmonic h were the highest one counted (cam drive)"}),
+            "verdict_cam_by_joint_damping": (("model", "claim", "joint_damping"), np.stack(damp, axis=-1), {
+                "units": "1", "long_name": "verdict with the cam drive at the ends of the joint damping's range (other inputs assumed)"}),
+            "largest_dip_cam_by_joint_damping": chain.largest_dip_cam_by_joint_damping,
+            "joint_branch_damping_ratio": chain.joint_branch_damping_ratio,
             "cam_changes_a_verdict": ((), int((sine.verdict.values != cam_table.verdict.values).any()), {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"}),
         }
+    )
+
+
+def drive_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.Dataset) -> xr.Dataset:
+    """Verdicts with the drive at each drive-frequency choice, the other inputs at their assumed values (the
+    uncertainty study spans the ranges per scenario)."""
+    errors = numerical_errors(chain, accuracy)
+    drives = [str(d) for d in chain.drive.values]
+    verdict = np.empty((chain.sizes["model"], len(CLAIMS), len(drives)), dtype=object)
+    value = np.empty(verdict.shape)
+    for j, d in enumerate(drives):
+        at = xr.Dataset({k: chain[f"{k}_by_drive"].sel(drive=d, drop=True) for k in ("ratio_EF_min", "growth_fraction", "first_resonance")})
+        t = compare_datasets(published, [at], errors=errors)
+        verdict[:, :, j] = np.array(list(t.verdict), dtype=object).reshape(verdict.shape[:2])
+        value[:, :, j] = np.array(list(t.reproduced), dtype=float).reshape(verdict.shape[:2])
+    dims = ("model", "claim", "drive")
+    return xr.Dataset(
+        {"verdict_by_drive": (dims, verdict, {"units": "1", "long_name": "verdict per drive-frequency scenario, the other inputs at their assumed values"}),
+         "value_by_drive": (dims, value, {"units": "the claim's unit", "long_name": "the claim's measure per drive-frequency scenario"}),
+         "drive_ratio": ("drive", chain.drive_ratio.values, dict(chain.drive_ratio.attrs))},
+        coords={"drive": ("drive", np.array(drives, dtype=object), {"units": "1", "long_name": "drive-frequency scenario"})},
     )
 
 
@@ -262,7 +292,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
     )
     findings = findings.merge(chain[list(EQ2_NODE_MASS)])
     findings = findings.merge(counts_dataset(table))
-    findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy))
+    findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy)).merge(drive_verdicts(published, chain, accuracy))
     findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain, findings)))
     return table, findings
 

@@ -19,8 +19,10 @@ parameter dict (SI units; every value is labelled sourced/assumed in config):
     pin bending stiffness (N/m); ``c_joint`` damping in a joint (N s/m);
 ``clearance_E``, ``clearance_F`` (m), ``reaction_E``, ``reaction_F`` (N)
     Vulfson's clearance model of the joints E and F (the assumed reactions enter model A only);
+``drive_ratio``
+    drive frequency over the main-shaft frequency (1, or 1/2 when a frame cycles once in two picks);
 ``omega_op`` (rad/s), ``stroke_D`` (m)
-    operating speed and heald stroke at D (amplitude of the first harmonic): model B's reactions are its
+    operating main-shaft speed and heald stroke at D (amplitude of the first harmonic): model B's reactions are its
     own kinetostatic ones, |R_i| = |Q_i| of the ideal-joint branch under that stroke at that speed.
 
 Model A (the physical linkage): the rigid rod DEF moves with the drive D; the
@@ -53,6 +55,11 @@ MODEL_INPUTS = {"A": ("m_D", "m_E6", "m_F6", *_COMMON, "reaction_E", "reaction_F
                 "B": (*_COMMON, "operating_speed_rpm", "stroke_D")}
 
 
+def drive_frequency(p: Mapping[str, float], shaft):
+    """The chain's drive frequency (rad/s) at a main-shaft frequency (rad/s): times ``drive_ratio`` (1 if absent)."""
+    return p.get("drive_ratio", 1.0) * np.asarray(shaft, dtype=float)
+
+
 def joint_stiffness(p: Mapping[str, float], joint: str, variant: str) -> float:
     """k_tau of joint E or F (N/m); the ideal variant has no clearance."""
     clearance = 0.0 if variant == "ideal" else p[f"clearance_{joint}"]
@@ -71,7 +78,7 @@ def kinetostatic_reactions_b(p: Mapping[str, float]) -> tuple[float, float]:
     branch, a pin (stiffness k_n, damping c_joint) into the reduced mass m_i, so under the heald stroke X at
     omega_op the force is |z X omega^2 m_i / (z - omega^2 m_i)| with z = k_n + j omega c_joint.  Not circular:
     the ideal joint has no clearance, so its stiffness does not depend on the reaction."""
-    w, x = p["omega_op"], p["stroke_D"]
+    w, x = drive_frequency(p, p["omega_op"]), p["stroke_D"]
     z = p["k_n"] + 1j * w * p["c_joint"]
     return tuple(float(abs(z * x * w**2 * m / (z - w**2 * m))) for m in reduced_masses(p))
 

@@ -14,8 +14,8 @@ from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
 
 def inputs(cfg: Mapping[str, Any]) -> list[Input]:
-    """The assumed chain parameters with their ranges."""
-    return list(labelled_inputs(cfg["parameters"], "parameters."))
+    """The assumed chain parameters with their ranges, and the drive-frequency choice (a scenario)."""
+    return [*labelled_inputs(cfg["parameters"], "parameters."), *labelled_inputs(cfg["drive"], "drive.")]
 
 
 def results(cfg: Mapping[str, Any]) -> list[Any]:
