@@ -168,10 +168,14 @@ def test_cam_window_and_notes():
     from linkwork.papers.heald.findings import notes
 
     f = xr.Dataset({"verdict_sine_nominal": (("model", "claim"), np.array([["matches", "deviates"]], dtype=object)),
-                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object))},
-                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"]})
+                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object)),
+                    "verdict_cam_by_joint_damping": (("model", "claim", "joint_damping"), np.array([[["deviates", "matches"], ["deviates", "deviates"]]], dtype=object)),
+                    "largest_dip_cam_by_joint_damping": (("model", "joint_damping"), [[0.765, 0.0012]]),
+                    "joint_branch_damping_ratio": (("model", "joint_damping"), [[0.0, 0.0498]])},
+                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"], "joint_damping": [0.0, 500.0]})
     text = notes(xr.Dataset(), f)
     assert "model B, forces grow: matches → deviates" in text and "limit" not in text
+    assert "(500 N s/m, a damping ratio of 0.050)" in text and "is matches instead" in text and "from 76% to 0.12%" in text
     from linkwork.papers.heald.studies import cam_study
 
     variables, _ = cam_study(CFG, P, ["B"], W[:20], 1e-4)
@@ -326,3 +330,28 @@ def test_joint_damping_shrinks_the_cam_dips_of_model_b():
     b = model_b_parameters(q)
     k, m = joint_stiffness(b, "E", "elastic"), reduced_masses(b)[0]
     assert joint_branch_damping("B", q) == pytest.approx(500.0 / (2 * np.sqrt(k * m)), rel=1e-6)
+
+
+# --- the answer a referee signs (issue 22) -------------------------------------------------------------------
+
+
+def test_answer_is_two_plain_sentences_with_the_results_numbers():
+    """At most two sentences, no code name (snake_case) and no unrendered template; the counts and eq. (2)'s
+    node-mass number come from the results given."""
+    import re
+
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers.heald.findings import answer
+
+    table = pd.DataFrame({"model": ["A", "A", "B"], "role": "headline", "verdict": ["deviates", "depends on assumptions", "matches"]})
+    chain = xr.Dataset({"eq2_node_mass": 1.6, "eq2_node_mass_difference": 91.83, "eq2_node_mass_difference_at": 66.21})
+    same = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "matches"]]], dtype=object))})
+    text = answer(table, chain, same)
+    assert len(re.findall(r"(?<!eq)[.!?](\s|$)", text)) <= 2  # "eq. (2)" is no sentence end
+    assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
+    assert "1 deviate, 1 depend on assumptions" in text and "1 match" in text
+    assert "1.6 kg" in text and "92 times" in text and "66.2 rad/s" in text and "half of it alike" in text
+    differ = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "deviates"]]], dtype=object))})
+    assert "half of it" not in answer(table, chain, differ)
