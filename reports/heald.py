@@ -523,14 +523,14 @@ md(
 
 # %% [markdown]
 # ### Does the cam's verdict survive damped joints?
-#
-# The cam's effect on model B rests on weak high harmonics (a fraction of a per cent of the first) meeting joint branches
-# without damping. The paper's chain has no joint damper; a pinned joint with clearance does dissipate, by friction and by
-# impact. We take the joint damping as an assumed input from none to a damping ratio of about 0.05 of model B's joint
-# branches (jointed steel mechanisms are damped by a few per cent of critical) and judge the cam's claims at both ends.
 
 # %%
 cd = fnd.joint_damping.values
+zeta_top = float(fnd.joint_branch_damping_ratio.sel(model="B", joint_damping=cd[-1])) if "B" in models else float("nan")
+md("The cam's effect on model B rests on weak high harmonics (a fraction of a per cent of the first) meeting joint branches without damping. "
+   "The paper's chain has no joint damper; a pinned joint with clearance does dissipate, by friction and by impact. We take the joint damping as an "
+   f"assumed input from {cd[0]:g} to {cd[-1]:g} N s/m, which gives model B's joint branches a damping ratio of up to {zeta_top:.3f} (jointed steel "
+   "mechanisms are damped by a few per cent of critical), and judge the cam's claims at both ends.")
 rows = []
 for m in models:
     for c in fnd.claim.values:
@@ -542,11 +542,16 @@ for m in models:
 table(pd.DataFrame(rows))
 dips = ", ".join(f"model {m}: {float(fnd.largest_dip_cam_by_joint_damping.sel(model=m, joint_damping=cd[0])):.1%} → "
                  f"{float(fnd.largest_dip_cam_by_joint_damping.sel(model=m, joint_damping=cd[-1])):.2%}" for m in models)
+stand = bool((fnd.verdict_cam_by_joint_damping.values == fnd.verdict_cam_by_joint_damping.values[..., :1]).all())
+dip_b = float(fnd.largest_dip_cam_by_joint_damping.sel(model="B", joint_damping=cd[-1])) if "B" in models else float("nan")
 md("ζ is the damping ratio of the modes through the joints with D held (in model B the joint branches, in model A its one mode). "
-   f"Largest fall of a peak joint force between neighbouring speeds of the grid, from no joint damping to the top of its range: {dips}. "
-   "**Judgement of the cam clause.** Under our strict reading (the forces grow over the whole band) the cam's verdicts stand over the whole damping range, "
-   "but the falls that break the growth shrink to the size in the last column of numbers above: with damped joints the cam's effect on the growth claim "
-   "is real only in the strict reading, not a feature a figure of the forces would show.")
+   f"Largest fall of a peak joint force between neighbouring speeds of the grid, from no joint damping to the top of its range: {dips}.\n\n"
+   "**Judgement of the cam clause.** "
+   + ("Under our strict reading (the forces grow over the whole band) the cam's verdicts are the same at both ends of the damping range, so the clause "
+      f"stands in that reading; but with damped joints the falls that break model B's growth are at most {dip_b:.2%} of the force, which no figure of the "
+      "forces would show. The clause is therefore kept only as a statement about the strict reading, not as a visible effect of the cam."
+      if stand else
+      "The cam's verdicts differ between the ends of the damping range: the clause depends on the joints' damping, which the paper does not give."))
 
 # %% [markdown]
 # ## 5. Inconsistencies in the text and how we resolved them
