@@ -242,6 +242,10 @@ def test_listed_inputs_are_exactly_those_that_move_the_model(model):
         if np.max(np.abs(moved_state - base) / np.maximum(np.abs(base), 1e-300)) > 1e-9:
             moving.add(name)
     assert moving == set(MODEL_INPUTS[model])
+    from linkwork.papers.heald.uncertainty import model_inputs
+
+    listed = {i.path for i in model_inputs(CFG, model)}
+    assert listed == {f"parameters.{n}.value" for n in MODEL_INPUTS[model] if "range" in CFG["parameters"][n]} | {"drive.frequency.value"}
 
 
 # --- the drive frequency as a scenario (issue 22) ------------------------------------------------------------
@@ -299,6 +303,14 @@ def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
     closed = np.sqrt((5e3 + 2 * k_tau / 2.5**2) / (m_out + (corner["m_E7"] + corner["m_F8"]) / 2.5**2))
     assert lowest_resonance("A", corner) == pytest.approx(closed, rel=1e-9)
     assert 30.0 < closed < 32.0
+    # the same corner through the study's results function, the one the core's bounded search evaluates
+    from linkwork.papers.heald.uncertainty import results
+
+    values = {**{n: e["range"][1] for n, e in CFG["parameters"].items() if n.startswith(("m_", "M_"))},
+              "reaction_E": 10.0, "reaction_F": 10.0, "clearance_E": 3e-4, "clearance_F": 3e-4, "k_n": 2e7, "eta7": 2.5, "eta8": 2.5, "k_O": 5e3, "M_P": 12.0}
+    cfg = {**CFG, "parameters": {n: {**e, "value": values.get(n, e["value"])} for n, e in CFG["parameters"].items()}}
+    (ds,) = results(cfg)
+    assert float(ds.first_resonance.sel(model="A")) == pytest.approx(closed, rel=1e-9)
 
 
 # --- the dwell-cam clause with damped joints (issue 22) ------------------------------------------------------

@@ -34,3 +34,12 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
 def gather(cfg: Mapping[str, Any], batches: Sequence[Any]):
     """Rule study: every batch, with the ranges."""
     return gathered(inputs(cfg), batches, "Heald: assumed chain parameters, propagated")
+
+
+def model_inputs(cfg: Mapping[str, Any], model: str) -> list[Input]:
+    """The inputs that model ``model`` reads (the others do not move its quantities: a test checks it), for the
+    per-model input tables: the drive choice and the parameters the model's chain takes."""
+    from .model import MODEL_INPUTS
+
+    keep = {f"parameters.{n}.value" for n in MODEL_INPUTS[model]}
+    return [i for i in inputs(cfg) if i.path in keep or not i.path.startswith("parameters.")]
