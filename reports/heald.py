@@ -52,13 +52,17 @@ for ax, (cid, label, scale) in zip(axes, claims_drawn, strict=True):
         ax.axvspan(limit - float(fnd.limit_band), limit + float(fnd.limit_band), color="0.85", lw=0, label="the paper's claim, as we read it")
     for m in models:
         y = ys[m]
-        lo, hi = float(rows_c.input_low[m]), float(rows_c.input_high[m])
-        ax.hlines(y, lo, hi, color="C0", lw=6, alpha=0.5, label="over the assumed inputs' ranges" if m == models[0] else None)
+        rows_m = cmp[(cmp.id == cid) & (cmp.model == m)]
+        # one row per drive scenario once the comparison has a scenario column; else one row over both drives
+        groups = list(rows_m.groupby("scenario", sort=False)) if "scenario" in rows_m else [("", rows_m)]
+        offsets = np.linspace(-0.12, 0.12, len(groups)) if len(groups) > 1 else [0.0]
+        for (scen, r), dy, colour in zip(groups, offsets, ("C0", "C9", "C2"), strict=False):
+            ax.hlines(y + dy, float(r.input_low.iloc[0]), float(r.input_high.iloc[0]), color=colour, lw=6, alpha=0.5,
+                      label=(f"over the assumed inputs' ranges{', ' + drive_labels.get(str(scen), str(scen)) if scen else ''}" if m == models[0] else None))
         for d, marker in zip(fnd.drive.values, ("o", "s"), strict=False):
             ax.plot(float(fnd.value_by_drive.sel(model=m, claim=cid, drive=d)), y, marker, mfc="k" if marker == "o" else "none", mec="k", ms=7,
                     label=f"assumed values, {drive_labels[str(d)]}" if m == models[0] else None)
-        ax.text(1.01, y, cmp.set_index(["model", "id"]).verdict[(m, cid)],
-                transform=ax.get_yaxis_transform(), va="center", fontsize=8)
+        ax.text(1.01, y, " / ".join(dict.fromkeys(str(v) for v in rows_m.verdict)), transform=ax.get_yaxis_transform(), va="center", fontsize=8)
     ax.set_xscale(scale)
     ax.set_yticks([ys[m] for m in models], [model_names[m] for m in models])
     ax.set_ylim(-0.6, len(models) - 0.4)
@@ -69,9 +73,11 @@ axes[1].set_xlim(-0.02, 1.05)
 handles, labels = axes[0].get_legend_handles_labels()
 fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8)
 plt.show()
-caption("The paper's three claims against our two chain models. Grey: what each claim says, as we read it; blue bar: our value over the ranges of every "
-        "assumed input (both drive frequencies); dot: at the assumed values with the drive at the shaft frequency; open square: with the drive at half the shaft "
-        "frequency. The verdict over the ranges is at the right. Units: force ratio and band fraction dimensionless, frequency in rad/s.")
+per_scenario = "scenario" in cmp
+caption("The paper's three claims against our two chain models. Grey: what each claim says, as we read it; bars: our value over the ranges of every "
+        + ("assumed input, one bar per drive frequency (legend); " if per_scenario else "assumed input (both drive frequencies sampled); ")
+        + "dot: at the assumed values with the drive at the shaft frequency; open square: with the drive at half the shaft "
+        "frequency. The verdict over the ranges is at the right" + (" (per drive frequency, in the legend's order)" if per_scenario else "") + ". Units: force ratio and band fraction dimensionless, frequency in rad/s.")
 
 # %%
 md(f"**Paper.** {esc(CITATIONS['heald'])}")
