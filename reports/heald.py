@@ -8,36 +8,7 @@
 # ---
 
 # %% [markdown]
-# # Mechanical chains of a heald motion mechanism with joint clearance: reproduction report
-
-# %%
-from _common import esc, md
-
-from linkwork.papers import CITATIONS
-
-md(f"**Paper.** {esc(CITATIONS['heald'])}")
-
-# %% [markdown]
-# **What the paper does.** It models the heald motion of an STB loom as a mechanical chain in Druzhinsky's sense.
-# Lumped masses and springs are two-terminal elements with complex mobilities K = V/Q (mass 1/(jωm), spring jω/k).
-# The motion is kinematically excited at joint D, and the joints E and F get Vulfson's clearance stiffness
-# k_τ = k_n|R|/(k_nΔ + |R|). The total mobility is stated as eq. (2), the input force as Q = V/K, and the joint forces
-# are plotted against the main-shaft frequency (Figs. 5–6). **No parameter is printed**, so the figures cannot be
-# reproduced number for number. What can be checked is the structure of eq. (2) and, for each claim, the parameter
-# ranges under which it holds.
-#
-# **What we do.** We use a general chain solver (`linkwork.chains`) with three independent routes (complex network
-# with multipliers; real M, K, C matrices with null-space constraint elimination; series/parallel reduction) and two
-# chain models:
-#
-# * **Model A, the physical linkage.** The rigid rod DEF is driven at D. The clearance springs E and F lead into the
-#   bell cranks, whose levers (ratios η7, η8) drive the rigid rods GH and KL and the heald frame, held by the warp
-#   spring. This is a bridge network, not a series/parallel one.
-# * **Model B, the form of eq. (2).** Three spring→mass branches hang on the driven node: joint E with the
-#   bell-crank-7 side reduced to E, joint F likewise, and the warp spring with the heald frame.
-#
-# An "ideal" joint is Vulfson's Δ → 0 limit (the pin's own bending stiffness k_n). With perfectly rigid joints model A
-# is a redundant closed loop, in which the split of force between E and F is undefined.
+# # Heald paper (Grigoriev & Kheylo 2021): mechanical chains of a heald motion mechanism with joint clearance
 
 # %%
 import json
@@ -45,7 +16,10 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, caption, comparison_table, esc, inputs, load, md, provenance, table, verdict_figure
+
+from linkwork.papers import CITATIONS
+from linkwork.papers.heald.model import MODEL_INPUTS
 
 files = inputs()
 ds = load(files["result"])
@@ -57,12 +31,113 @@ cfg = json.loads(ds.attrs["config_json"])
 models = [str(m) for m in ds.model.values]
 many = float(fnd.many_times)
 limit = float(fnd.limit_rad_s)
+drive_labels = dict(zip(cfg["drive"]["frequency"]["choices"], cfg["drive"]["frequency"]["choice_labels"], strict=True))
+model_names = {"A": "physical linkage (model A)", "B": "chain of eq. (2) (model B)"}
+
+answer(fnd)
+
+# %%
+claims_drawn = [("force_E_many_times_F", f"force in E over force in F, smallest over the band (1); the paper: 'many times', read as ≥ {many:g}", "log"),
+                ("forces_grow_with_frequency", "fraction of the speed band over which both joint forces grow (1); the paper: they grow (all of it)", "linear"),
+                ("limit_41_89", f"shaft frequency at which the drive meets the lowest resonance (rad/s); the paper's limit {limit:g} rad/s ± 10 %", "log")]
+fig, axes = plt.subplots(3, 1, figsize=(10, 6.5), layout="constrained")
+ys = {m: len(models) - 1 - i for i, m in enumerate(models)}
+for ax, (cid, label, scale) in zip(axes, claims_drawn, strict=True):
+    rows_c = cmp[cmp.id == cid].set_index("model")
+    if cid == "force_E_many_times_F":
+        ax.axvspan(many, 1e3, color="0.85", lw=0, label="the paper's claim, as we read it")
+    elif cid == "forces_grow_with_frequency":
+        ax.axvspan(0.995, 1.005, color="0.85", lw=0, label="the paper's claim, as we read it")
+    else:
+        ax.axvspan(limit - float(fnd.limit_band), limit + float(fnd.limit_band), color="0.85", lw=0, label="the paper's claim, as we read it")
+    for m in models:
+        y = ys[m]
+        rows_m = cmp[(cmp.id == cid) & (cmp.model == m)]
+        # one row per drive scenario once the comparison has a scenario column; else one row over both drives
+        groups = list(rows_m.groupby("scenario", sort=False)) if "scenario" in rows_m else [("", rows_m)]
+        offsets = np.linspace(-0.12, 0.12, len(groups)) if len(groups) > 1 else [0.0]
+        for (scen, r), dy, colour in zip(groups, offsets, ("C0", "C9", "C2"), strict=False):
+            ax.hlines(y + dy, float(r.input_low.iloc[0]), float(r.input_high.iloc[0]), color=colour, lw=6, alpha=0.5,
+                      label=(f"over the assumed inputs' ranges{', ' + drive_labels.get(str(scen), str(scen)) if scen else ''}" if m == models[0] else None))
+        for d, marker in zip(fnd.drive.values, ("o", "s"), strict=False):
+            ax.plot(float(fnd.value_by_drive.sel(model=m, claim=cid, drive=d)), y, marker, mfc="k" if marker == "o" else "none", mec="k", ms=7,
+                    label=f"assumed values, {drive_labels[str(d)]}" if m == models[0] else None)
+        ax.text(1.01, y, " / ".join(dict.fromkeys(str(v) for v in rows_m.verdict)), transform=ax.get_yaxis_transform(), va="center", fontsize=8)
+    ax.set_xscale(scale)
+    ax.set_yticks([ys[m] for m in models], [model_names[m] for m in models])
+    ax.set_ylim(-0.6, len(models) - 0.4)
+    ax.set_title(label, fontsize=9, loc="left")
+    ax.grid(alpha=0.3, which="both", axis="x")
+axes[0].set_xlim(min(0.1, 0.5 * float(cmp[cmp.id == "force_E_many_times_F"].input_low.min())), 100)
+axes[1].set_xlim(-0.02, 1.05)
+handles, labels = axes[0].get_legend_handles_labels()
+fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8)
+plt.show()
+per_scenario = "scenario" in cmp
+caption("The paper's three claims against our two chain models. Grey: what each claim says, as we read it; bars: our value over the ranges of every "
+        + ("assumed input, one bar per drive frequency (legend); " if per_scenario else "assumed input (both drive frequencies sampled); ")
+        + "dot: at the assumed values with the drive at the shaft frequency; open square: with the drive at half the shaft "
+        "frequency. The verdict over the ranges is at the right" + (" (per drive frequency, in the legend's order)" if per_scenario else "") + ". Units: force ratio and band fraction dimensionless, frequency in rad/s.")
+
+# %%
+md(f"**Paper.** {esc(CITATIONS['heald'])}")
+if fnd.attrs.get("notes"):
+    md(f"**What the counts do not show.** {esc(fnd.attrs['notes'])}")
+
+# %% [markdown]
+# **What the paper does.** It models the heald motion of an STB loom as a mechanical chain in Druzhinsky's sense.
+# Lumped masses and springs are two-terminal elements with complex mobilities K = V/Q (mass 1/(jωm), spring jω/k).
+# The motion is kinematically excited at joint D, and the joints E and F get Vulfson's clearance stiffness
+# k_τ = k_n|R|/(k_nΔ + |R|). The total mobility is stated as eq. (2), the input force as Q = V/K, and the joint forces
+# are plotted against the main-shaft frequency (Figs. 5–6). **No parameter is printed**, so the figures cannot be
+# reproduced number for number. What can be checked is the structure of eq. (2) and, for each claim, the parameter
+# ranges under which it holds.
+#
+# **What we do.** We use a general chain solver with three independent routes (complex network with multipliers; real
+# mass, stiffness and damping matrices with the constraints eliminated; series/parallel reduction) and two chain models:
+#
+# * **Model A, the physical linkage.** The rigid rod DEF is driven at D. The clearance springs E and F lead into the
+#   bell cranks, whose levers (ratios η7, η8) drive the rigid rods GH and KL and the heald frame, held by the warp
+#   spring. This is a bridge network, not a series/parallel one.
+# * **Model B, the form of eq. (2).** Three spring→mass branches hang on the driven node: joint E with the
+#   bell-crank-7 side reduced to E, joint F likewise, and the warp spring with the heald frame. The driven node carries
+#   no mass: eq. (2) holds only then (section 3).
+#
+# An "ideal" joint is Vulfson's Δ → 0 limit (the pin's own bending stiffness k_n). With perfectly rigid joints model A
+# is a redundant closed loop, in which the split of force between E and F is undefined.
+#
+# **The drive frequency is a scenario.** The paper drives its chain at the main-shaft frequency. In plain weave a heald
+# frame rises and falls once every two picks, one pick per main-shaft turn, so its drive may run at half the shaft
+# frequency. Both are judged (section 2b); the frequency axes of the figures are main-shaft frequencies.
 
 # %% [markdown]
 # ## Summary: each claim, per model
 
 # %%
-answer(fnd)
+def inputs_table(unc, model, quantities):
+    """Each input the model reads moved alone over its range (or to its other choice): the range it gives each claim's
+    measure.  The inputs the model does not read are left out (they do not move it: a test checks the list)."""
+    index = {str(q): i for i, q in enumerate(unc.quantity.values)}
+    rows, left_out = [], []
+    for k, path in enumerate(unc.input.values):
+        name = str(path).removesuffix(".value").rsplit(".", 1)[-1]
+        if str(path).startswith("parameters.") and name not in MODEL_INPUTS[model]:
+            left_out.append(name)
+            continue
+        row = {"input (config key)": str(path).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why this range": str(unc.input_reason.values[k])}
+        for qid, label in quantities.items():
+            q = index[f"{model}|{qid}"]
+            row[label] = f"{unc.oat_low.values[k, q]:.4g} … {unc.oat_high.values[k, q]:.4g}"
+        rows.append(row)
+    table(pd.DataFrame(rows), caption=f"Model {model}: each input it reads moved alone over its range ({int(unc.samples)} samples in all, Latin hypercube included). "
+          + (f"Not listed, because model {model} does not read them: {', '.join(INPUT_WORDS.get(n, n) for n in left_out)}." if left_out else ""))
+
+
+#: Plain names of the inputs a model may leave out (for the captions' prose).
+INPUT_WORDS = {"m_D": "the rod's mass at D", "m_E6": "the rod's mass at E", "m_F6": "the rod's mass at F", "reaction_E": "the assumed reaction at E",
+               "reaction_F": "the assumed reaction at F", "operating_speed_rpm": "the operating speed", "stroke_D": "the heald stroke at D"}
+
+
 figure_labels = {"force_E_many_times_F": f"force in E many times that in F (min |Q_E|/|Q_F| ≥ {many:g} over the band)",
                  "forces_grow_with_frequency": "joint forces grow with frequency (over the whole band)",
                  "limit_41_89": f"limit {float(fnd.limit_rpm):.0f} min⁻¹ = {limit:g} rad/s: the lowest resonance under the drive lies within ±{float(fnd.limit_band):.2g} rad/s"}
@@ -78,8 +153,8 @@ for m in models:
     note = ((f"Only the claims with a tolerance band are drawn; not drawn: {', '.join(left_out)} (one-sided readings, 'at least', with no tolerance to scale by: "
              "their verdicts are in the table above). ") if left_out else "") + (f"Note: {'; '.join(cam_changed)}." if cam_changed else "")
     verdict_figure(drawn.assign(quantity=[figure_labels[i] for i in drawn.id]), f"Heald, model {m}: published claims against ours", note=note)
-    oat_table(unc, {"force_E_many_times_F": "min |Q_E|/|Q_F|", "forces_grow_with_frequency": "growth fraction", "limit_41_89": "lowest resonance (rad/s)"}, model=m,
-              caption=f"model {m}: each assumed parameter moved alone over its range")
+    inputs_table(unc, m, {"force_E_many_times_F": "smallest |Q_E|/|Q_F|", "forces_grow_with_frequency": "growth fraction",
+                          "limit_41_89": "shaft frequency meeting the lowest resonance (rad/s)"})
 
 # %%
 sweep_labels = {"reaction_ratio": "|R_E|/|R_F| (|R_F| assumed)", "clearance": "clearance Δ_E = Δ_F, both moved together (m), grid cells",
@@ -127,7 +202,7 @@ two sides, and the reactions are the branches' own kinetostatic ones (section 1b
 
 # %%
 flips["flip_claim"] = [claim_short[c] for c in flips.flip_claim]
-table(flips.rename(columns={"flip_model": "model", "flip_claim": "claim", "flip_input": "assumed input", "flip_nominal": "assumed value",
+table(flips.rename(columns={"flip_model": "model", "flip_claim": "claim", "flip_input": "assumed input (config key)", "flip_nominal": "assumed value",
                             "flip_end": "range end", "flip_value": "verdict flips at", "flip_measure": "measure there", "flip_nominal_state": "at the assumed value the claim"}),
       {"assumed value": "{:.4g}", "range end": "{:.4g}", "verdict flips at": "{:.4g}", "measure there": "{:.4g}"})
 if "threshold_reaction_ratio_A" in fnd:
@@ -144,7 +219,7 @@ if "threshold_reaction_ratio_A" in fnd:
 # %%
 rows = [(k, v["value"], v["status"], v["reason"]) for k, v in cfg["parameters"].items()]
 rows.append(("displacement amplitude at D (m)", cfg["excitation"]["displacement_amplitude_m"]["value"], "assumed", cfg["excitation"]["displacement_amplitude_m"]["reason"]))
-table(pd.DataFrame(rows, columns=["parameter", "value", "status", "reason"]), {"value": "{:g}"})
+table(pd.DataFrame(rows, columns=["parameter (config key)", "value", "status", "reason"]), {"value": "{:g}"})
 md(
     f"Joint stiffnesses from Vulfson's model: k_E = {float(ds.k_E.sel(joints='elastic')):.3g} N/m and "
     f"k_F = {float(ds.k_F.sel(joints='elastic')):.3g} N/m with clearance; k_n = {float(ds.k_E.sel(joints='ideal')):.3g} N/m "
@@ -169,7 +244,7 @@ md(
     f"{float(rk.sel(model='B', joint='E')):.0f} N, {float(rk.sel(model='B', joint='F')):.0f} N in model B.\n\n"
     f"**Model B uses them** (|R_E| = {float(ds.reaction_model_B.sel(joint='E')):.0f} N, |R_F| = {float(ds.reaction_model_B.sel(joint='F')):.0f} N, "
     "in closed form, checked against the network in the tests): each joint carries only its own branch, whose ideal pin does not "
-    "depend on the reaction, so nothing is circular, and the assumed reaction_E, reaction_F do not enter model B.\n\n"
+    "depend on the reaction, so nothing is circular, and the assumed reactions do not enter model B.\n\n"
     "**Model A cannot use them: the split is circular.** With both joints rigid the frame is driven from both sides, a statically "
     "indeterminate loop: the ideal chain splits the load evenly only because both pins are given the same k_n. With clearance the load "
     "splits by k_E : k_F, and k_τ depends on the share each joint carries. Solving R = |Q(ω_op; k_τ(R))| gives the self-consistent "
@@ -185,7 +260,7 @@ md(
     f"**What this does to model A's E/F claim.** With the mechanism's own reactions (kinetostatic, or self-consistent: equal at equal clearances) "
     f"model A's E/F ratio is {float(ds.ratio_EF_min_self_consistent_A):.3f}, and the claim **fails**. It holds only if the reactions are split at least "
     + (f"{float(fnd.threshold_reaction_ratio_A):.4g} : 1, " if "threshold_reaction_ratio_A" in fnd else "several to one, ")
-    + "which the kinetostatics of a symmetric linkage do not give. The assumed reaction_E, reaction_F "
+    + "which the kinetostatics of a symmetric linkage do not give. The assumed reactions |R_E|, |R_F| "
     f"({cfg['parameters']['reaction_E']['range'][0]:g}–{cfg['parameters']['reaction_E']['range'][1]:g} N, below the kinetostatic magnitudes) stand for that "
     "split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ k_nΔ) a common factor on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the "
     "range of the split, not of the magnitude, is what decides. Model A's 'depends on assumptions' on this claim therefore means: it holds only for an "
@@ -219,13 +294,34 @@ caption("Force amplitudes in joints E (Fig. 5) and F (Fig. 6) against the main-s
 md(f"The dotted line marks the paper's {float(fnd.limit_rpm):.0f} min⁻¹. Force amplitudes are for the assumed drive amplitude and scale linearly with it.")
 
 # %% [markdown]
-# ## 3. Eq. (2) confirmed for model B
+# ## 2b. The drive frequency: at the shaft frequency or at half of it
+#
+# The same claims with the drive at each frequency, every other input at its assumed value. At half the shaft frequency
+# a resonance is met at twice the shaft speed, and model B's kinetostatic reactions are those at half the operating
+# speed. (The comparison table of the summary spans both drives with the ranges of the other inputs.)
+
+# %%
+rows = []
+for m in models:
+    for c in fnd.claim.values:
+        row = {"model": model_names[m], "claim": claim_labels[str(c)]}
+        for d in fnd.drive.values:
+            row[f"{drive_labels[str(d)]}: measure"] = float(fnd.value_by_drive.sel(model=m, claim=c, drive=d))
+            row[f"{drive_labels[str(d)]}: verdict"] = str(fnd.verdict_by_drive.sel(model=m, claim=c, drive=d).values)
+        rows.append(row)
+table(pd.DataFrame(rows), {c: "{:.4g}" for c in rows[0] if c.endswith("measure")})
+same = bool((fnd.verdict_by_drive.values == fnd.verdict_by_drive.values[..., :1]).all())
+md(f"Does the drive frequency change a verdict at the assumed inputs? **{'no' if same else 'yes'}**. The measures are the smallest force ratio E/F "
+   "over the band, the fraction of the band over which both joint forces grow, and the shaft frequency (rad/s) at which the drive meets the lowest resonance.")
+
+# %% [markdown]
+# ## 3. Eq. (2): exact for model B, and only while the driven node has no mass
 #
 # A driven node carrying three spring→mass branches, with no mass of its own, has
 # 1/K = Σ_i jω k_i/(ω_i² − ω²) with ω_i² = k_i/m_i. Putting this over a common denominator gives exactly the form of eq. (2).
 # The numerator is Π(ω_i² − ω²), three factors (ω09, ω010, ω011, the velocity resonances where K = 0). The denominator
 # is jω(k_E7 + k_F8 + k_O)(ω07² − ω²)(ω08² − ω²): degree 5 in ω against the numerator's 6. Here ω07 and ω08 are the
-# roots of Σ_i k_i Π_{j≠i}(ω_j² − ω²), the force resonances where K → ∞. Each root lies between two consecutive ω_i,
+# roots of Σ_i k_i Π_(j≠i) (ω_j² − ω²), the force resonances where K → ∞. Each root lies between two consecutive ω_i,
 # because the sum runs from −∞ to +∞ between its poles, so zeros and poles interlace.
 
 # %%
@@ -243,6 +339,15 @@ md(
     f"{', '.join(f'{x:.2f}' for x in ds.velocity_resonance.sel(model='B', joints='elastic').dropna('mode').values)} and force "
     f"{', '.join(f'{x:.2f}' for x in ds.force_resonance.sel(model='B', joints='elastic').dropna('mode').values)} rad/s. Model A does not have the form of "
     "eq. (2): a warp spring on the frame behind both levers is a bridge, not three branches on the driven node."
+)
+md(
+    f"**The condition: no mass on the driven node.** Eq. (2) has no mass term of the driven node, and the linkage puts the rod DEF there "
+    f"(m_D + m_E6 + m_F6 = {float(ds.eq2_node_mass):.1f} kg at the assumed values; the rod is rigid, so all of it moves with D). A node mass m adds one more "
+    "branch in parallel, 1/K = 1/K₂ + jωm, which eq. (2) does not have. With the rod's mass on the node the network's mobility differs from eq. (2) by up to "
+    f"**{float(ds.eq2_node_mass_difference):.0f} times eq. (2)'s own value** on our frequency grid, at {float(ds.eq2_node_mass_difference_at):.1f} rad/s. "
+    f"That is next to the chain's shifted antiresonance at {float(ds.eq2_node_mass_antiresonance):.2f} rad/s, where the chain's mobility is infinite and eq. (2)'s "
+    "is not, so the difference has no upper bound and its grid maximum depends on how close a grid point falls. Model B as built keeps the node massless, "
+    "so it is eq. (2)'s chain exactly; the rod's masses therefore do not enter model B, and its input table leaves them out."
 )
 
 # %% [markdown]
@@ -270,9 +375,10 @@ def zeta_text(z):
 table(pd.DataFrame([(m, freq_list("velocity_resonance", m), freq_list("force_resonance", m), zeta_list(m, "held"), zeta_list(m, "free")) for m in models],
                    columns=["model", "resonances, K = 0 (rad/s)", "antiresonances, K → ∞ (rad/s)", "damping of the resonances", "damping of the antiresonances"]))
 caption_text = (
-    f"The damping ratios are the complex eigenvalues of the damped chains (−Re λ/|λ|), from the assumed c_O = {cfg['parameters']['c_O']['value']:g} N s/m "
-    f"and c_joint = {cfg['parameters']['c_joint']['value']:g} N s/m; in model B the warp resonance has ζ = c_O/(2√(k_O M_P)) = "
-    f"{float(ds.damping_ratio_held.sel(model='B', mode=0)):.4f}, the joint branches none (the paper's chain has no joint damper). "
+    f"The damping ratios are the complex eigenvalues of the damped chains (−Re λ/|λ|), from the assumed warp damping c_O = {cfg['parameters']['c_O']['value']:g} N s/m "
+    f"and joint damping c_J = {cfg['parameters']['c_joint']['value']:g} N s/m; in model B the warp resonance has ζ = c_O/(2√(k_O M_P)) = "
+    f"{float(ds.damping_ratio_held.sel(model='B', mode=0)):.4f}, the joint branches none at the assumed joint damping (the paper's chain has no joint damper; "
+    "section 4b takes the joint damping over its range). "
     "Antiresonances of model B are not given a damping ratio: its driven node is massless, so with D free the chain has no such mode. "
     "Model B's joint resonances are undamped (ζ = 0), and model A's antiresonance near "
     f"{float(ds.mode_frequency_free.sel(model='A', mode=1)):.0f} rad/s has ζ = {zeta_text(float(ds.damping_ratio_free.sel(model='A', mode=1)))}: "
@@ -283,7 +389,8 @@ md(
     f"**What this means for the speed limit.** In model A the lowest natural frequency, {float(ds.force_resonance.sel(model='A', joints='elastic', mode=0)):.1f} rad/s, "
     "is an antiresonance: the frame "
     "swinging on the warp together with the free rod. Under the kinematic drive the joint forces *dip* there. A dip lowers the loads "
-    "at that speed and cannot set an upper speed limit: this antiresonance, although it lies near the paper's limit, is not its origin. Model A's lowest resonance under the drive is {float(ds.first_resonance.sel(model='A')):.1f} rad/s "
+    "at that speed and cannot set an upper speed limit: this antiresonance, although it lies near the paper's limit, is not its origin. "
+    f"With the drive at the shaft frequency model A's lowest resonance under the drive is {float(ds.first_resonance.sel(model='A')):.1f} rad/s "
     f"({float(ds.first_resonance_rpm.sel(model='A')):.0f} min⁻¹), far above the limit. The paper's own introduction gives the likelier source "
     "of its number: it cites measurements [2] showing that kinetostatic calculations hold only up to about its limit speed, which "
     "its chain does not derive."
@@ -412,12 +519,45 @@ md(
     f"Do the harmonics change a verdict at the assumed parameters? **{'yes' if int(fnd.cam_changes_a_verdict) else 'no'}**. "
     f"With the cam the highest significant harmonic is h = {int(ds.top_harmonic_cam.sel(model=models[0], rise='nominal'))}, so the "
     "lowest resonance is met at a shaft speed that many times lower. Weak higher harmonics matter where a resonance is undamped: "
-    "model B's joint branches have no damper, and a harmonic far below the significance threshold still raises a sharp peak when h times "
-    "the shaft speed meets a branch's resonance, so the peak joint forces no longer grow over the whole band. The verdicts of the summary "
+    "at the assumed values model B's joint branches have no damper (the paper's chain has none), and a harmonic far below the significance threshold "
+    "still raises a sharp peak when h times the shaft speed meets a branch's resonance, so the peak joint forces no longer grow over the whole band "
+    "(the next table takes the joint damping over its range). The verdicts of the summary "
     "(with the ranges of every assumed input) are those of the harmonic drive, the paper's own excitation; where the cam changes one, the summary "
     "and its figure say so beside it. The harmonic-drive column here is the verdict with every input fixed at its assumed value, so it can read "
     "'deviates' where the summary, which also spans the inputs' ranges, reads 'depends on assumptions'."
 )
+
+# %% [markdown]
+# ### Does the cam's verdict survive damped joints?
+
+# %%
+cd = fnd.joint_damping.values
+zeta_top = float(fnd.joint_branch_damping_ratio.sel(model="B", joint_damping=cd[-1])) if "B" in models else float("nan")
+md("The cam's effect on model B rests on weak high harmonics (a fraction of a per cent of the first) meeting joint branches without damping. "
+   "The paper's chain has no joint damper; a pinned joint with clearance does dissipate, by friction and by impact. We take the joint damping as an "
+   f"assumed input from {cd[0]:g} to {cd[-1]:g} N s/m, which gives model B's joint branches a damping ratio of up to {zeta_top:.3f} (jointed steel "
+   "mechanisms are damped by a few per cent of critical), and judge the cam's claims at both ends.")
+rows = []
+for m in models:
+    for c in fnd.claim.values:
+        row = {"model": model_names[m], "claim": claim_short[str(c)]}
+        for x in cd:
+            z = float(fnd.joint_branch_damping_ratio.sel(model=m, joint_damping=x))
+            row[f"joint damping {x:g} N s/m (ζ = {z:.3f}): verdict, cam drive"] = str(fnd.verdict_cam_by_joint_damping.sel(model=m, claim=c, joint_damping=x).values)
+        rows.append(row)
+table(pd.DataFrame(rows))
+dips = ", ".join(f"model {m}: {float(fnd.largest_dip_cam_by_joint_damping.sel(model=m, joint_damping=cd[0])):.1%} → "
+                 f"{float(fnd.largest_dip_cam_by_joint_damping.sel(model=m, joint_damping=cd[-1])):.2%}" for m in models)
+stand = bool((fnd.verdict_cam_by_joint_damping.values == fnd.verdict_cam_by_joint_damping.values[..., :1]).all())
+dip_b = float(fnd.largest_dip_cam_by_joint_damping.sel(model="B", joint_damping=cd[-1])) if "B" in models else float("nan")
+md("ζ is the damping ratio of the modes through the joints with D held (in model B the joint branches, in model A its one mode). "
+   f"Largest fall of a peak joint force between neighbouring speeds of the grid, from no joint damping to the top of its range: {dips}.\n\n"
+   "**Judgement of the cam clause.** "
+   + ("Under our strict reading (the forces grow over the whole band) the cam's verdicts are the same at both ends of the damping range, so the clause "
+      f"stands in that reading; but with damped joints the falls that break model B's growth are at most {dip_b:.2%} of the force, which no figure of the "
+      "forces would show. The clause is therefore kept only as a statement about the strict reading, not as a visible effect of the cam."
+      if stand else
+      "The cam's verdicts differ between the ends of the damping range: the clause depends on the joints' damping, which the paper does not give."))
 
 # %% [markdown]
 # ## 5. Inconsistencies in the text and how we resolved them

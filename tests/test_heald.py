@@ -168,13 +168,202 @@ def test_cam_window_and_notes():
     from linkwork.papers.heald.findings import notes
 
     f = xr.Dataset({"verdict_sine_nominal": (("model", "claim"), np.array([["matches", "deviates"]], dtype=object)),
-                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object))},
-                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"]})
+                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object)),
+                    "verdict_cam_by_joint_damping": (("model", "claim", "joint_damping"), np.array([[["deviates", "matches"], ["deviates", "deviates"]]], dtype=object)),
+                    "largest_dip_cam_by_joint_damping": (("model", "joint_damping"), [[0.765, 0.0012]]),
+                    "joint_branch_damping_ratio": (("model", "joint_damping"), [[0.0, 0.0498]])},
+                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"], "joint_damping": [0.0, 500.0]})
     text = notes(xr.Dataset(), f)
     assert "model B, forces grow: matches → deviates" in text and "limit" not in text
+    assert "(500 N s/m, a damping ratio of 0.050)" in text and "is matches instead" in text and "from 76% to 0.12%" in text
     from linkwork.papers.heald.studies import cam_study
 
     variables, _ = cam_study(CFG, P, ["B"], W[:20], 1e-4)
     amp, low = variables["cam_harmonic_amplitude"].values, variables["cam_harmonic_window_low"].values
     assert low[6] == pytest.approx(amp[8])  # h = 7: the strongest higher one is h = 9
     assert low[-1] == 0.0
+
+
+# --- eq. (2) holds only for a massless driven node (issue 22) ---------------------------------------------------
+
+
+def test_eq2_is_the_chain_mobility_when_the_driven_node_has_no_mass():
+    """With m_D = m_E6 = m_F6 = 0 the network's mobility of model B (with the node-mass element, of mass 0) is eq. (2)
+    to round-off."""
+    from linkwork.papers.heald.model import eq2_node_mass_difference
+
+    diff, _ = eq2_node_mass_difference({**P, "m_D": 0.0, "m_E6": 0.0, "m_F6": 0.0}, W)
+    assert diff < 1e-8
+
+
+def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
+    """With the assumed rod masses on D the network differs from eq. (2); the difference is the closed form
+    |j w m K_2 / (1 + j w m K_2)| (a second route), it exceeds 10 near the chain's shifted antiresonance and tends to
+    m / (m + sum of branch masses) at low frequency."""
+    from linkwork.papers.heald.model import eq2_mobility, eq2_node_mass_difference, eq2_with_node_mass, model_b_parameters, node_mass, reduced_masses
+
+    u = {**P, "c_joint": 0.0, "c_O": 0.0}
+    diff, at = eq2_node_mass_difference(P, W)
+    k2, _, _ = eq2_mobility(u, W)
+    closed = np.abs(eq2_with_node_mass(u, W) - k2) / np.abs(k2)
+    assert diff == pytest.approx(float(closed.max()), rel=1e-6)
+    assert at == pytest.approx(float(W[np.argmax(closed)]))
+    assert diff > 10.0
+    m = node_mass(P)
+    low = np.array([W[0] * 1e-3])
+    k_low, _, _ = eq2_mobility(u, low)
+    branch_mass = sum(reduced_masses(model_b_parameters(u))) + P["M_P"]
+    assert float(np.abs(eq2_with_node_mass(u, low) - k_low)[0] / np.abs(k_low)[0]) == pytest.approx(m / (m + branch_mass), rel=1e-4)
+
+
+# --- the inputs each model reads (issue 22: model B's table lists only these) ---------------------------------
+
+
+@pytest.mark.parametrize("model", ["A", "B"])
+def test_listed_inputs_are_exactly_those_that_move_the_model(model):
+    """Each labelled parameter moved by 30 % (c_joint, 0 at its assumed value, set to 50 N s/m): the model's drive force,
+    joint forces and resonances move for every listed input and for no other (the listing in the report's input
+    tables is this one)."""
+    from linkwork.engines.chains import resonances
+    from linkwork.papers.heald.model import MODEL_INPUTS
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    def state(cfg_params):
+        p = parameters({**CFG, "parameters": cfg_params})
+        q, e, f, _ = joint_forces(model, p, "elastic", W, 1e-4)
+        vel, force = resonances(build(model, {**p, "c_joint": 0.0, "c_O": 0.0}, "elastic"))
+        return np.concatenate([np.abs(q), np.abs(e), np.abs(f), vel, force, [lowest_resonance(model, p)]])
+
+    base = state(CFG["parameters"])
+    moving = set()
+    for name, entry in CFG["parameters"].items():
+        value = entry["value"] * 1.3 if entry["value"] else 50.0
+        moved_state = state({**CFG["parameters"], name: {**entry, "value": value}})
+        if np.max(np.abs(moved_state - base) / np.maximum(np.abs(base), 1e-300)) > 1e-9:
+            moving.add(name)
+    assert moving == set(MODEL_INPUTS[model])
+    from linkwork.papers.heald.uncertainty import model_inputs
+
+    listed = {i.path for i in model_inputs(CFG, model)}
+    assert listed == {f"parameters.{n}.value" for n in MODEL_INPUTS[model] if "range" in CFG["parameters"][n]} | {"drive.frequency.value"}
+
+
+# --- the drive frequency as a scenario (issue 22) ------------------------------------------------------------
+
+
+def test_half_shaft_drive_is_the_shaft_drive_at_half_the_speed():
+    """A drive at half the shaft frequency gives at shaft speed W what the shaft drive gives at W / 2 (a second
+    route: the frequency axis rescaled by hand, the operating speed of model B's kinetostatic reactions with it), and
+    the shaft speed at which the drive meets the lowest resonance doubles."""
+    from linkwork.papers.heald.adapter import DRIVE_RATIO, drive_ratio
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    half = {**P, "drive_ratio": DRIVE_RATIO["half-shaft"]}
+    for model in ("A", "B"):
+        got = joint_forces(model, half, "elastic", W, 1e-4)
+        ref = joint_forces(model, {**P, "omega_op": P["omega_op"] / 2}, "elastic", W / 2, 1e-4)
+        for a, b in zip(got[:3], ref[:3], strict=True):
+            np.testing.assert_allclose(a, b, rtol=1e-12)
+        assert lowest_resonance(model, half) == pytest.approx(2 * lowest_resonance(model, P), rel=1e-12)
+    assert P["drive_ratio"] == 1.0
+    assert drive_ratio({**CFG, "drive": {"frequency": {**CFG["drive"]["frequency"], "value": "half-shaft"}}}) == 0.5
+    with pytest.raises(ValueError, match="unknown drive frequency"):
+        drive_ratio({**CFG, "drive": {"frequency": {**CFG["drive"]["frequency"], "value": "quarter"}}})
+
+
+def test_drive_choice_is_a_labelled_scenario_the_uncertainty_study_sees():
+    """The drive frequency is a labelled choice with readable labels, and the study's inputs carry it as a choice
+    (the core runs it as a scenario, never samples a number for it)."""
+    from linkwork.papers.heald.adapter import DRIVE_RATIO
+    from linkwork.papers.heald.uncertainty import inputs
+
+    entry = CFG["drive"]["frequency"]
+    assert set(entry["choices"]) == set(DRIVE_RATIO) and len(entry["choice_labels"]) == len(entry["choices"])
+    drive = [i for i in inputs(CFG) if i.path == "drive.frequency.value"]
+    assert len(drive) == 1 and drive[0].choices == tuple(entry["choices"])
+
+
+# --- corners of the declared ranges (issue 22: the core's bounded search needs a known target) -----------------
+
+
+def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
+    """At R = 10 N, Delta = 0.3 mm, k_n = 2e7 N/m, eta = 2.5, k_O = 5e3 N/m and every mass at its heaviest (M_P = 12 kg)
+    model A with D held is one degree of freedom: the frame P with the levers' springs and masses reduced to it,
+    w^2 = (k_O + (k_E + k_F) / eta^2) / (M_out + (m_E7 + m_F8) / eta^2), about 31 rad/s (the samples reported 72-721)."""
+    from linkwork.engines.chains import vulfson_stiffness
+    from linkwork.papers.heald.studies import lowest_resonance
+
+    corner = dict(P)
+    for name, entry in CFG["parameters"].items():
+        if name.startswith(("m_", "M_")):
+            corner[name] = entry["range"][1]
+    corner.update(reaction_E=10.0, reaction_F=10.0, clearance_E=3e-4, clearance_F=3e-4, k_n=2e7, eta7=2.5, eta8=2.5, k_O=5e3, M_P=12.0)
+    k_tau = float(vulfson_stiffness(10.0, 3e-4, 2e7))
+    m_out = corner["M_G"] + corner["m_H9"] + corner["M_K"] + corner["m_L10"] + corner["M_P"]
+    closed = np.sqrt((5e3 + 2 * k_tau / 2.5**2) / (m_out + (corner["m_E7"] + corner["m_F8"]) / 2.5**2))
+    assert lowest_resonance("A", corner) == pytest.approx(closed, rel=1e-9)
+    assert 30.0 < closed < 32.0
+    # the same corner through the study's results function, the one the core's bounded search evaluates
+    from linkwork.papers.heald.uncertainty import results
+
+    values = {**{n: e["range"][1] for n, e in CFG["parameters"].items() if n.startswith(("m_", "M_"))},
+              "reaction_E": 10.0, "reaction_F": 10.0, "clearance_E": 3e-4, "clearance_F": 3e-4, "k_n": 2e7, "eta7": 2.5, "eta8": 2.5, "k_O": 5e3, "M_P": 12.0}
+    cfg = {**CFG, "parameters": {n: {**e, "value": values.get(n, e["value"])} for n, e in CFG["parameters"].items()}}
+    (ds,) = results(cfg)
+    assert float(ds.first_resonance.sel(model="A")) == pytest.approx(closed, rel=1e-9)
+
+
+# --- the dwell-cam clause with damped joints (issue 22) ------------------------------------------------------
+
+
+def test_largest_dip_is_the_largest_relative_fall():
+    from linkwork.papers.heald.studies import largest_dip
+
+    assert largest_dip(np.array([1.0, 2.0, 3.0])) == 0.0
+    assert largest_dip(np.array([1.0, 4.0, 3.0, 5.0]), np.array([2.0, 1.0, 3.0, 4.0])) == pytest.approx(0.5)
+
+
+def test_joint_damping_shrinks_the_cam_dips_of_model_b():
+    """Model B's joint branches: undamped, the cam's 9th harmonic meeting them near the top of the band makes the
+    peak joint forces fall by tens of per cent; with c_joint = 500 N s/m their damping ratio is c / (2 sqrt(k m))
+    (closed form) and the fall is below 1 %."""
+    from linkwork.papers.heald.model import joint_stiffness, model_b_parameters, reduced_masses
+    from linkwork.papers.heald.studies import cam_measures, joint_branch_damping
+
+    cam = CFG["cam"]
+    c = cam_harmonics(cam["rise_fraction"]["value"], cam["harmonics"], cam["samples"])
+    dips = []
+    for cj in (0.0, 500.0):
+        q = {**P, "c_joint": cj}
+        values, _ = cam_measures("B", q, harmonic_transfer("B", q, W, cam["harmonics"]), c * 1e-4 / abs(c[0]), cam["samples"], cam["significant_harmonic"])
+        dips.append(values["largest_dip"])
+    assert dips[0] > 0.1 and dips[1] < 0.01
+    q = {**P, "c_joint": 500.0}
+    b = model_b_parameters(q)
+    k, m = joint_stiffness(b, "E", "elastic"), reduced_masses(b)[0]
+    assert joint_branch_damping("B", q) == pytest.approx(500.0 / (2 * np.sqrt(k * m)), rel=1e-6)
+
+
+# --- the answer a referee signs (issue 22) -------------------------------------------------------------------
+
+
+def test_answer_is_two_plain_sentences_with_the_results_numbers():
+    """At most two sentences, no code name (snake_case) and no unrendered template; the counts and eq. (2)'s
+    node-mass number come from the results given."""
+    import re
+
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers.heald.findings import answer
+
+    table = pd.DataFrame({"model": ["A", "A", "B"], "role": "headline", "verdict": ["deviates", "depends on assumptions", "matches"]})
+    chain = xr.Dataset({"eq2_node_mass": 1.6, "eq2_node_mass_difference": 91.83, "eq2_node_mass_difference_at": 66.21, "eq2_node_mass_antiresonance": 66.19034})
+    same = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "matches"]]], dtype=object))})
+    text = answer(table, chain, same)
+    assert len(re.findall(r"(?<!eq)[.!?](\s|$)", text)) <= 2  # "eq. (2)" is no sentence end
+    assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
+    assert "one deviates and one depends on assumptions" in text and "one matches" in text
+    assert "1.6 kg" in text and "92 times" in text and "66.2 rad/s" in text and "66.19 rad/s" in text and "half the shaft frequency changes no verdict" in text
+    differ = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "deviates"]]], dtype=object))})
+    assert "half the shaft" not in answer(table, chain, differ)

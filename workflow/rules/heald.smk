@@ -1,6 +1,9 @@
 # Paper "heald": mechanical chains of a heald motion, joint forces with clearance.
 
-HEALD_MODEL = ["parameters", "excitation", "speeds"]
+# the chain's inputs; "drive" is the drive-frequency scenario, read by the chain, the comparison and the uncertainty
+# study (the accuracy study and the sweep drive the chain at the shaft frequency: grid studies on its own axis)
+HEALD_CHAIN = ["parameters", "excitation", "speeds"]
+HEALD_MODEL = [*HEALD_CHAIN, "drive"]
 
 
 rule heald_chain:
@@ -23,7 +26,7 @@ rule heald_accuracy:
         timings="results/heald/accuracy_timings.json",
     params:
         study="linkwork.papers.heald.accuracy:accuracy",
-        cfg=section("heald", *HEALD_MODEL, "accuracy"),
+        cfg=section("heald", *HEALD_CHAIN, "accuracy"),
     script:
         STUDY
 

@@ -10,11 +10,28 @@ import numpy as np
 from ...units import RAD_S_PER_RPM
 
 
+#: Drive frequency over the main-shaft frequency, per choice of ``drive.frequency``: the paper drives the chain at the
+#: shaft frequency; in plain weave a heald frame rises and falls once in two picks (one pick per shaft turn).
+DRIVE_RATIO = {"shaft": 1.0, "half-shaft": 0.5}
+
+
+def drive_ratio(cfg: Mapping[str, Any]) -> float:
+    """The drive frequency over the main-shaft frequency of the chosen scenario (1 without a ``drive`` entry: the
+    sections that do not read it, the accuracy study and the sweep, drive the chain at the shaft frequency)."""
+    if "drive" not in cfg:
+        return 1.0
+    choice = cfg["drive"]["frequency"]["value"]
+    if choice not in DRIVE_RATIO:
+        raise ValueError(f"unknown drive frequency {choice!r}; expected one of {tuple(DRIVE_RATIO)}")
+    return DRIVE_RATIO[choice]
+
+
 def parameters(cfg: Mapping[str, Any]) -> dict[str, float]:
     """Plain values of the labelled entries of ``parameters`` (SI units: ``operating_speed_rpm`` becomes
-    ``omega_op`` in rad/s)."""
+    ``omega_op`` in rad/s, a main-shaft frequency) and ``drive_ratio``, the drive frequency over the shaft's."""
     p = {k: float(v["value"]) for k, v in cfg["parameters"].items()}
     p["omega_op"] = p.pop("operating_speed_rpm") * RAD_S_PER_RPM
+    p["drive_ratio"] = drive_ratio(cfg)
     return p
 
 

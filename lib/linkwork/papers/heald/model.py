@@ -19,8 +19,10 @@ parameter dict (SI units; every value is labelled sourced/assumed in config):
     pin bending stiffness (N/m); ``c_joint`` damping in a joint (N s/m);
 ``clearance_E``, ``clearance_F`` (m), ``reaction_E``, ``reaction_F`` (N)
     Vulfson's clearance model of the joints E and F (the assumed reactions enter model A only);
+``drive_ratio``
+    drive frequency over the main-shaft frequency (1, or 1/2 when a frame cycles once in two picks);
 ``omega_op`` (rad/s), ``stroke_D`` (m)
-    operating speed and heald stroke at D (amplitude of the first harmonic): model B's reactions are its
+    operating main-shaft speed and heald stroke at D (amplitude of the first harmonic): model B's reactions are its
     own kinetostatic ones, |R_i| = |Q_i| of the ideal-joint branch under that stroke at that speed.
 
 Model A (the physical linkage): the rigid rod DEF moves with the drive D; the
@@ -45,6 +47,17 @@ from ...engines.chains import GROUND, Element, Lever, Network, Parallel, Series,
 
 MODELS = ("A", "B")
 JOINTS = ("ideal", "elastic")
+#: The parameters each model's chain reads (its joint forces, drive force and resonances move with each of them and
+#: with no other): model A takes the assumed reactions, not the kinetostatic state that sets model B's; model B has
+#: no mass on its driven node (eq. (2)) and takes its own kinetostatic reactions.
+_COMMON = ("m_E7", "M_G", "m_H9", "m_F8", "M_K", "m_L10", "M_P", "eta7", "eta8", "k_O", "c_O", "k_n", "c_joint", "clearance_E", "clearance_F")
+MODEL_INPUTS = {"A": ("m_D", "m_E6", "m_F6", *_COMMON, "reaction_E", "reaction_F"),
+                "B": (*_COMMON, "operating_speed_rpm", "stroke_D")}
+
+
+def drive_frequency(p: Mapping[str, float], shaft):
+    """The chain's drive frequency (rad/s) at a main-shaft frequency (rad/s): times ``drive_ratio`` (1 if absent)."""
+    return p.get("drive_ratio", 1.0) * np.asarray(shaft, dtype=float)
 
 
 def joint_stiffness(p: Mapping[str, float], joint: str, variant: str) -> float:
@@ -65,7 +78,7 @@ def kinetostatic_reactions_b(p: Mapping[str, float]) -> tuple[float, float]:
     branch, a pin (stiffness k_n, damping c_joint) into the reduced mass m_i, so under the heald stroke X at
     omega_op the force is |z X omega^2 m_i / (z - omega^2 m_i)| with z = k_n + j omega c_joint.  Not circular:
     the ideal joint has no clearance, so its stiffness does not depend on the reaction."""
-    w, x = p["omega_op"], p["stroke_D"]
+    w, x = drive_frequency(p, p["omega_op"]), p["stroke_D"]
     z = p["k_n"] + 1j * w * p["c_joint"]
     return tuple(float(abs(z * x * w**2 * m / (z - w**2 * m))) for m in reduced_masses(p))
 
@@ -95,8 +108,16 @@ def model_a(p: Mapping[str, float], variant: str = "elastic") -> Network:
     return Network(("D", "e", "f", "g", "k", "P"), els, levers, "D", "velocity")
 
 
-def model_b(p: Mapping[str, float], variant: str = "elastic") -> Network:
-    """Eq. (2)'s chain: three spring->mass branches on the driven node, which carries no mass."""
+def node_mass(p: Mapping[str, float]) -> float:
+    """Mass on the driven node D (kg): the rod DEF lumped at D, E and F (m_D + m_E6 + m_F6); rigid, it moves with D."""
+    return p["m_D"] + p["m_E6"] + p["m_F6"]
+
+
+def model_b(p: Mapping[str, float], variant: str = "elastic", with_node_mass: bool = False) -> Network:
+    """Eq. (2)'s chain: three spring->mass branches on the driven node, which carries no mass.
+
+    ``with_node_mass``: put the rod's masses m_D + m_E6 + m_F6 on the driven node (the chain the linkage gives;
+    eq. (2) is then no longer its mobility).  Under a velocity drive the node mass moves only the drive force."""
     p = model_b_parameters(p)
     k_e, k_f = joint_stiffness(p, "E", variant), joint_stiffness(p, "F", variant)
     m_e, m_f = reduced_masses(p)
@@ -111,6 +132,8 @@ def model_b(p: Mapping[str, float], variant: str = "elastic") -> Network:
         Element("warp_damping", "damper", "D", "o", p["c_O"]),
         Element("frame", "mass", "o", GROUND, p["M_P"]),
     )
+    if with_node_mass:
+        els = (*els, Element("rod", "mass", "D", GROUND, node_mass(p)))
     return Network(("D", "e", "f", "o"), els, (), "D", "velocity")
 
 
@@ -150,6 +173,29 @@ def eq2_mobility(p: Mapping[str, float], omega, variant: str = "elastic"):
     num = np.prod([wi2[i] - x for i in range(3)], axis=0)
     den = 1j * w * k.sum() * (roots[0] - x) * (roots[1] - x)
     return num / den, np.sqrt(np.sort(wi2)), np.sqrt(roots)
+
+
+def eq2_with_node_mass(p: Mapping[str, float], omega, variant: str = "elastic"):
+    """Closed form of the mobility (m N^-1 s^-1) of eq. (2)'s chain with the node mass m on the driven node: the mass
+    is one more branch in parallel, 1/K = 1/K_2 + j w m, so K = K_2 / (1 + j w m K_2)."""
+    k2, _, _ = eq2_mobility(p, omega, variant)
+    w = np.asarray(omega, dtype=float)
+    return k2 / (1.0 + 1j * w * node_mass(p) * k2)
+
+
+def eq2_node_mass_difference(p: Mapping[str, float], omega, variant: str = "elastic") -> tuple[float, float]:
+    """How far eq. (2) is from the mobility of its chain once the driven node carries the rod's mass (undamped):
+    (max over ``omega`` of |K_chain - K_eq2| / |K_eq2|, the frequency in rad/s where it peaks).  K_chain by the
+    network solve (route 1 of the engine); eq. (2) by its own closed form.  Zero node masses give round-off."""
+    from ...engines.chains import solve_network
+
+    undamped = {**p, "c_joint": 0.0, "c_O": 0.0}
+    w = np.asarray(omega, dtype=float)
+    k_chain = 1.0 / solve_network(model_b(undamped, variant, with_node_mass=True), w, 1.0).input_force
+    k2, _, _ = eq2_mobility(undamped, w, variant)
+    rel = np.abs(k_chain - k2) / np.abs(k2)
+    i = int(np.nanargmax(rel))
+    return float(rel[i]), float(w[i])
 
 
 def build(model: str, p: Mapping[str, float], variant: str) -> Network:

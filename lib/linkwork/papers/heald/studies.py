@@ -10,14 +10,16 @@ import xarray as xr
 
 from ...engines.chains import resonances, solve_network
 from ...units import RAD_S_PER_RPM
-from .adapter import amplitude, omega_grid, parameters, sweep_values
+from .adapter import DRIVE_RATIO, amplitude, omega_grid, parameters, sweep_values
 from .dynamics import cam_harmonics, damped_modes, harmonic_transfer, kinetostatic_reactions, periodic_peaks, self_consistent_reactions
-from .model import JOINTS, build, eq2_mobility, joint_stiffness, model_b_parameters
+from .model import JOINTS, build, drive_frequency, eq2_mobility, eq2_node_mass_difference, joint_stiffness, model_b, model_b_parameters, node_mass
 
 
 def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.ndarray, amplitude: float):
-    """(input force, Q_E, Q_F, singular) for a drive displacement amplitude (m): V = j w X."""
-    r = solve_network(build(model, p, variant), omega, 1j * omega * amplitude)
+    """(input force, Q_E, Q_F, singular) at main-shaft frequencies ``omega`` (rad/s) for a drive displacement
+    amplitude (m): the chain is driven at w_d = drive_ratio x omega, V = j w_d X."""
+    wd = drive_frequency(p, omega)
+    r = solve_network(build(model, p, variant), wd, 1j * wd * amplitude)
     q_e = r.element_force["joint_E"] + r.element_force["joint_E_damping"]
     q_f = r.element_force["joint_F"] + r.element_force["joint_F_damping"]
     return r.input_force, q_e, q_f, r.singular
@@ -39,18 +41,18 @@ def claim_measures(model: str, p: Mapping[str, float], omega: np.ndarray, amplit
 
 
 def lowest_resonance(model: str, p: Mapping[str, float]) -> float:
-    """The lowest resonance under the kinematic drive (rad/s): a velocity resonance, K = 0, where the drive
-    force peaks.  A force resonance (K -> infinity) is an antiresonance of a velocity-driven chain, where the
+    """The main-shaft frequency (rad/s) at which the drive meets the lowest resonance under the kinematic drive: the
+    chain's lowest velocity resonance, K = 0, where the drive force peaks, over ``drive_ratio``.  A force resonance (K -> infinity) is an antiresonance of a velocity-driven chain, where the
     drive force dips, and is not counted."""
     vel, _ = resonances(build(model, p, "elastic"))
-    return float(min([x for x in vel if x > 0], default=np.nan))
+    return float(min([x for x in vel if x > 0], default=np.nan)) / p.get("drive_ratio", 1.0)
 
 
 MEASURES = {
     "ratio_EF_min": ("1", "min over the band of |Q_E| / |Q_F| (elastic joints)"),
     "ratio_EF_max": ("1", "max over the band of |Q_E| / |Q_F| (elastic joints)"),
     "growth_fraction": ("1", "fraction of the band where |Q_E| and |Q_F| both grow with frequency"),
-    "first_resonance": ("rad s-1", "lowest undamped resonance under the kinematic drive (velocity resonance, K = 0), elastic joints"),
+    "first_resonance": ("rad s-1", "main-shaft frequency at which the drive meets the lowest undamped resonance (velocity resonance, K = 0), elastic joints"),
 }
 
 
@@ -62,7 +64,7 @@ def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
     measures = {m: claim_measures(m, p, w, amp) for m in models}
     data = {k: ("model", [measures[m][k] for m in models], {"units": unit, "long_name": text}) for k, (unit, text) in MEASURES.items()}
     data["first_resonance_rpm"] = ("model", [measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models],
-                                   {"units": "min-1", "long_name": "lowest undamped resonance as a shaft speed"})
+                                   {"units": "min-1", "long_name": "shaft speed at which the drive meets the lowest undamped resonance"})
     if refinement:
         fine = np.linspace(w[0], w[-1], 2 * w.size - 1)  # every interval halved: how much the grid decides the growth measure
         data["growth_fraction_refinement"] = ("model", [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
@@ -100,7 +102,7 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         for j, variant in enumerate(JOINTS):
             qi, qe, qf, _ = joint_forces(model, p, variant, w, amp)
             q_in[i, j], q_e[i, j], q_f[i, j] = np.abs(qi), np.abs(qe), np.abs(qf)
-            mobility[i, j] = 1j * w * amp / qi
+            mobility[i, j] = 1j * drive_frequency(p, w) * amp / qi
             vr, fr = resonances(build(model, p, variant))
             vel_res[i, j, : min(n_modes, vr.size)] = vr[:n_modes]
             force_res[i, j, : min(n_modes, fr.size)] = fr[:n_modes]
@@ -118,8 +120,8 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         "Q_F": xr.DataArray(q_f, dims=dims, attrs={"units": "N", "long_name": "|Q_F|, force in joint F"}),
         "K_abs": xr.DataArray(np.abs(mobility), dims=dims, attrs={"units": "m N-1 s-1", "long_name": "|K|, input mobility V/Q"}),
         "K_phase": xr.DataArray(np.angle(mobility), dims=dims, attrs={"units": "rad", "long_name": "phase of the input mobility"}),
-        "velocity_resonance": xr.DataArray(vel_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "velocity resonances (K = 0), undamped", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
-        "force_resonance": xr.DataArray(force_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "force resonances (K -> infinity), undamped", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
+        "velocity_resonance": xr.DataArray(vel_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "velocity resonances (K = 0) of the chain, undamped, as drive frequencies", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
+        "force_resonance": xr.DataArray(force_res, dims=("model", "joints", "mode"), attrs={"units": "rad s-1", "long_name": "force resonances (K -> infinity) of the chain, undamped, as drive frequencies", "nan_meaning": "the chain has fewer resonances than the mode axis holds"}),
         "k_E": xr.DataArray([joint_stiffness(p, "E", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint E"}),
         "k_F": xr.DataArray([joint_stiffness(p, "F", v) for v in JOINTS], dims="joints", attrs={"units": "N m-1", "long_name": "tangential stiffness of joint F"}),
     }
@@ -129,11 +131,20 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
         dims="model", attrs={"units": "1", "long_name": "max relative difference of |Q_E|, |Q_F| between ideal and elastic joints over the band"})
     # model B against eq. (2) (undamped)
     undamped = {**p, "c_joint": 0.0, "c_O": 0.0}
-    k_eq2, num_w, den_w = eq2_mobility(undamped, w)
-    r = solve_network(build("B", undamped, "elastic"), w, 1.0)
+    wd = drive_frequency(p, w)  # eq. (2) is a property of the chain: over the drive frequencies of the band
+    k_eq2, num_w, den_w = eq2_mobility(undamped, wd)
+    r = solve_network(build("B", undamped, "elastic"), wd, 1.0)
     data["eq2_relative_difference"] = xr.DataArray(
         float(np.max(np.abs(1 / r.input_force - k_eq2) / np.abs(k_eq2))), attrs={"units": "1", "long_name": "max |K_network - K_eq2| / |K_eq2|, model B, undamped"}
     )
+    node_diff, node_at = eq2_node_mass_difference(p, wd)
+    data["eq2_node_mass_difference"] = xr.DataArray(node_diff, attrs={
+        "units": "1", "long_name": "max over the band of |K_chain - K_eq2| / |K_eq2| with the rod's masses m_D + m_E6 + m_F6 on the driven node (undamped, frequency grid)"})
+    data["eq2_node_mass_difference_at"] = xr.DataArray(node_at, attrs={"units": "rad s-1", "long_name": "drive frequency at which that difference peaks on the grid"})
+    data["eq2_node_mass"] = xr.DataArray(node_mass(p), attrs={"units": "kg", "long_name": "mass on the driven node, m_D + m_E6 + m_F6"})
+    _, anti = resonances(model_b(undamped, "elastic", with_node_mass=True))
+    data["eq2_node_mass_antiresonance"] = xr.DataArray(float(anti[0]), attrs={
+        "units": "rad s-1", "long_name": "lowest antiresonance (K -> infinity) of eq. (2)'s chain with the node mass; the relative difference is unbounded there"})
     data["eq2_numerator_frequencies"] = xr.DataArray(num_w, dims="numerator_factor", attrs={"units": "rad s-1", "long_name": "w09, w010, w011 of eq. (2) (velocity resonances)"})
     data["eq2_denominator_frequencies"] = xr.DataArray(den_w, dims="denominator_factor", attrs={"units": "rad s-1", "long_name": "w07, w08 of eq. (2) (force resonances)"})
     data["eq2_interlaced"] = xr.DataArray(int(interlaced(num_w, den_w)), attrs={"units": "1", "long_name": "1 if zeros and poles of eq. (2) interlace, starting with a zero"})
@@ -166,6 +177,7 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
             change.append(max(float(np.max(np.abs(np.abs(a) - np.abs(b)) / np.abs(a))) for a, b in zip(ends[0], ends[1], strict=True)))
         data[f"joint_force_change_vs_{key}"] = xr.DataArray(np.array(change), dims="model", attrs={
             "units": "1", "long_name": f"max relative change of |Q_E| and |Q_F| over the band between the ends of the sweep of the {long_name}"})
+    data.update(drive_scenarios(p, models, w, amp))
     data.update(damping(p, models))
     data.update(kinetostatics(p, models, w, amp))
     cam_data, cam_coords = cam_study(cfg, p, models, w, amp)
@@ -175,6 +187,20 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
     ds.attrs.update(_labelled_attrs(cfg), title="Heald motion as mechanical chains")
     ds.attrs.update(displacement_amplitude_m=amp, frequency_points=int(w.size))
     return ds
+
+
+def drive_scenarios(p: Mapping[str, float], models: list[str], w: np.ndarray, amp: float) -> dict[str, xr.DataArray]:
+    """The claims' measures with the drive at each drive-frequency choice (the other inputs as given)."""
+    choices = list(DRIVE_RATIO)
+    table = {k: np.empty((len(models), len(choices))) for k in MEASURES}
+    for j, choice in enumerate(choices):
+        for i, m in enumerate(models):
+            for k, v in claim_measures(m, {**p, "drive_ratio": DRIVE_RATIO[choice]}, w, amp).items():
+                table[k][i, j] = v
+    out = {f"{k}_by_drive": xr.DataArray(arr, dims=("model", "drive"), attrs={"units": MEASURES[k][0], "long_name": f"{MEASURES[k][1]}, per drive frequency"})
+           for k, arr in table.items()}
+    out["drive_ratio"] = xr.DataArray([DRIVE_RATIO[c] for c in choices], dims="drive", attrs={"units": "1", "long_name": "drive frequency over the main-shaft frequency"})
+    return {**out, "drive": xr.DataArray(np.array(choices, dtype=object), dims="drive", attrs={"units": "1", "long_name": "drive-frequency scenario"})}
 
 
 def damping(p: Mapping[str, float], models: list[str], n_modes: int = 4) -> dict[str, xr.DataArray]:
@@ -225,7 +251,28 @@ def cam_measures(model: str, p: Mapping[str, float], transfer, coefficients: np.
     mags = np.abs(coefficients)
     h_top = int(np.flatnonzero(mags >= significant * mags[0])[-1]) + 1
     return {"ratio_EF_min": float(np.min(pe / pf)), "growth_fraction": float(np.mean((np.diff(pe) > 0) & (np.diff(pf) > 0))),
-            "first_resonance": lowest_resonance(model, p) / h_top, "top_harmonic": float(h_top)}, (pe, pf)
+            "first_resonance": lowest_resonance(model, p) / h_top, "top_harmonic": float(h_top), "largest_dip": largest_dip(pe, pf)}, (pe, pf)
+
+
+def largest_dip(*peaks: np.ndarray) -> float:
+    """Largest relative fall of a force from one grid speed to the next, max over the forces given (0 if they only grow)."""
+    return float(max(np.max(np.maximum(0.0, -np.diff(q) / q[:-1]), initial=0.0) for q in peaks))
+
+
+CAM_MEASURES = {"ratio_EF_min": ("1", "min over the band of peak |Q_E| / peak |Q_F| over a turn (cam drive)"),
+                "growth_fraction": ("1", "fraction of the band where the peak |Q_E| and |Q_F| over a turn both grow (cam drive)"),
+                "first_resonance": ("rad s-1", "lowest shaft speed at which a significant harmonic of the cam drive meets the lowest resonance"),
+                "top_harmonic": ("1", "highest harmonic of the cam drive counted as significant"),
+                "largest_dip": ("1", "largest relative fall of the peak |Q_E| or |Q_F| over a turn between neighbouring speeds of the grid (cam drive)")}
+
+
+def joint_branch_damping(model: str, p: Mapping[str, float]) -> float:
+    """Damping ratio of the modes through the joints with D held: in model B the largest of the modes above the
+    lowest (the warp branch), i.e. the joint branches E and F; in model A its one mode (frame on warp and joints)."""
+    _, zeta = damped_modes(build(model, p, "elastic"), held=True)
+    if zeta.size == 0:
+        return float("nan")
+    return float(np.max(zeta[1:])) if zeta.size > 1 else float(zeta[0])
 
 
 def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str], w: np.ndarray, amp: float):
@@ -236,7 +283,7 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
     fractions = [float(rise["value"]), *map(float, rise["range"])]
     transfer = {m: harmonic_transfer(m, p, w, cam["harmonics"]) for m in models}
     variables: dict[str, Any] = {"Q_E_cam": np.empty((len(models), w.size)), "Q_F_cam": np.empty((len(models), w.size))}
-    table = {k: np.empty((len(models), 3)) for k in ("ratio_EF_min", "growth_fraction", "first_resonance", "top_harmonic")}
+    table = {k: np.empty((len(models), 3)) for k in CAM_MEASURES}
     for j, beta in enumerate(fractions):
         c = cam_harmonics(beta, cam["harmonics"], cam["samples"])
         c = c * amp / abs(c[0])
@@ -253,12 +300,27 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
                 table[k][i, j] = v
             if j == 0:
                 variables["Q_E_cam"][i], variables["Q_F_cam"][i] = peaks
-    texts = {"ratio_EF_min": ("1", "min over the band of peak |Q_E| / peak |Q_F| over a turn (cam drive)"),
-             "growth_fraction": ("1", "fraction of the band where the peak |Q_E| and |Q_F| over a turn both grow (cam drive)"),
-             "first_resonance": ("rad s-1", "lowest shaft speed at which a significant harmonic of the cam drive meets the lowest resonance"),
-             "top_harmonic": ("1", "highest harmonic of the cam drive counted as significant")}
     for k, arr in table.items():
-        variables[f"{k}_cam"] = xr.DataArray(arr, dims=("model", "rise"), attrs={"units": texts[k][0], "long_name": texts[k][1]})
+        variables[f"{k}_cam"] = xr.DataArray(arr, dims=("model", "rise"), attrs={"units": CAM_MEASURES[k][0], "long_name": CAM_MEASURES[k][1]})
+    # the joints' damping over its assumed range (nominal rise fraction): do the cam's weak high harmonics still
+    # break the growth once the joint branches they meet are damped?
+    damping_values = [float(x) for x in cfg["parameters"]["c_joint"]["range"]]
+    c = cam_harmonics(fractions[0], cam["harmonics"], cam["samples"])
+    c = c * amp / abs(c[0])
+    by_c = {k: np.empty((len(models), len(damping_values))) for k in CAM_MEASURES}
+    zeta = np.full((len(models), len(damping_values)), np.nan)
+    for j, cj in enumerate(damping_values):
+        q = {**p, "c_joint": cj}
+        for i, m in enumerate(models):
+            values, _ = cam_measures(m, q, harmonic_transfer(m, q, w, cam["harmonics"]), c, cam["samples"], cam["significant_harmonic"])
+            for k, v in values.items():
+                by_c[k][i, j] = v
+            zeta[i, j] = joint_branch_damping(m, q)
+    for k, arr in by_c.items():
+        variables[f"{k}_cam_by_joint_damping"] = xr.DataArray(arr, dims=("model", "joint_damping"), attrs={
+            "units": CAM_MEASURES[k][0], "long_name": f"{CAM_MEASURES[k][1]}, at the ends of the joint damping's range"})
+    variables["joint_branch_damping_ratio"] = xr.DataArray(zeta, dims=("model", "joint_damping"), attrs={
+        "units": "1", "long_name": "largest damping ratio of the modes with D held other than the lowest (the joint branches), at the ends of the joint damping's range"})
     lowest = np.array([lowest_resonance(m, p) for m in models])
     variables["cam_harmonic_speed"] = xr.DataArray(lowest[:, None] / np.arange(1, cam["harmonics"] + 1)[None, :], dims=("model", "harmonic"), attrs={
         "units": "rad s-1", "long_name": "shaft speed at which harmonic h of the drive meets the lowest resonance"})
@@ -268,6 +330,7 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
         variables[k] = xr.DataArray(variables[k], dims=("model", "omega"), attrs={"units": "N", "long_name": f"peak |{k[:3]}| over a turn, cam drive (nominal rise fraction), elastic joints"})
     coords = {"rise": ("rise", np.array(["nominal", "low", "high"], dtype=object), {"units": "1", "long_name": "cam rise fraction: nominal and its range ends"}),
               "rise_fraction": ("rise", np.array(fractions), {"units": "1", "long_name": "fraction of a turn of the rise (and of the return)"}),
+              "joint_damping": ("joint_damping", np.array(damping_values), {"units": "N s m-1", "long_name": "joint damping c_joint: the ends of its assumed range"}),
               "harmonic": ("harmonic", np.arange(1, cam["harmonics"] + 1), {"units": "1", "long_name": "harmonic of the shaft speed"}),
               "joint": ("joint", np.array(["E", "F"], dtype=object), {"units": "1", "long_name": "joint"})}
     return variables, coords

@@ -15,8 +15,8 @@ from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
 
 def inputs(cfg: Mapping[str, Any]) -> list[Input]:
-    """The assumed chain parameters with their ranges."""
-    return list(labelled_inputs(cfg["parameters"], "parameters."))
+    """The assumed chain parameters with their ranges, and the drive-frequency choice (a scenario)."""
+    return [*labelled_inputs(cfg["parameters"], "parameters."), *labelled_inputs(cfg["drive"], "drive.")]
 
 
 def results(cfg: Mapping[str, Any]) -> list[Any]:
@@ -36,3 +36,12 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[st
     """Rule study: every batch, with each headline value's extremes over the box and the consistent sets (bounded searches)."""
     ins = inputs(cfg)
     return gathered(ins, batches, "Heald: assumed chain parameters, propagated", searcher(cfg, published, ins, results))
+
+
+def model_inputs(cfg: Mapping[str, Any], model: str) -> list[Input]:
+    """The inputs that model ``model`` reads (the others do not move its quantities: a test checks it), for the
+    per-model input tables: the drive choice and the parameters the model's chain takes."""
+    from .model import MODEL_INPUTS
+
+    keep = {f"parameters.{n}.value" for n in MODEL_INPUTS[model]}
+    return [i for i in inputs(cfg) if i.path in keep or not i.path.startswith("parameters.")]
