@@ -191,6 +191,7 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
     from .uncertainty import _prefix, apply, continuous, evaluate, scenarios
 
     ranged, scens = continuous(inputs), scenarios(inputs)
+    headline_only = {**published, "tables": []}
     keys = [str(k) for k in ds.quantity.values]
     labels, of = [str(x) for x in ds.sample.values], [str(x) for x in ds.sample_scenario.values]
     lower, upper, tol = acceptance_regions(published, keys)
@@ -211,9 +212,9 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
         if not rows:
             continue
 
-        def fun(u: np.ndarray, scen=scen) -> np.ndarray:
+        def fun(u: np.ndarray, scen=scen) -> np.ndarray:  # the headline values only: table cells are not searched
             moved = {inp.path: inp.to_value(x) for inp, x in zip(ranged, u, strict=True)}
-            found = evaluate(published, results(apply(cfg, {**scen.values, **moved})))
+            found = evaluate(headline_only, results(apply(cfg, {**scen.values, **moved})))
             return np.array([found.get(tuple(k.split("|", 1)), np.nan) for k in keys])
 
         ev = Evaluator(fun, len(ranged))
