@@ -316,3 +316,29 @@ def test_readme_prints_the_published_objective_to_its_digits():
     for value, published in ((30.28645725, 31.09), (2779919.774, 3460000.0), (0.0035583820, 0.0034), (0.30000000000000004, 0.1 + 0.2)):
         assert _num_like(value, published) == _num(value)
     assert _num_like(float("nan"), 21.9665) == "–"
+
+
+def test_gravity_is_a_named_scenario_read_by_the_model(config, schema):
+    """Gravity is a labelled choice (off, on), valid under the schema, never a range to sample; the model reads
+    each choice's value: 'on' is the 'off' response plus the static sag under g (linear superposition)."""
+    from linkwork.pipeline.uncertainty import labelled_inputs
+    from linkwork.pipeline.validate import validate_config
+    from linkwork.papers.transplanter.adapter import gravity
+    from linkwork.papers.transplanter.uncertainty import inputs
+
+    validate_config(config, schema)
+    entry = config["transplanter"]["fe"]["gravity_m_s2"]
+    assert "range" not in entry and entry["choices"] == [0.0, 9.80665] and entry["choice_labels"] == ["off", "on"]
+    found = {i.path: i for i in inputs(config["transplanter"])}
+    assert found["fe.gravity_m_s2.value"].choices == (0.0, 9.80665)
+    assert all(i.choices or i.path != "fe.gravity_m_s2.value" for i in labelled_inputs(config["transplanter"]))
+    on = copy.deepcopy(config["transplanter"])
+    on["fe"]["gravity_m_s2"]["value"] = entry["choices"][1]
+    assert gravity(config["transplanter"]) == 0.0 and gravity(on) == 9.80665
+    disc = discretise((1, 2, 2, 4))
+    r_off = ked(MECH, disc, PUBLISHED_POINT, MAT, THETA, gravity=gravity(config["transplanter"]))
+    r_on = ked(MECH, disc, PUBLISHED_POINT, MAT, THETA, gravity=gravity(on))
+    slow = mechanism(SECTION, crank_speed=1e-9)  # no inertia: gravity alone
+    r_g = ked(slow, disc, PUBLISHED_POINT, MAT, THETA, gravity=gravity(on))
+    np.testing.assert_allclose(r_on.dofs, r_off.dofs + r_g.dofs, rtol=1e-9, atol=1e-12)
+    assert np.abs(r_on.tip - r_off.tip).max() > 1e-4  # gravity moves the tip by a tenth of a millimetre or more
