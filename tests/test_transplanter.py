@@ -342,3 +342,118 @@ def test_gravity_is_a_named_scenario_read_by_the_model(config, schema):
     r_g = ked(slow, disc, PUBLISHED_POINT, MAT, THETA, gravity=gravity(on))
     np.testing.assert_allclose(r_on.dofs, r_off.dofs + r_g.dofs, rtol=1e-9, atol=1e-12)
     assert np.abs(r_on.tip - r_off.tip).max() > 1e-4  # gravity moves the tip by a tenth of a millimetre or more
+
+
+def _evidence_section():
+    cfg = copy.deepcopy(SECTION)
+    cfg["fe"]["angle_step_deg"] = 10.0  # a coarse grid keeps the test quick; the checks hold on any grid
+    return cfg
+
+
+def _arm_stress_under_transverse_tip_force(d, force_n, theta_deg=0.0):
+    """Arm peak stress (Pa) at one crank angle, no inertia (a crawling crank), a tip force across the arm."""
+    from linkwork.papers.transplanter.model import rigid_motion
+
+    slow = mechanism(SECTION, crank_speed=1e-9)
+    theta = np.radians([theta_deg])
+    a = rigid_motion(slow, theta).angle[0, 3]
+    r = ked(slow, discretise((1, 2, 2, 4)), d, MAT, theta, tip_force=force_n * np.array([-np.sin(a), np.cos(a)]))
+    return r.stress[0]
+
+
+def test_tip_force_across_the_arm_gives_the_cantilever_root_stress():
+    """A tip force P across the arm BE, no inertia: the arm's root moment is P L, axial force none, so its peak
+    eq. (8) stress is 32 P L / (pi d^3) (closed form; the quintic element holds the cubic deflection exactly),
+    whatever the other members' diameters, and it scales as d^-3."""
+    force, length = 5.0, SECTION["geometry"]["arm_m"]
+    for d_arm in (4.59e-3, 6.0e-3):
+        d = PUBLISHED_POINT.copy()
+        d[3] = d_arm
+        np.testing.assert_allclose(_arm_stress_under_transverse_tip_force(d, force)[3], 32 * force * length / (np.pi * d_arm**3), rtol=1e-6)
+    thicker = PUBLISHED_POINT * np.array([1.3, 1.2, 0.9, 1.0])
+    np.testing.assert_allclose(_arm_stress_under_transverse_tip_force(thicker, force)[3],
+                               _arm_stress_under_transverse_tip_force(PUBLISHED_POINT, force)[3], rtol=1e-9)
+
+
+def test_inertia_only_stress_of_the_arm_scales_as_one_over_its_diameter():
+    """Under its own inertia a member's load grows as d^2 and its section modulus as d^3: the arm's peak stress
+    (bending-dominated) falls as 1/d (FE against the scaling law, within 0.5 %); the other members, which carry the
+    arm's inertia, are loaded more (its mass grows as d^2, by 56 % here)."""
+    from linkwork.papers.transplanter.studies import inertia_only_peaks
+
+    cfg = _evidence_section()
+    base = inertia_only_peaks(cfg, PUBLISHED_POINT)
+    scaled = PUBLISHED_POINT * np.array([1.0, 1.0, 1.0, 1.25])
+    ratio = inertia_only_peaks(cfg, scaled) / base
+    np.testing.assert_allclose(ratio[3], 1 / 1.25, rtol=5e-3)
+    assert np.all(ratio[:3] > 1.3)
+
+
+def test_under_inertia_alone_the_rocker_stays_far_below_the_allowable_even_at_the_bound():
+    """Why the optimiser drives the rocker to the bound: at 4 mm everywhere its inertia-only stress is below 5 % of
+    the allowable (and the crank's below the allowable), so SY + SZ falls with its diameter."""
+    from linkwork.papers.transplanter.studies import inertia_only_peaks
+
+    cfg = _evidence_section()
+    stress = inertia_only_peaks(cfg, np.full(4, SECTION["minimum_diameter_m"]))
+    assert stress[2] < 0.05 * allowable(SECTION) and stress[0] < allowable(SECTION)
+
+
+def test_the_inferred_tip_force_makes_the_member_stress_active():
+    """The smallest tip force found for each member brings that member's peak stress to the allowable (within the
+    force tolerance), and a force just below it leaves the member below the allowable (the first root)."""
+    from linkwork.papers.transplanter.missing_load import loads_making_active, tip_force
+    from linkwork.papers.transplanter.studies import inertia_only_peaks
+
+    cfg = _evidence_section()
+    cfg["missing_load"] = {"directions_deg": [90.0], "max_N": 1000.0, "scan_points": 41, "xtol_N": 1e-6}
+    limit = allowable(SECTION)
+    found = loads_making_active(cfg, PUBLISHED_POINT, limit, 90.0)
+    assert np.all(np.isfinite(found["load"]))
+    for i, p in enumerate(found["load"]):
+        np.testing.assert_allclose(found["stress"][i, i], limit, rtol=1e-6)
+        assert inertia_only_peaks(cfg, PUBLISHED_POINT, tip_force(0.99 * p, 90.0))[i] < limit
+    # no single tip force makes all four active: the rocker's force is far above the others'
+    assert found["load"][2] > 10 * np.delete(found["load"], 2).max()
+
+
+def test_bar_mass_against_the_element_mass_matrices():
+    """rho pi/4 sum(l d^2) against a second route: the element mass matrices' mass under a rigid axial translation
+    (u = 1 at both ends of every element), summed over the mesh; and the 8 mm design's mass in closed form."""
+    from linkwork.engines.fem import local_matrices
+    from linkwork.papers.transplanter.adapter import member_lengths
+    from linkwork.papers.transplanter.model import bar_mass, circle
+
+    lengths, counts = member_lengths(SECTION), (1, 2, 2, 4)
+    total = 0.0
+    for member, n in enumerate(counts):
+        area, inertia = circle(PUBLISHED_POINT[member])
+        _, m_e = local_matrices("quintic8", MAT.youngs_modulus, area, inertia, MAT.density, lengths[member] / n)
+        u = np.zeros(8)
+        u[[0, 4]] = 1.0
+        total += n * u @ m_e @ u
+    np.testing.assert_allclose(bar_mass(lengths, PUBLISHED_POINT, MAT.density), total, rtol=1e-10)
+    np.testing.assert_allclose(bar_mass(lengths, np.full(4, 0.008), 2640.0), 2640.0 * np.pi * 0.004**2 * lengths.sum(), rtol=1e-12)
+
+
+def test_elasticities_by_finite_differences_against_the_cantilever_law():
+    """d ln(stress)/d ln(d) by central differences: -3 for the arm's diameter under a tip force across the arm
+    (stress ~ d^-3), 0 for the others; the smaller of the arm's and coupler's |elasticity| is then 0."""
+    from linkwork.papers.transplanter.claims import elasticities, governing_elasticity
+
+    e = elasticities(lambda d: _arm_stress_under_transverse_tip_force(d, 5.0)[3:4], PUBLISHED_POINT, 1e-3)
+    np.testing.assert_allclose(e[0], [0.0, 0.0, 0.0, -3.0], atol=1e-6)
+    np.testing.assert_allclose(governing_elasticity(np.array([[0.5, -0.2, 0.9, -3.0]])), [0.2])
+
+
+def test_claim_measures_at_the_published_optimum():
+    """Mass ratio = sum(l d^2) ratio (density cancels); the lighter design distorts more; the measures are finite."""
+    from linkwork.papers.transplanter.adapter import member_lengths
+    from linkwork.papers.transplanter.claims import claim_measures
+
+    cfg = _evidence_section()
+    out = claim_measures(cfg, PUBLISHED_POINT, "quasi-static")
+    lengths = member_lengths(SECTION)
+    np.testing.assert_allclose(out["mass_ratio"], np.sum(lengths * PUBLISHED_POINT**2) / np.sum(lengths * 0.008**2), rtol=1e-12)
+    assert out["distortion_ratio"] > 1.0 and out["elasticity"].shape == (2, 4)
+    np.testing.assert_allclose(out["governing_elasticity"], np.abs(out["elasticity"][:, [1, 3]]).min(axis=1))

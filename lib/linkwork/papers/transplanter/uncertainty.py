@@ -26,21 +26,28 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
 
 
 def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Sequence[float]) -> list[Any]:
-    """Our optimum (SLSQP from the diameters ``start_m``, m) and our model at the published optimum, at one sample."""
+    """Our optimum (SLSQP from the diameters ``start_m``, m), our model at the published optimum and the claims'
+    measures there (claims.claim_measures), at one sample."""
     import numpy as np
     import xarray as xr
 
     from ...engines.optimize import slsqp
     from .adapter import compared_solution
+    from .claims import RESPONSES, claim_measures
     from .model import MEMBERS
+    from .published_point import claim_variables
     from .studies import SUMMARY_ATTRS, optimise_on_report_grid, report_grid, solve, summary
 
     run = lambda prob, x: slsqp(prob, x, cfg["optimization"]["slsqp_ftol"])  # noqa: E731
     x, _, _ = optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)
-    at = summary(solve(cfg, np.array(published["optimum_diameters_mm"], dtype=float) / 1e3, compared_solution(cfg), report_grid(cfg)))
+    published_m = np.array(published["optimum_diameters_mm"], dtype=float) / 1e3
+    at = summary(solve(cfg, published_m, compared_solution(cfg), report_grid(cfg)))
     data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
     data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
-    return [xr.Dataset(data, coords={"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object))})]
+    data.update(claim_variables(claim_measures(cfg, published_m, compared_solution(cfg))))  # the claims' measures
+    coords = {"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object)),
+              "response": ("response", np.array(RESPONSES, dtype=object))}
+    return [xr.Dataset(data, coords=coords)]
 
 
 def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int, optim: Any):
