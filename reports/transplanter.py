@@ -53,6 +53,9 @@ tol = {q["id"]: q["tolerance"].get("abs") for q in load(files["published"])["qua
 compared = json.loads(pub_pt.attrs["config_json"])["fe"]["compared_solution"]["value"]
 material = cfg["materials"][cfg["material"]["name"]]
 ked_cfg = json.loads(ked.attrs["config_json"])
+initial_mm = ", ".join(f"{v * 1e3:g}" for v in sorted(set(cfg["initial_diameters_m"])))
+gravity_entry = json.loads(pub_pt.attrs["config_json"])["fe"]["gravity_m_s2"]
+gravity_word = dict(zip(gravity_entry["choices"], gravity_entry["choice_labels"]))[gravity_entry["value"]]
 
 # %% [markdown]
 # ## Answer
@@ -86,7 +89,7 @@ md(
 * **The 35 coordinates reproduce** with the 8-coordinate element: 9 elements on 10 nodes (AB 1, BC 2, CD 2, BE 4),
   shared translations at the pins, the arm welded to the coupler, fixed pivots, the crank's slope held by the drive,
   and zero curvature (moment) at the pins and at the free tip. Our mesh has **{int(ked.coordinates)}** coordinates.
-* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), {esc(compared)} solution, gravity off, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
+* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), {esc(compared)} solution, gravity {gravity_word}, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
   tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed {pub['Uy'] * 1e3:g}), Ux = {float(base.Ux) * 1e3:.2f} mm (printed {pub['Ux'] * 1e3:g}),
   distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
   Section 3 has the verdicts; section 4 shows which assumptions move these numbers.
@@ -94,7 +97,7 @@ md(
   ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm by the paper's method (SLSQP on the same objective: ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm).
   With the stresses of our model, the paper's point is {"" if int(fnd.published_point_stationary) else "not "}stationary: dSS/dx = ({', '.join(f'{v:+.2f}' for v in pub_pt.gradient_SS.values)}) per mm{
   ", all positive, so every diameter wants to shrink" if int(fnd.published_gradient_all_positive) else ""}.
-* **The claims in words** (section 3b): the mass of the four bars falls from {float(fnd.mass_initial):.1f} g at the initial 8 mm to
+* **The claims in words** (section 3b): the mass of the four bars falls from {float(fnd.mass_initial):.1f} g at the initial {initial_mm} mm to
   {float(fnd.mass_published):.1f} g at the paper's optimum ({float(fnd.mass_ours):.1f} g at ours), and the lighter design's largest tip
   displacement is {float(fnd.distortion_ratio):.2f} times the initial design's.
 * **SS = {pub['SS']:.4f} cannot be checked.** [x_S1] and r(k) are not printed. With [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm (assumed), our SY + SZ at
@@ -325,9 +328,9 @@ verdict_figure(cmp[cmp.role == "headline"], "Transplanter: published numbers aga
 # The paper names one load, the links' own inertia (its eq. 7 and the constraint (16) on the "dynamic" stress). Under it
 # alone a member's load grows as the square of its diameter and its section modulus as the cube, so its bending stress
 # falls as 1/d, and the rocker CD, pinned at both ends, carries almost nothing but its own inertia. The objective
-# SY + SZ then falls as a lightly stressed member shrinks, down to the 4 mm bound, which is where every optimiser puts
-# our rocker and crank. The printed optimum keeps them well above it. We ask which external load would explain that:
-# a constant force at the arm tip E (the planting claw, where the soil acts), in four directions, and per member the
+# SY + SZ then falls as a lightly stressed member shrinks, down to the lower bound on the diameters, which is where every
+# optimiser puts our rocker and crank. The printed optimum keeps them well above it. We ask which external load would explain that:
+# a constant force at the arm tip E (the planting claw, where the soil acts), in each direction of the table below, and per member the
 # smallest force at which its printed diameter becomes fully stressed (peak stress equal to the allowable), found by a
 # scan and Brent's method. This is our inference, not the paper's.
 
@@ -345,14 +348,14 @@ table(stress_rows, {"stress at the paper's optimum (MPa)": "{:.2f}", "share of t
                     "share of the allowable, ours": "{:.1%}"}, caption="peak member stress under the inertia loads alone (quasi-static, no gravity)")
 loads = pd.DataFrame(fnd.inferred_load.values, columns=[f"{m} (N)" for m in members])
 loads.insert(0, "tip force direction (deg from +x)", fnd.direction.values)
-table(loads, {c: "{:.2f}" for c in loads.columns[1:]}, caption="smallest tip force on the arm that makes each printed diameter fully stressed (ours)")
+table(loads, {"tip force direction (deg from +x)": "{:g}", **{c: "{:.2f}" for c in loads.columns[1:]}}, caption="smallest tip force on the arm that makes each printed diameter fully stressed (ours)")
 md(
-    f"The rocker needs {float(fnd.rocker_load_low):.0f}–{float(fnd.rocker_load_high):.0f} N over the four directions, the crank, coupler and arm "
+    f"The rocker needs {float(fnd.rocker_load_low):.0f}–{float(fnd.rocker_load_high):.0f} N over the {fnd.direction.size} directions, the crank, coupler and arm "
     f"{float(fnd.other_load_low):.2f}–{float(fnd.other_load_high):.1f} N. Under the rocker's force the arm would carry "
     f"{float(fnd.arm_overload_at_rocker_load):.0f} times the allowable stress, so "
     + ("one tip force could make all four printed diameters fully stressed." if int(fnd.one_load_reconciles) else
        "no single tip force makes all four printed diameters fully stressed: the printed optimum rests on a load, or a load case, "
-       "that the paper does not describe (a force on the rocker, a soil force only during planting, or stresses other than eq. (8)). ")
+       "that the paper does not describe (a load on the rocker or the crank themselves, or a stress measure other than eq. (8)). ")
     + "The diameters and SS are therefore **not reproducible**, not deviations: we lack the input, not the method. "
     f"The scan reaches {pub_pt.attrs['missing_load_max_N']:g} N in {pub_pt.attrs['missing_load_scan_points']} steps; Brent's method "
     f"resolves each force to {pub_pt.attrs['missing_load_xtol_N']:g} N."
@@ -376,9 +379,9 @@ claims_rows = pd.DataFrame(
         ("largest tip displacement (mm)", float(fnd.distortion_initial) * 1e3, float(fnd.distortion_published) * 1e3, np.nan),
         ("peak stress (MPa)", float(fnd.stress_initial), float(base.stress_max), np.nan),
     ],
-    columns=["quantity", "initial 8 mm", "the paper's optimum", "our optimum"],
+    columns=["quantity", f"initial {initial_mm} mm", "the paper's optimum", "our optimum"],
 )
-table(claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]}, caption=f"the claims' measures ({esc(compared)} solution, gravity off)")
+table(claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]}, caption=f"the claims' measures ({esc(compared)} solution, gravity {gravity_word})")
 sens = pd.DataFrame(fnd.elasticity.values, columns=[f"{m} diameter" for m in members])
 sens.insert(0, "response", [str(r) for r in fnd.response.values])
 table(sens, {c: "{:+.3f}" for c in sens.columns[1:]}, caption="per cent change of the response per per cent change of each diameter, at the paper's optimum")

@@ -1,12 +1,14 @@
 """Input uncertainty of the transplanter paper: the material, gravity on the elastic model and [x_S1].
 
-Young's modulus and the density of 5A06 within their data-sheet ranges, gravity off or on, the unprinted
+Young's modulus and the density of 5A06 within their data-sheet ranges, gravity off or on (a named choice, never
+a sampled number), the unprinted
 reference diameter [x_S1] around the initial 8 mm, which solution the paper's numbers are (quasi-static or
 time-integrated) and the Rayleigh damping of the latter.  Each sample evaluates our model at the published
 optimum and our own optimum; the latter by SLSQP on SY + SZ with explicit constraints, which agrees with the
 paper's SUMT to 0.001 mm at the nominal inputs (optim.nc) and costs 40 times fewer evaluations.  Each
 sample's SLSQP starts from the nominal SLSQP optimum in optim.nc (a perturbation of it), not from the initial
-diameters: the same optimum (tests/test_uncertainty.py) in about half the evaluations.
+diameters: the same optimum (tests/test_uncertainty.py) in about half the evaluations.  Each sample also measures
+the claims in words at the published optimum (claims.claim_measures), so that their verdicts see the assumptions.
 """
 
 from __future__ import annotations
