@@ -57,7 +57,8 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], optim: xr.Data
             **missing_load_evidence(optim, at_published),
             **claim_evidence(optim, at_published),
         },
-        coords={"member": optim.member, "direction": at_published.direction, "loaded": at_published.loaded, "response": at_published.response},
+        coords={"member": optim.member, "direction": at_published.direction, "loaded": at_published.loaded,
+                "response": at_published.response},
     ).merge(counts_dataset(table))
     findings.damping_threshold.attrs["nan_meaning"] = "no damping ratio in the assumed range brings the peak to the allowable"
     findings.attrs["optimum_dynamic_finding"] = claim["status"]
@@ -136,28 +137,29 @@ def missing_load_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[s
     loads = at_published.inferred_load
     rocker, others = loads.sel(member="rocker"), loads.drop_sel(member="rocker")
     arm_at_rocker_load = at_published.inferred_load_stress.sel(loaded="rocker", member="arm") / allowable
+    ours, theirs = optim.stress_inertia_only_opt.values, at_published.stress_inertia_only.values
+    other = "crank, coupler or arm"
     return {
-        "inertia_stress_ours": ("member", optim.stress_inertia_only_opt.values, {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"}),
-        "inertia_stress_published": ("member", at_published.stress_inertia_only.values,
-                                     {"units": "MPa", "long_name": "peak stress per member at the published optimum, inertia loads alone"}),
-        "inertia_fraction_ours": ("member", optim.stress_inertia_only_opt.values / allowable, {"units": "1", "long_name": "the same at our optimum over the allowable"}),
-        "inertia_fraction_published": ("member", at_published.stress_inertia_only.values / allowable,
-                                       {"units": "1", "long_name": "the same at the published optimum over the allowable"}),
+        "inertia_stress_ours": ("member", ours, {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"}),
+        "inertia_stress_published": ("member", theirs, {"units": "MPa", "long_name": "the same at the published optimum"}),
+        "inertia_fraction_ours": ("member", ours / allowable, {"units": "1", "long_name": "the same at our optimum over the allowable"}),
+        "inertia_fraction_published": ("member", theirs / allowable, {"units": "1", "long_name": "the same at the published optimum over the allowable"}),
         "inferred_load": (("direction", "member"), loads.values, dict(loads.attrs)),
-        "rocker_load_low": scalar(float(rocker.min()), "N", "smallest tip force over the directions that makes the published rocker stress-active"),
+        "rocker_load_low": scalar(float(rocker.min()), "N", "smallest tip force over the directions making the published rocker stress-active"),
         "rocker_load_high": scalar(float(rocker.max()), "N", "largest such force over the directions"),
-        "other_load_high": scalar(float(others.max()), "N", "largest tip force over directions making the crank, coupler or arm stress-active"),
-        "other_load_low": scalar(float(others.min()), "N", "smallest tip force over directions making the crank, coupler or arm stress-active"),
+        "other_load_high": scalar(float(others.max()), "N", f"largest tip force over the directions making the {other} stress-active"),
+        "other_load_low": scalar(float(others.min()), "N", f"smallest tip force over the directions making the {other} stress-active"),
         "arm_overload_at_rocker_load": scalar(float(arm_at_rocker_load.min()), "1",
-                                              "arm's peak stress over the allowable under the force that makes the rocker active (smallest over directions)"),
+                                              "arm's peak stress over the allowable under the rocker's force (smallest over directions)"),
         "one_load_reconciles": scalar(bool(np.any(loads.max("member") <= 1.1 * loads.min("member"))), "1",
-                                      "1 if in some direction one tip force (within 10 %) makes all four published diameters stress-active"),
+                                      "1 if in some direction one tip force (within 10 %) makes all four diameters stress-active"),
     }
 
 
 def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tuple]:
     """The claims' measures (at_published) for the answer and the report: masses (g), distortions, elasticities."""
-    keep = ("mass_initial", "mass_published", "mass_ratio", "distortion_initial", "distortion_published", "distortion_ratio", "stress_initial")
+    keep = ("mass_initial", "mass_published", "mass_ratio", "distortion_initial", "distortion_published", "distortion_ratio",
+            "stress_initial")
     out = {k: ((), float(at_published[k]), dict(at_published[k].attrs)) for k in keep}
     out["mass_ours"] = ((), float(optim.mass_opt), dict(optim.mass_opt.attrs))
     out["elasticity"] = (("response", "member"), at_published.elasticity.values, dict(at_published.elasticity.attrs))
@@ -190,7 +192,8 @@ def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
     """One claim's measured fact, in words, worded for whether it holds (``row``: its comparison row)."""
     holds = row.verdict == "matches"
     if row.id == "mass_reduced":
-        return f"the mass {'falls' if holds else 'falls only'} from {float(findings.mass_initial):.1f} g to {float(findings.mass_published):.1f} g"
+        start, end = float(findings.mass_initial), float(findings.mass_published)
+        return f"the mass {'falls' if holds else 'falls only'} from {start:.1f} g to {end:.1f} g"
     if row.id == "lighter_distorts_more":
         return f"the lighter design distorts {'' if holds else 'only '}{float(findings.distortion_ratio):.1f} times as much"
     response = "tip deflection" if row.id == "sections_govern_deflection" else "peak stress"
@@ -204,8 +207,9 @@ def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
 #: The same for numbers compared with printed ones.
 NUMBER_VERDICT_WORDS = {**CLAIM_VERDICT_WORDS, "matches": "match", "deviates": "deviate"}
 #: The singular of each plural verb above.
-SINGULAR = {"hold": "holds", "fail": "fails", "match": "matches", "deviate": "deviates", "depend on the assumptions": "depends on the assumptions",
-            "are undetermined by our numerics": "is undetermined by our numerics", "cannot be judged": "cannot be judged"}
+SINGULAR = {"hold": "holds", "fail": "fails", "match": "matches", "deviate": "deviates",
+            "depend on the assumptions": "depends on the assumptions", "are undetermined by our numerics": "is undetermined by our numerics",
+            "cannot be judged": "cannot be judged"}
 
 
 def in_words(rows: pd.DataFrame, details=None, words=CLAIM_VERDICT_WORDS) -> str:
@@ -235,7 +239,8 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, minimum_diameter_m: float)
     allowable = float(findings.allowable)
     first = (
         "The published optimal diameters cannot be reproduced: under the inertia loads alone, the only loads the paper names, "
-        f"its rocker and crank carry {float(frac.sel(member='rocker')) * allowable:.1f} and {float(frac.sel(member='crank')) * allowable:.1f} MPa "
+        f"its rocker and crank carry {float(frac.sel(member='rocker')) * allowable:.1f} and "
+        f"{float(frac.sel(member='crank')) * allowable:.1f} MPa "
         f"of the allowable {allowable:.1f} MPa, so any optimiser drives them to the {minimum_diameter_m * 1e3:g} mm bound, and "
         + ("one tip force on the arm would make all four printed diameters fully stressed." if bool(findings.one_load_reconciles) else
            "no single tip force on the arm makes all four printed diameters fully stressed.")

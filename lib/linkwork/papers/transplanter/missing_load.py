@@ -32,7 +32,8 @@ def inertia_only(cfg: Mapping[str, Any], diameters) -> np.ndarray:
     return inertia_only_peaks(cfg, diameters)
 
 
-def loads_making_active(cfg: Mapping[str, Any], diameters, allowable_pa: float, direction_deg: float) -> dict[str, np.ndarray]:
+def loads_making_active(cfg: Mapping[str, Any], diameters, allowable_pa: float,
+                        direction_deg: float) -> dict[str, np.ndarray]:
     """Per member, the smallest tip force (N) on the arm, at ``direction_deg`` (deg), at which its peak stress at
     ``diameters`` (m) equals the allowable (NaN: none up to ``missing_load.max_N``), and every member's peak stress
     (Pa) under that force (member with the force, member stressed).
@@ -50,7 +51,8 @@ def loads_making_active(cfg: Mapping[str, Any], diameters, allowable_pa: float, 
         change = np.flatnonzero(np.sign(excess[:-1, i]) != np.sign(excess[1:, i]))
         if change.size:
             k = int(change[0])
-            loads[i] = brentq(lambda p, i=i: peaks(p)[i] - allowable_pa, grid[k], grid[k + 1], xtol=float(settings["xtol_N"]))
+            loads[i] = brentq(lambda p, i=i: peaks(p)[i] - allowable_pa, grid[k], grid[k + 1],
+                              xtol=float(settings["xtol_N"]))
     stresses = np.array([peaks(p) if np.isfinite(p) else np.full(n, np.nan) for p in loads])
     return {"load": loads, "stress": stresses}
 

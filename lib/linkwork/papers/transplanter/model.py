@@ -207,8 +207,8 @@ def tip_dofs(disc: Discretisation) -> list[int]:
     return [int(i) for i in last[-(4 if disc.mesh.kind == "quintic8" else 3):][:2]]
 
 
-def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0, mass: str = "all",
-                    tip_force=(0.0, 0.0)):
+def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0,
+                    mass: str = "all", tip_force=(0.0, 0.0)):
     """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element, plus an
     external force ``tip_force`` (N, global x and y, the same at every crank angle) at the arm tip E.
 
@@ -292,7 +292,8 @@ def ked(
     """
     theta = np.asarray(theta, dtype=float)
     if solution == "quasi-static":
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first", tip_force=tip_force)
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
+                                                            tip_force=tip_force)
         u = np.linalg.solve(k, f[..., None])[..., 0]
         freqs = natural_frequencies(k[0], m[0])
         periodicity, rayleigh = 0.0, (0.0, 0.0)
@@ -325,7 +326,8 @@ def ked(
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
         u = last
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first", tip_force=tip_force)
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
+                                                            tip_force=tip_force)
         tip_l, *_ = _postprocess(mech, disc, diameters, material, last, el_len, el_dir, motion)
         tip_p, *_ = _postprocess(mech, disc, diameters, material, prev, el_len, el_dir, motion)
         scale = max(np.ptp(tip_l, axis=0).max(), 1e-30)

@@ -122,9 +122,10 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
             "sumt_slsqp_difference": ((), float(np.abs(x_opt - xs).max() * 1e3), {"units": "mm", "long_name": "largest |SUMT - SLSQP| diameter difference"}),
             "stress_opt": ("member", info["stress"] / 1e6, {"units": "MPa", "long_name": "largest stress per member at the SUMT optimum (report grid)"}),
             "constraints_opt": ("constraint", info["constraints"], {"units": "1", "long_name": "constraints g_1..g_8 at the SUMT optimum on the report grid (>= 0 feasible)"}),
-            "stress_inertia_only_opt": ("member", inertia_only_peaks(cfg, x_opt) / 1e6,
-                                    {"units": "MPa", "long_name": "largest quasi-static stress per member at the SUMT optimum under the inertia loads alone"}),
-            "mass_opt": ((), bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3, {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"}),
+            "stress_inertia_only_opt": ("member", inertia_only_peaks(cfg, x_opt) / 1e6, {
+                "units": "MPa", "long_name": "largest quasi-static stress per member at the SUMT optimum under the inertia loads alone"}),
+            "mass_opt": ((), bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
+                         {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"}),
             "allowable": ((), prob.allowable / 1e6, {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"}),
             "SS_opt": ((), prob.parts(x_opt, h[-1]["r"])["SS"], {"units": "1", "long_name": "SS(X*, r(k)) at the SUMT optimum, last r(k), report grid"}),
             "evaluations": ((), sum(run.evaluations for run in runs), {"units": "1", "long_name": "objective evaluations (SUMT)"}),
