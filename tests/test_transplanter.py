@@ -504,3 +504,41 @@ def test_the_answer_is_two_plain_sentences_with_the_numbers_of_the_results(stres
         assert "one fails (1 % on the coupler's diameter moves the peak stress by at most 0.13 %)" in text, text
     assert "no single tip force" in text
     assert "one tip force on the arm would make" in answer(*_answer_inputs(reconciles=True), 0.004)
+
+
+def test_missing_load_evidence_summarises_the_inferred_forces():
+    """The findings' summary of the inferred forces: the rocker's range over directions, the others' extremes, the
+    arm's overload under the rocker's force, and 'one force reconciles' only where the four forces agree within 10 %."""
+    from linkwork.papers.transplanter.findings import missing_load_evidence
+
+    members = ["crank", "coupler", "rocker", "arm"]
+    optim = xr.Dataset({"allowable": ((), 33.6), "stress_inertia_only_opt": ("member", [19.8, 33.6, 0.36, 33.6])}, coords={"member": members})
+    loads = np.array([[3.0, 3.0, 170.0, 0.1], [9.0, 6.0, 320.0, 2.0]])
+    stress = np.full((2, 4, 4), 10.0)
+    stress[:, 2, 3] = [4500.0, 6000.0]  # the arm under the rocker's force
+    at_published = xr.Dataset(
+        {"stress_inertia_only": ("member", [8.0, 9.3, 0.28, 30.3]), "inferred_load": (("direction", "member"), loads),
+         "inferred_load_stress": (("direction", "loaded", "member"), stress)},
+        coords={"member": members, "loaded": members, "direction": [90.0, 0.0]},
+    )
+    out = missing_load_evidence(optim, at_published)
+    assert (out["rocker_load_low"][1], out["rocker_load_high"][1]) == (170.0, 320.0)
+    assert (out["other_load_low"][1], out["other_load_high"][1]) == (0.1, 9.0)
+    np.testing.assert_allclose(out["arm_overload_at_rocker_load"][1], 4500.0 / 33.6)
+    np.testing.assert_allclose(out["inertia_fraction_published"][1], np.array([8.0, 9.3, 0.28, 30.3]) / 33.6)
+    assert out["one_load_reconciles"][1] == 0.0
+    at_published["inferred_load"][0] = [5.0, 5.2, 5.1, 5.3]
+    assert missing_load_evidence(optim, at_published)["one_load_reconciles"][1] == 1.0
+
+
+def test_a_constant_tip_force_enters_the_dynamic_solution_as_a_static_load():
+    """With a crawling crank (no inertia) a constant tip force is a static load: the dynamic (Newmark) solution stays
+    at the quasi-static K^-1 F, whose tip moves; without the force the tip stays (nearly: the crawl) at rest."""
+    slow = mechanism(SECTION, crank_speed=1e-3)
+    disc = discretise((1, 2, 2, 4))
+    force = (3.0, -2.0)
+    qs = ked(slow, disc, PUBLISHED_POINT, MAT, THETA, "quasi-static", tip_force=force)
+    dyn = ked(slow, disc, PUBLISHED_POINT, MAT, THETA, "dynamic", tip_force=force, revolutions=2)
+    assert np.abs(qs.tip).max() > 1e-5
+    np.testing.assert_allclose(dyn.tip, qs.tip, rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(ked(slow, disc, PUBLISHED_POINT, MAT, THETA, "dynamic", revolutions=2).tip, 0.0, atol=1e-10)
