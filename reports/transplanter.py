@@ -302,9 +302,8 @@ md(
 # %% [markdown]
 # ## 3. Every published number beside ours
 #
-# The diameters compare our SUMT optimum with theirs. Ux, Uy, the distortion and the stress compare our model at *their*
-# optimum. Each row carries our numerical error bar (mesh and crank-angle sampling; the optimiser's for the diameters)
-# and the range of our value over the assumed inputs (the Young's modulus and density of 5A06, gravity on the elastic
+# Ux, Uy, the distortion and the stress compare our model at *their* optimum. Each row carries our numerical error bar
+# (mesh and crank-angle sampling) and the range of our value over the assumed inputs (the Young's modulus and density of 5A06, gravity on the elastic
 # model, [x_S1], which solution the paper's numbers are and the damping of the dynamic one).
 #
 # "Dynamic stress" is the paper's word for the stress under the links' inertia loads; its "maximum dynamic stress" row
