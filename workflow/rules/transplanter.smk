@@ -4,7 +4,7 @@ TRANSPLANTER_MATERIAL = lambda *props: [f"materials.{config['transplanter']['mat
 TRANSPLANTER_MODEL = ["crank_speed_rpm", "geometry", "material.name", *TRANSPLANTER_MATERIAL("youngs_modulus_Pa", "density_kg_m3"),
                       "fe.element", "fe.elements_per_member", "fe.gravity_m_s2"]
 TRANSPLANTER_DYNAMIC = ["fe.damping_ratio", "fe.revolutions", "fe.substeps"]
-TRANSPLANTER_COMPARED = ["fe.compared_solution", *TRANSPLANTER_DYNAMIC]  # the solution compared with the paper's numbers
+TRANSPLANTER_COMPARED = ["fe.compared_solution", *TRANSPLANTER_DYNAMIC, "initial_diameters_m", "claims"]  # the solution compared with the paper's numbers, the claims' measures
 TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLANTER_MATERIAL("yield_Pa"), "minimum_diameter_m",
                         "fe.angle_step_deg", "optimization.angle_step_deg", "optimization.peak_spread_steps", "optimization.exchange_rounds",
                         "optimization.reference_diameter_m"]
@@ -46,7 +46,7 @@ rule transplanter_at_published:
         "results/transplanter/at_published.nc",
     params:
         study="linkwork.papers.transplanter.published_point:at_published",
-        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "numerical_checks",
+        cfg=section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "numerical_checks", "missing_load",
                     "optimization.r0", "optimization.r_factor", "optimization.iterations", "optimization.gradient_step_m"),
     script:
         STUDY

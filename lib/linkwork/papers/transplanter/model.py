@@ -157,6 +157,12 @@ class Material:
     density: float
 
 
+def bar_mass(lengths_m, diameters_m, density_kg_m3: float) -> float:
+    """Mass (kg) of solid round bars of the given lengths and diameters (m): rho pi/4 sum(l d^2)."""
+    lengths, d = np.asarray(lengths_m, dtype=float), np.asarray(diameters_m, dtype=float)
+    return float(density_kg_m3 * np.pi / 4.0 * np.sum(lengths * d**2))
+
+
 def circle(d: float) -> tuple[float, float]:
     """(area, second moment) of a solid circular section of diameter d (m)."""
     return np.pi * d**2 / 4.0, np.pi * d**4 / 64.0
@@ -194,8 +200,17 @@ def _element_geometry(mech, disc, motion, diameters):
     return el_len, node_pos, node_acc, el_dir
 
 
-def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0, mass: str = "all"):
-    """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element.
+def tip_dofs(disc: Discretisation) -> list[int]:
+    """Global indices of the x and y translations of the arm tip E (node 4)."""
+    _, table = disc.mesh.dof_indices()
+    last = table[[k for k, (a, b) in enumerate(disc.mesh.elements) if b == 4][0]]
+    return [int(i) for i in last[-(4 if disc.mesh.kind == "quintic8" else 3):][:2]]
+
+
+def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0,
+                    mass: str = "all", tip_force=(0.0, 0.0)):
+    """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element, plus an
+    external force ``tip_force`` (N, global x and y, the same at every crank angle) at the arm tip E.
 
     ``mass``: "all" assembles the global M at every crank angle, "first" only at the first (the quasi-static
     solution needs it only for the natural frequencies; the loads use the element matrices)."""
@@ -226,6 +241,7 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
         idx = table[e]
         keep = np.flatnonzero(idx >= 0)
         np.add.at(f, (slice(None), idx[keep]), f_e[:, keep])
+    f[:, tip_dofs(disc)] += np.asarray(tip_force, dtype=float)
     return k, m, f, (el_len, el_dir, motion)
 
 
@@ -237,9 +253,7 @@ def _postprocess(mech, disc, diameters, material, u, el_len, el_dir, motion):
     for e, member in enumerate(disc.member_of):
         strain = element_strain_extremes(disc.mesh.kind, el_len[e], diameters[member] / 2.0, local[:, e])
         stress[:, member] = np.maximum(stress[:, member], material.youngs_modulus * strain)
-    _, table = disc.mesh.dof_indices()
-    tip_idx = [i for i in (table[[k for k, (a, b) in enumerate(disc.mesh.elements) if b == 4][0]][-(4 if disc.mesh.kind == "quintic8" else 3):][:2])]
-    tip = u[:, tip_idx]
+    tip = u[:, tip_dofs(disc)]
     arm_dir = motion.angle[:, 3]
     tip_axial = tip[:, 0] * np.cos(arm_dir) + tip[:, 1] * np.sin(arm_dir)
     tip_transverse = -tip[:, 0] * np.sin(arm_dir) + tip[:, 1] * np.cos(arm_dir)
@@ -265,6 +279,7 @@ def ked(
     damping_ratio: float = 0.02,
     revolutions: int = 4,
     substeps: int = 1,
+    tip_force=(0.0, 0.0),
 ) -> KedResult:
     """Elastic response of the mechanism over one revolution sampled at ``theta`` (rad, uniform from 0).
 
@@ -272,18 +287,20 @@ def ked(
     time-varying K, M and Rayleigh damping fitted to ``damping_ratio`` at the first two
     natural frequencies; ``substeps`` steps per grid interval; the last of ``revolutions``
     is returned, and ``periodicity`` is the largest change of the tip displacement between
-    the last two revolutions relative to its range.
+    the last two revolutions relative to its range.  ``tip_force`` (N, global x, y): an external
+    load at the arm tip E, constant over the turn (the paper prints none; zero by default).
     """
     theta = np.asarray(theta, dtype=float)
     if solution == "quasi-static":
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first")
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
+                                                            tip_force=tip_force)
         u = np.linalg.solve(k, f[..., None])[..., 0]
         freqs = natural_frequencies(k[0], m[0])
         periodicity, rayleigh = 0.0, (0.0, 0.0)
     elif solution == "dynamic":
         n = theta.size * substeps
         fine = theta[0] + np.arange(n) * (2 * np.pi / n)
-        k, m, f, (el_len_f, el_dir_f, motion_f) = system_matrices(mech, disc, diameters, material, fine, gravity)
+        k, m, f, (el_len_f, el_dir_f, motion_f) = system_matrices(mech, disc, diameters, material, fine, gravity, tip_force=tip_force)
         freqs = natural_frequencies(k[0], m[0])
         w1, w2 = freqs[0], freqs[1]
         a0, a1 = rayleigh_coefficients(damping_ratio, w1, w2)
@@ -309,7 +326,8 @@ def ked(
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
         u = last
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first")
+        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
+                                                            tip_force=tip_force)
         tip_l, *_ = _postprocess(mech, disc, diameters, material, last, el_len, el_dir, motion)
         tip_p, *_ = _postprocess(mech, disc, diameters, material, prev, el_len, el_dir, motion)
         scale = max(np.ptp(tip_l, axis=0).max(), 1e-30)

@@ -10,7 +10,9 @@ import xarray as xr
 
 from ...engines.optimize import gradient
 from ...units import angle_grid_deg
-from .adapter import compared_solution, discretisation, mechanism
+from .adapter import allowable, compared_solution, discretisation, mechanism
+from .claims import RESPONSES, claim_measures
+from .missing_load import inertia_only, inferred_loads
 from .model import MEMBERS, signed_extreme
 from .studies import SUMMARY_ATTRS, problem, report_grid, solve, summary
 
@@ -61,6 +63,8 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
     step = opt["gradient_step_m"]
     grad = gradient(lambda x: prob.ss(x, r_last), d, step)
     grad_sz = gradient(lambda x: prob.parts(x, r_last)["SY"] + prob.parts(x, r_last)["SZ"], d, step)
+    claims = claim_measures(cfg, d, compared)
+    loads = inferred_loads(cfg, d, allowable(cfg))
     data = {k: ("case", np.array([r[k] for r in rows]), {"units": u, "long_name": f"{n}, at the published optimum"}) for k, (u, n) in SUMMARY_ATTRS.items()}
     data.update({f"{k}_assembly": ("assembly", np.array([r[k] for r in combo_rows]), {"units": u, "long_name": f"{n}, by assembly"}) for k, (u, n) in SUMMARY_ATTRS.items()})
     data.update(
@@ -81,6 +85,14 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
             "gradient_SS": ("member", grad * 1e-3, {"units": "mm-1", "long_name": "dSS/dx at the published optimum (per mm), last r(k)"}),
             "gradient_SY_SZ": ("member", grad_sz * 1e-3, {"units": "mm-1", "long_name": "d(SY + SZ)/dx at the published optimum (per mm)"}),
             "published_diameter": ("member", published_mm, {"units": "mm", "long_name": "the published optimum (where our model is evaluated)"}),
+            "stress_inertia_only": ("member", inertia_only(cfg, d) / 1e6, {
+                "units": "MPa", "long_name": "largest quasi-static stress per member under the inertia loads alone (no gravity, no external load)"}),
+            "inferred_load": (("direction", "member"), loads["load"], {
+                "units": "N", "long_name": "smallest tip force on the arm making the member's peak stress the allowable (our inference)",
+                "nan_meaning": "no force up to the scan's maximum brings the member to the allowable"}),
+            "inferred_load_stress": (("direction", "loaded", "member"), loads["stress"] / 1e6, {
+                "units": "MPa", "long_name": "peak stress per member under the force that makes the loaded member active"}),
+            **claim_variables(claims),
         }
     )
     return xr.Dataset(
@@ -91,6 +103,35 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
             "member": ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member"}),
             "solution": ("solution", np.array(solutions, dtype=object), {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"}),
             "crank_angle": ("crank_angle", theta, {"units": "deg", "long_name": "crank angle"}),
+            "direction": ("direction", np.array(cfg["missing_load"]["directions_deg"], dtype=float),
+                          {"units": "deg", "long_name": "direction of the tip force, from +x counter-clockwise"}),
+            "loaded": ("loaded", np.array(MEMBERS, dtype=object),
+                       {"units": "1", "long_name": "member the tip force makes stress-active"}),
+            "response": ("response", np.array(RESPONSES, dtype=object),
+                         {"units": "1", "long_name": "response whose sensitivity is measured"}),
         },
-        attrs={"title": "Our model at the published optimum (comparison)", "r_last": r_last},
+        attrs={"title": "Our model at the published optimum (comparison)", "r_last": r_last,
+               "missing_load_max_N": float(cfg["missing_load"]["max_N"]),
+               "missing_load_xtol_N": float(cfg["missing_load"]["xtol_N"]),
+               "missing_load_scan_points": int(cfg["missing_load"]["scan_points"]),
+               "elasticity_step": float(cfg["claims"]["elasticity_step"])},
     )
+
+
+def claim_variables(claims) -> dict[str, tuple]:
+    """The claims' measures (claims.claim_measures) as Dataset variables: masses in g, displacements in m."""
+    described = {
+        "mass_initial": (1e3, "g", "mass of the four bars at the initial diameters"),
+        "mass_published": (1e3, "g", "mass of the four bars at the published optimum"),
+        "mass_ratio": (1.0, "1", "mass at the published optimum over the mass at the initial diameters"),
+        "distortion_initial": (1.0, "m", "largest elastic tip displacement at the initial diameters"),
+        "distortion_published": (1.0, "m", "largest elastic tip displacement at the published optimum"),
+        "distortion_ratio": (1.0, "1", "largest tip displacement at the published optimum over that at the initial diameters"),
+        "stress_initial": (1e-6, "MPa", "peak stress at the initial diameters"),
+    }
+    out = {k: ((), claims[k] * f, {"units": u, "long_name": n}) for k, (f, u, n) in described.items()}
+    out["elasticity"] = (("response", "member"), claims["elasticity"],
+                         {"units": "1", "long_name": "d ln(response) / d ln(diameter) at the published optimum"})
+    out["governing_elasticity"] = ("response", claims["governing_elasticity"],
+                                   {"units": "1", "long_name": "smaller |elasticity| of the arm and the coupler, per response"})
+    return out

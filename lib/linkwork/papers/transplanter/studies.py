@@ -13,7 +13,7 @@ from ...engines.optimize import PenaltyProblem, slsqp, sumt
 from ...units import angle_grid_deg
 from .adapter import allowable, discretisation, dynamic_settings, material, mechanism, member_lengths
 from .adapter import gravity as gravity_of
-from .model import MEMBERS, ked, rigid_motion, signed_extreme
+from .model import MEMBERS, bar_mass, ked, rigid_motion, signed_extreme
 
 def solve(cfg, diameters, solution, theta_deg, *, mech=None, mat=None, gravity=None, disc=None):
     """KED over the crank angles ``theta_deg`` (deg) with the config's mesh, gravity and (dynamic) Newmark settings."""
@@ -22,6 +22,14 @@ def solve(cfg, diameters, solution, theta_deg, *, mech=None, mat=None, gravity=N
         mech or mechanism(cfg), disc or discretisation(cfg), diameters, mat or material(cfg), np.radians(theta_deg),
         solution=solution, gravity=gravity_of(cfg) if gravity is None else gravity, **dynamic,
     )
+
+
+def inertia_only_peaks(cfg: Mapping[str, Any], diameters, tip_force=(0.0, 0.0)) -> np.ndarray:
+    """Largest quasi-static eq. (8) stress (Pa) per member over the report grid at ``diameters`` (m) under the
+    inertia loads alone (no gravity), plus a constant tip force ``tip_force`` (N, global x and y; none by default)."""
+    r = ked(mechanism(cfg), discretisation(cfg), np.asarray(diameters, dtype=float), material(cfg), np.radians(report_grid(cfg)),
+            "quasi-static", gravity=0.0, tip_force=tip_force)
+    return r.stress.max(axis=0)
 
 
 def report_grid(cfg: Mapping[str, Any]) -> np.ndarray:
@@ -114,6 +122,10 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
             "sumt_slsqp_difference": ((), float(np.abs(x_opt - xs).max() * 1e3), {"units": "mm", "long_name": "largest |SUMT - SLSQP| diameter difference"}),
             "stress_opt": ("member", info["stress"] / 1e6, {"units": "MPa", "long_name": "largest stress per member at the SUMT optimum (report grid)"}),
             "constraints_opt": ("constraint", info["constraints"], {"units": "1", "long_name": "constraints g_1..g_8 at the SUMT optimum on the report grid (>= 0 feasible)"}),
+            "stress_inertia_only_opt": ("member", inertia_only_peaks(cfg, x_opt) / 1e6, {
+                "units": "MPa", "long_name": "largest quasi-static stress per member at the SUMT optimum under the inertia loads alone"}),
+            "mass_opt": ((), bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
+                         {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"}),
             "allowable": ((), prob.allowable / 1e6, {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"}),
             "SS_opt": ((), prob.parts(x_opt, h[-1]["r"])["SS"], {"units": "1", "long_name": "SS(X*, r(k)) at the SUMT optimum, last r(k), report grid"}),
             "evaluations": ((), sum(run.evaluations for run in runs), {"units": "1", "long_name": "objective evaluations (SUMT)"}),

@@ -1,12 +1,14 @@
 """Input uncertainty of the transplanter paper: the material, gravity on the elastic model and [x_S1].
 
-Young's modulus and the density of 5A06 within their data-sheet ranges, gravity off or on, the unprinted
+Young's modulus and the density of 5A06 within their data-sheet ranges, gravity off or on (a named choice, never
+a sampled number), the unprinted
 reference diameter [x_S1] around the initial 8 mm, which solution the paper's numbers are (quasi-static or
 time-integrated) and the Rayleigh damping of the latter.  Each sample evaluates our model at the published
 optimum and our own optimum; the latter by SLSQP on SY + SZ with explicit constraints, which agrees with the
 paper's SUMT to 0.001 mm at the nominal inputs (optim.nc) and costs 40 times fewer evaluations.  Each
 sample's SLSQP starts from the nominal SLSQP optimum in optim.nc (a perturbation of it), not from the initial
-diameters: the same optimum (tests/test_uncertainty.py) in about half the evaluations.
+diameters: the same optimum (tests/test_uncertainty.py) in about half the evaluations.  Each sample also measures
+the claims in words at the published optimum (claims.claim_measures), so that their verdicts see the assumptions.
 """
 
 from __future__ import annotations
@@ -27,21 +29,28 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
 
 
 def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Sequence[float]) -> list[Any]:
-    """Our optimum (SLSQP from the diameters ``start_m``, m) and our model at the published optimum, at one sample."""
+    """Our optimum (SLSQP from the diameters ``start_m``, m), our model at the published optimum and the claims'
+    measures there (claims.claim_measures), at one sample."""
     import numpy as np
     import xarray as xr
 
     from ...engines.optimize import slsqp
     from .adapter import compared_solution
+    from .claims import RESPONSES, claim_measures
     from .model import MEMBERS
+    from .published_point import claim_variables
     from .studies import SUMMARY_ATTRS, optimise_on_report_grid, report_grid, solve, summary
 
     run = lambda prob, x: slsqp(prob, x, cfg["optimization"]["slsqp_ftol"])  # noqa: E731
     x, _, _ = optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)
-    at = summary(solve(cfg, np.array(published["optimum_diameters_mm"], dtype=float) / 1e3, compared_solution(cfg), report_grid(cfg)))
+    published_m = np.array(published["optimum_diameters_mm"], dtype=float) / 1e3
+    at = summary(solve(cfg, published_m, compared_solution(cfg), report_grid(cfg)))
     data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
     data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
-    return [xr.Dataset(data, coords={"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object))})]
+    data.update(claim_variables(claim_measures(cfg, published_m, compared_solution(cfg))))  # the claims' measures
+    coords = {"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object)),
+              "response": ("response", np.array(RESPONSES, dtype=object))}
+    return [xr.Dataset(data, coords=coords)]
 
 
 def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int, optim: Any):

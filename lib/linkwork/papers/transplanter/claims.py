@@ -1,0 +1,76 @@
+"""The transplanter paper's claims in words, each given a measure.
+
+* Purpose and result: the optimum is a "minimum-mass design" whose members' mass "is reduced substantially"
+  (Sec. 2 and the results' comment): the mass of the four solid round bars, rho pi/4 sum(l d^2), at the
+  published optimum over that at the initial 8 mm diameters.
+* "When the members' mass is reduced substantially, the arm works with a large distortion" (results' comment):
+  the largest elastic tip displacement at the published optimum over that at the initial diameters.
+* Conclusion: "the sections of the planting arm and of the coupler are the important factors of the members'
+  largest dynamic stress and of the arm tip's elastic deformation": the elasticity d ln y / d ln d_i of the
+  peak stress and of the largest tip displacement to each member's diameter at the published optimum, by
+  central finite differences; "an important factor" is read (in config/published/) as a 1 % change of its
+  diameter moving the response by at least a set fraction of 1 %, for the arm and the coupler alike
+  (``governing_elasticity``: the smaller of their two |elasticities|).
+SI units inside (kg, m, Pa); the compared solution (quasi-static or dynamic) is the config's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+import numpy as np
+
+from .adapter import member_lengths
+from .adapter import material as material_of
+from .model import MEMBERS, bar_mass
+from .studies import report_grid, solve
+
+RESPONSES = ("peak stress", "largest tip displacement")
+
+
+def elasticities(response: Callable[[np.ndarray], np.ndarray], x, rel_step: float) -> np.ndarray:
+    """d ln y_j / d ln x_i (responses j x inputs i) by central differences in ln x with the step ``rel_step``."""
+    x = np.asarray(x, dtype=float)
+    out = []
+    for i in range(x.size):
+        up, down = x.copy(), x.copy()
+        up[i] *= np.exp(rel_step)
+        down[i] *= np.exp(-rel_step)
+        out.append((np.log(response(up)) - np.log(response(down))) / (2.0 * rel_step))
+    return np.array(out).T
+
+
+def governing_elasticity(e: np.ndarray, governing=("arm", "coupler")) -> np.ndarray:
+    """Per response (rows of ``e``), the smallest |elasticity| among the ``governing`` members: each of them moves the
+    response by at least this many per cent per per cent of its diameter."""
+    inside = [MEMBERS.index(m) for m in governing]
+    return np.abs(np.atleast_2d(e))[:, inside].min(axis=1)
+
+
+def responses(cfg: Mapping[str, Any], diameters, solution: str) -> np.ndarray:
+    """Peak eq. (8) stress (Pa) and largest elastic tip displacement (m) over the report grid."""
+    r = solve(cfg, np.asarray(diameters, dtype=float), solution, report_grid(cfg))
+    return np.array([r.stress.max(), np.hypot(r.tip[:, 0], r.tip[:, 1]).max()])
+
+
+def claim_measures(cfg: Mapping[str, Any], published_m, solution: str) -> dict[str, Any]:
+    """The claims' measures at the published optimum ``published_m`` (m) against the initial diameters, in the
+    ``solution``: masses (kg), distortions (m), their ratios, the elasticities (response, member) and the
+    governing members' smallest |elasticity| per response."""
+    initial = np.array(cfg["initial_diameters_m"], dtype=float)
+    published = np.asarray(published_m, dtype=float)
+    lengths, density = member_lengths(cfg), material_of(cfg).density
+    at_published, at_initial = responses(cfg, published, solution), responses(cfg, initial, solution)
+    e = elasticities(lambda d: responses(cfg, d, solution), published, float(cfg["claims"]["elasticity_step"]))
+    return {
+        "mass_initial": bar_mass(lengths, initial, density),
+        "mass_published": bar_mass(lengths, published, density),
+        "mass_ratio": bar_mass(lengths, published, density) / bar_mass(lengths, initial, density),
+        "distortion_initial": float(at_initial[1]),
+        "distortion_published": float(at_published[1]),
+        "distortion_ratio": float(at_published[1] / at_initial[1]),
+        "stress_initial": float(at_initial[0]),
+        "elasticity": e,
+        "governing_elasticity": governing_elasticity(e),
+    }
