@@ -328,7 +328,7 @@ def test_gravity_is_a_named_scenario_read_by_the_model(config, schema):
 
     validate_config(config, schema)
     entry = config["transplanter"]["fe"]["gravity_m_s2"]
-    assert "range" not in entry and entry["choices"] == [0.0, 9.80665] and entry["choice_labels"] == ["off", "on"]
+    assert "range" not in entry and entry["choices"] == [0.0, 9.80665] and entry["choice_labels"] == ["gravity off", "gravity on"]
     found = {i.path: i for i in inputs(config["transplanter"])}
     assert found["fe.gravity_m_s2.value"].choices == (0.0, 9.80665)
     assert all(i.choices or i.path != "fe.gravity_m_s2.value" for i in labelled_inputs(config["transplanter"]))

@@ -259,13 +259,11 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
         if not rows:
             continue
         nominal[n] = values[labels.index(f"{_prefix(scen, n == 0)}nominal")]
-        with np.errstate(invalid="ignore"):
-            low[n], high[n] = np.nanmin(values[rows], axis=0), np.nanmax(values[rows], axis=0)
+        low[n], high[n] = _nan_extremes(values[rows])
         for k, inp in enumerate(ranged):
             moved_rows = [i for i in rows if moved[i] == inp.path]
             if moved_rows:
-                stack = np.vstack([values[moved_rows], nominal[n][None]])
-                oat_low[n, k], oat_high[n, k] = np.nanmin(stack, axis=0), np.nanmax(stack, axis=0)
+                oat_low[n, k], oat_high[n, k] = _nan_extremes(np.vstack([values[moved_rows], nominal[n][None]]))
     axes = [i for i in inputs if i.choices]
     unit = "unit of the published quantity"
     out = xr.Dataset(
@@ -296,6 +294,17 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
     )
     out.attrs["interval_method"] = "samples only (nominal, one at a time, corners, Latin hypercube)"
     return out
+
+
+def _nan_extremes(values):
+    """Column-wise min and max ignoring NaN (NaN where a column holds only NaN: a quantity not reproducible)."""
+    import warnings
+
+    import numpy as np
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return np.nanmin(values, axis=0), np.nanmax(values, axis=0)
 
 
 def sample_count(inputs: Sequence[Input], lhs_points: int, corner_limit: int = 0) -> int:
