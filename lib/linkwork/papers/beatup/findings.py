@@ -378,7 +378,7 @@ def fitted_headline_notes(fit: Mapping[str, Any], numerics: Mapping[str, Any], p
 
 
 def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], sixbar: xr.Dataset, window: xr.Dataset, uncertainty: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
-    """Comparison table and findings: headline numbers (one crank sense each, the other as a note), Table 1
+    """Comparison table and findings: headline numbers (in the crank sense of the scenario; the sense-dependent ones in both senses), Table 1
     against one joint fit of the printed parameters, the theta6 offset, closed forms, window constraints."""
     crank_deg, printed, tolerance = printed_table(published)
     fit = table1_fit(cfg, crank_deg, printed, tolerance)
@@ -441,19 +441,19 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, pub: Mapping[str, Any]) ->
         why = "although its velocity peaks pick the other sense"
     else:
         why = f"a sense its velocity peaks do not single out (they hold in {'both senses' if picked == 'both' else 'neither sense'})"
-    peaks = (f"{value.loc['rate_peak_1', sense]:.1f}° and {value.loc['rate_peak_2', sense]:.1f}° after the front dead centre, "
-             f"printed near {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}°, against "
-             f"{value.loc['rate_peak_1', other]:.1f}° and {value.loc['rate_peak_2', other]:.1f}° in the other sense")
+    peaks = (f"{value.loc['rate_peak_1', sense]:.1f}° and {value.loc['rate_peak_2', sense]:.1f}° after the front dead centre "
+             f"against the printed near {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}°; "
+             f"{value.loc['rate_peak_1', other]:.1f}° and {value.loc['rate_peak_2', other]:.1f}° the other way")
     kinematic = [q for q, e in pub.items() if e["measure"] is not None]
     untested = [q for q, e in pub.items() if e["measure"] is None and q in table.id.values]
     rows = table[table.id.isin(kinematic)]
     window_rows = table[table.id.isin(untested)]
     untestable = bool((window_rows.verdict == "not reproducible").all())
-    second = ("is untested, because the paper prints neither the reed distance that lets the shuttle pass nor the four-bar's dimensions"
-              if untestable else f"was judged on assumed inputs ({count_text(window_rows, '')} of its numbers)")
+    second = ("is untested: the paper prints neither the reed distance that lets the shuttle pass nor the four-bar's dimensions"
+              if untestable else f"rests on assumed inputs ({count_text(window_rows, '')} of its numbers)")
     return (
-        f"The six-bar's motion reproduces for the {label[sense]}, {why} ({peaks}): of its {len(kinematic)} kinematic headline numbers "
+        f"The six-bar's motion reproduces with the {label[sense]}, {why} ({peaks}): of its {len(kinematic)} kinematic headline numbers "
         f"{count_text(rows, '')}, and {int(findings.table1_matches)} of {int(findings.table1_total)} Table 1 cells match one fit of the "
-        f"printed parameters within their rounding. "
-        f"Its comparative claim, {pub['window_difference']['value']:g}° more weft-insertion time than the 1511M four-bar, {second}."
+        f"printed parameters. "
+        f"Its claim of {pub['window_difference']['value']:g}° more weft-insertion time than the 1511M four-bar {second}."
     )
