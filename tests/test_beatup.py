@@ -367,3 +367,15 @@ def test_reed_stroke_and_four_bar_front_position():
     r = radius_for_stroke(angle.max(), angle.min(), 0.1535)
     s = reed_displacement(angle, angle.max(), r)
     assert np.isclose(s.max(), 0.1535) and np.isclose(s.min(), 0.0, atol=1e-12)
+
+
+@pytest.mark.parametrize("field, bad", [("value", "clockwise"), ("choice_labels", ["only one"])])
+def test_an_unknown_or_unlabelled_crank_sense_is_refused(config, schema, field, bad):
+    """The sense is one of two named choices, each with a label: anything else is refused naming the key."""
+    import copy
+
+    from conftest import expect_config_error
+
+    c = copy.deepcopy(config)
+    c["beatup"]["sixbar"]["crank_sense"][field] = bad
+    expect_config_error(c, schema, f"beatup.sixbar.crank_sense.{field}")
