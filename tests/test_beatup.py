@@ -379,3 +379,13 @@ def test_an_unknown_or_unlabelled_crank_sense_is_refused(config, schema, field, 
     c = copy.deepcopy(config)
     c["beatup"]["sixbar"]["crank_sense"][field] = bad
     expect_config_error(c, schema, f"beatup.sixbar.crank_sense.{field}")
+
+
+def test_the_answer_follows_the_scenario(published):
+    """In the other crank sense the same code says the motion reproduces only in part and that the peaks pick the other sense."""
+    entry = SECTION["sixbar"]["crank_sense"]
+    cfg = {**SECTION, "sixbar": {**SECTION["sixbar"], "crank_sense": {**entry, "value": "increasing"}}}
+    table, fnd = compare_findings(cfg, published, sixbar_dataset(cfg), window_dataset(cfg), None)
+    text = fnd.attrs["answer"]
+    assert "reproduces only in part" in text and "pick the other sense" in text
+    assert table.set_index("id").loc["span_front_to_back", "verdict"] == "deviates"

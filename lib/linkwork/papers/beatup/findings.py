@@ -451,8 +451,9 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, pub: Mapping[str, Any]) ->
     untestable = bool((window_rows.verdict == "not reproducible").all())
     second = ("is untested: the paper prints neither the reed distance that lets the shuttle pass nor the four-bar's dimensions"
               if untestable else f"rests on assumed inputs ({count_text(window_rows, '')} of its numbers)")
+    holds = "reproduces" if not (rows.verdict == "deviates").any() else "reproduces only in part"
     return (
-        f"The six-bar's motion reproduces with the {label[sense]}, {why} ({peaks}): of its {len(kinematic)} kinematic headline numbers "
+        f"The six-bar's motion {holds} with the {label[sense]}, {why} ({peaks}): of its {len(kinematic)} kinematic headline numbers "
         f"{count_text(rows, '')}, and {int(findings.table1_matches)} of {int(findings.table1_total)} Table 1 cells match one fit of the "
         f"printed parameters. "
         f"Its claim of {pub['window_difference']['value']:g}° more weft-insertion time than the 1511M four-bar {second}."
