@@ -8,26 +8,7 @@
 # ---
 
 # %% [markdown]
-# # Six-link beating-up mechanism (GN721) vs four-link (1511M): reproduction report
-
-# %%
-from _common import esc, md
-
-from linkwork.papers import CITATIONS
-
-md(f"**Paper.** {esc(CITATIONS['beatup'])}")
-
-# %% [markdown]
-# **What the paper does.** The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a
-# double rocker CDEF. The paper solves both loops with complex vectors (tangent half-angle closed forms, eqs. 5 and 11),
-# tabulates the rocker angle θ3 and the sley-sword angle θ6 with their derivatives (Table 1), and compares the weft
-# window with that of the 1511M four-bar at equal reed stroke.
-#
-# **What we do.** We solve the six-bar as a chain of dyads with the shared solver (`linkwork.engines.kinematics.solve_chain`),
-# using vector loop closure with explicit branches and analytic rates. We check it against the paper's own closed
-# forms and against finite differences. We fit the printed parameters once to Table 1's angles within their rounding and
-# judge every cell against that one model; for every cell that does not match we give the evidence of why. For the weft-window comparison the paper gives neither the 1511M dimensions nor S_w, so we
-# show how the windows depend on them.
+# # Beat-up paper (Gao, GN721 six-link beating-up mechanism against the 1511M four-link): reproduction report
 
 # %%
 import json
@@ -36,6 +17,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import answer, caption, esc, inputs, load, md, provenance, table, verdict_figure
+
+from linkwork.papers import CITATIONS
 
 files = inputs()
 ds = load(files["result"])
@@ -50,7 +33,7 @@ win_cfg = json.loads(win.attrs["config_json"])
 pub = {q["id"]: q for q in published["quantities"]}
 t1 = cmp[cmp["id"].str.startswith("table1")]
 head = cmp[~cmp["id"].str.startswith("table1")]
-head = head.assign(quantity=head.quantity.str.replace("theta1", "θ1"))
+head = head.assign(quantity=head.quantity.str.replace("theta1", "θ1"), numerical_source=head.numerical_source.str.replace("theta6", "θ6"))
 f = lambda name: float(ds[name])  # noqa: E731
 count = dict(zip(fnd.cell_class_name.values, fnd.class_count.values.astype(int)))
 evidence = fnd[["column", "theta1", "printed", "ours", "deviation", "deviation_in_tolerances", "tolerance", "numerical_error", "nominal_model", "offset_model",
@@ -69,20 +52,93 @@ refit_class = "matches the refit with the offset parameter unbounded"
 refit_moves = {SYMBOL[n]: (float(fnd.fit_shift.sel(fit_case="joint fit within rounding", fit_parameter=n)), float(fnd.fit_shift.sel(fit_case=offset_case, fit_parameter=n)))
                for n in fnd.fit_parameter.values if n != offset_par}
 refit_text = ", ".join(f"{k} from {a:+.2f} to {b:+.2f}" for k, (a, b) in refit_moves.items() if f"{a:+.2f}" != f"{b:+.2f}")
-sense = published["sense"].replace("theta1", "θ1")
-other = pd.DataFrame({"id": fnd.other_sense_id.values, "ours (other sense)": fnd.other_sense_value.values, "other sense": fnd.other_sense_text.values})
+chosen = fnd.attrs["crank_sense"]
+senses = [str(s) for s in fnd.crank_sense.values]
+other_sense = next(s for s in senses if s != chosen)
+sense_label = dict(zip(senses, fnd.crank_sense_label.values))
+sense = sense_label[chosen]
+SIGN = {"decreasing": -1, "increasing": 1}  # sign of the crank's rate of turn in each sense (θ1 decreasing or increasing)
+sense_value = fnd.sense_value.to_pandas()
+sense_verdict = fnd.sense_verdict.to_pandas()
 our_reading = head[head.tolerance_source.str.startswith("our reading")]
+
+answer(fnd)
+
+# %%
+front = f("front_dead_centre")
+fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
+style = {chosen: ("C0", "-"), other_sense: ("C1", "--")}
+for s in senses:
+    colour, line = style[s]
+    phi = np.mod(SIGN[s] * (ds.crank_angle_fine.values - front), 360.0)
+    order = np.argsort(phi)
+    axes[0].plot(phi[order], ds.theta6_fine.values[order], color=colour, ls=line, label=sense_label[s])
+    axes[1].plot(phi[order], SIGN[s] * ds.theta6_rate_fine.values[order], color=colour, ls=line, label=sense_label[s])
+    back = float(ds.span_front_to_back_by_sense.sel(crank_sense=s))
+    axes[0].plot(back, float(ds.theta6_fine.min()), "v", color=colour, ms=8)
+    axes[0].annotate(f"back dead centre {back:.2f}°", (back, float(ds.theta6_fine.min())), textcoords="offset points",
+                     xytext=(-8 if s == chosen else 8, -14), ha="right" if s == chosen else "left", fontsize=8, color=colour)
+    for q in ("rate_peak_1", "rate_peak_2"):
+        x = sense_value.loc[q, s]
+        y = SIGN[s] * float(np.interp(np.mod(front + SIGN[s] * x, 360.0), ds.crank_angle_fine.values, ds.theta6_rate_fine.values))
+        axes[1].plot(x, y, "o", color=colour, ms=6)
+        axes[1].annotate(f"{x:.1f}°", (x, y), textcoords="offset points", xytext=(6 if s == chosen else -6, -10 if y < 0 else 4),
+                         ha="left" if s == chosen else "right", fontsize=8, color=colour)
+p_phi = np.mod(SIGN[chosen] * (ds.crank_angle.values - front), 360.0)
+axes[0].plot(p_phi, printed["theta6"], "kx", ms=5, label=f"Table 1 as printed ({sense_label[chosen]})")
+axes[0].axvline(0, color="k", lw=1)
+axes[0].text(3, 0.5 * float(ds.theta6_fine.min() + ds.theta6_fine.max()), f"front dead centre at φ = 0 (θ1 = {front:.2f}°)", fontsize=8)
+axes[0].axvline(pub["span_front_to_back"]["value"], color="C3", ls=":", lw=1.5, label=f"printed back dead centre, {pub['span_front_to_back']['value']:g}° after the front")
+for q in ("rate_peak_1", "rate_peak_2"):
+    v, tol = pub[q]["value"], pub[q]["tolerance"]["abs"]
+    axes[1].axvspan(v - tol, v + tol, color="C3", alpha=0.12, label=f"printed peaks 'near' {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}° (± {tol:g}°, our reading)" if q == "rate_peak_1" else None)
+    axes[1].axvline(v, color="C3", ls=":", lw=1)
+axes[1].axhline(0, color="k", lw=0.6)
+axes[0].set_ylabel("sley-sword angle θ6 (deg)")
+axes[0].set_ylim(float(ds.theta6_fine.min()) - 1.2, float(ds.theta6_fine.max()) + 0.6)
+axes[1].set_ylabel("sley rate dθ6/dφ (rad per rad of crank)")
+axes[1].set_xlabel("crank angle φ turned since the front dead centre (deg)")
+axes[1].set_xticks(range(0, 361, 30))
+for ax in axes:
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper center" if ax is axes[0] else "upper left")
+plt.show()
+caption(f"The sley over one crank turn from the front dead centre, for the crank turning each way (solid: {sense_label[chosen]}, the sense of the verdicts; "
+        f"dashed: {sense_label[other_sense]}). Top: sley-sword angle θ6 in degrees; triangles: the back dead centre in each sense; red dotted: the printed "
+        f"{pub['span_front_to_back']['value']:g}°; crosses: Table 1's printed θ6. Bottom: the sley's rate per unit crank angle (rad/rad; negative: towards the back); "
+        f"dots: its two peaks in each sense; red bands: the printed peaks 'near' {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}° within our ± "
+        f"{pub['rate_peak_1']['tolerance']['abs']:g}° reading. Both the back dead centre and the velocity peaks fall on the printed positions in one sense only.")
+
+# %%
+md(f"**Paper.** {esc(CITATIONS['beatup'])}")
+
+# %% [markdown]
+# **What the paper does.** The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a
+# double rocker CDEF. The paper solves both loops with complex vectors (tangent half-angle closed forms, eqs. 5 and 11),
+# tabulates the rocker angle θ3 and the sley-sword angle θ6 with their derivatives (Table 1), and compares the weft
+# window with that of the 1511M four-bar at equal reed stroke.
+#
+# **What we do.** We solve the six-bar as a chain of dyads with the project's shared kinematics solver (vector loop
+# closure with explicit branches and analytic rates). We check it against the paper's own closed forms and against
+# finite differences. We fit the printed parameters once to Table 1's angles within their rounding and judge every cell
+# against that one model; for every cell that does not match we give the evidence of why. The paper does not say which
+# way the crank turns, so the sense is a named scenario: we compute every sense-dependent claim in both senses. For the
+# weft-window comparison the paper gives neither the 1511M dimensions nor S_w, so we show how the windows depend on them.
 
 # %% [markdown]
 # ## Summary
 
 # %%
-answer(fnd)
+peak_tol = pub["rate_peak_1"]["tolerance"]["abs"]
 md(
     f"""
-* **One crank sense.** Every sense-dependent claim is judged for the {esc(sense)}: the one sense in which the printed
-  {pub['span_front_to_back']['value']:g}° from front to back dead centre holds ({f('span_reverse'):.2f}°). In the other sense it is
-  {f('span_forward'):.2f}°; that, and the velocity peaks in that sense, are notes beside the verdicts (section 3), not verdicts.
+* **Crank sense, a named scenario.** The verdicts are taken for the {esc(sense)}. The evidence for that sense, apart from the printed
+  {pub['span_front_to_back']['value']:g}° it makes hold ({sense_value.loc['span_front_to_back', chosen]:.2f}° against
+  {sense_value.loc['span_front_to_back', other_sense]:.2f}° the other way), is the velocity peaks: {sense_value.loc['rate_peak_1', chosen]:.1f}° and
+  {sense_value.loc['rate_peak_2', chosen]:.1f}° after the front dead centre in this sense, {sense_value.loc['rate_peak_1', other_sense]:.1f}° and
+  {sense_value.loc['rate_peak_2', other_sense]:.1f}° in the other, against the printed "near {pub['rate_peak_1']['value']:g}° and
+  {pub['rate_peak_2']['value']:g}°" (within ± {peak_tol:g}°, our reading, both peaks hold in
+  {'this sense only' if fnd.attrs['sense_picked_by_peaks'] == chosen else esc(fnd.attrs['sense_picked_by_peaks'])}). Section 3 sets every sense-dependent claim in both senses.
 * **Table 1** is set against *one* model: l4, l7, θ4 and θ7 fitted jointly by least squares to the table's 48 printed angles (θ3 and
   θ6), each held within the rounding interval of its printed digits. {int(fnd.table1_matches)} of {int(fnd.table1_total)} printed
   cells match it. {count['printed cell inconsistent']} printed derivatives are contradicted by the paper's own neighbouring cells,
@@ -94,10 +150,8 @@ md(
   ({int(fnd.fit_at_bound)} parameters end on a rounding bound). Moving {SYMBOL[offset_par]} alone by {float(fnd.offset_change):+.4f}
   {fnd.offset_change.attrs['units']}, {float(fnd.offset_shift):+.1f} rounding half-widths, removes it: the paper's {SYMBOL[offset_par]} (or its
   equivalent, the position of pivot D seen from the rocking shaft F) differs from the printed one by more than rounding.
-* **Headline numbers:** front dead centre {f('front_dead_centre'):.2f}° (printed {pub['front_dead_centre']['value']:g}°), total swing
-  {f('swing'):.2f}° (printed {pub['swing']['value']:g}°). The velocity peaks near {pub['rate_peak_1']['value']:g}° and
-  {pub['rate_peak_2']['value']:g}° after the front dead centre, and the acceleration largest at the front, are judged in the same sense.
-  A note, not a verdict: at the parameter set fitted to Table 1 (section 2) {'; '.join(
+* **Headline numbers:** front dead centre {f('front_dead_centre'):.4f}° (printed {pub['front_dead_centre']['value']:g}°), total swing
+  {f('swing'):.4f}° (printed {pub['swing']['value']:g}°); neither depends on the sense. A note, not a verdict: at the parameter set fitted to Table 1 (section 2) {'; '.join(
       f"{esc(pub[q]['quantity'].split(' (')[0])} is {v:.4f}° ({'within' if w else 'outside'} ± {pub[q]['tolerance']['abs']:g}° of {pub[q]['value']:g}°)"
       for q, v, w in zip(fnd.fitted_note_id.values, fnd.fitted_note_value.values, fnd.fitted_note_within.values))} (section 3).
 * **Tolerances that are our reading, not the paper's:** {'; '.join(esc(q) + ' (' + esc(t) + ')' for q, t in zip(our_reading.quantity, our_reading.tolerance_source))};
@@ -107,8 +161,10 @@ md(
   follows them (the printed (7) and (13) would change θ3'' by up to
   {f('theta3_accel_eqs_printed_max_difference'):.3f} and θ6'' by up to
   {f('theta6_accel_eqs_printed_max_difference'):.3f}).
-* **Weft window:** the {pub['window_sixbar']['value']:g}° vs {pub['window_fourbar']['value']:g}° comparison cannot be reproduced from the paper, which gives neither S_w nor the
-  1511M dimensions. Section 5 shows which S_w and L/R values make the published numbers true.
+* **The comparative claim is untested.** The paper's conclusion that the six-bar leaves {pub['window_difference']['value']:g}° more crank angle
+  for weft insertion than the 1511M four-bar ({pub['window_sixbar']['value']:g}° against {pub['window_fourbar']['value']:g}°) cannot be
+  reproduced: the paper gives neither S_w (the reed distance from its front position that lets the shuttle pass) nor the 1511M
+  dimensions. Section 5 shows which S_w and four-bar arm-to-crank ratios would make the published numbers true; that is a constraint, not a verdict.
 """
 )
 
@@ -135,8 +191,8 @@ md(
 #
 # l4, l7, θ4 and θ7 are printed with two decimals (mm, deg); the other lengths are whole millimetres, taken as exact design values.
 # The rounding of those four numbers is *one* fixed error for the whole table, so we fit them once, by least squares
-# (`scipy.optimize.least_squares`), to Table 1's 48 printed angles (24 θ3 and 24 θ6), each held within the rounding interval of its
-# printed digits (`beatup.printed_rounding` in the config). Every one of the 144 cells is then judged against that one model.
+# (SciPy's trust-region least squares), to Table 1's 48 printed angles (24 θ3 and 24 θ6), each held within the rounding interval of its
+# printed digits (half a unit of the last printed digit). Every one of the 144 cells is then judged against that one model.
 #
 # **Rule.** A cell *matches the fitted model* if |printed − fitted| ≤ half a unit of the cell's printed last digit + our numerical
 # error of the fitted model. That error is the change of the cell when the fit is repeated at a tighter tolerance, plus the
@@ -158,7 +214,7 @@ md(
 
 # %%
 fit_cfg = json.loads(fnd.attrs["config_json"])["table1_fit"]
-md(f"The fit runs at tolerance {fit_cfg['tolerance']:.0e} (least_squares' ftol = xtol = gtol) and is repeated at {fit_cfg['check_tolerance']:.0e}; "
+md(f"The fit runs at tolerance {fit_cfg['tolerance']:.0e} (the function, step and gradient tolerances of the least squares) and is repeated at {fit_cfg['check_tolerance']:.0e}; "
    f"our numerical error of the fitted model is at most {float(fnd.fit_numerical_error_max):.1e} (in each column's unit), far below the printed digits, "
    "so the printing rounding decides every cell.")
 par_fit = pd.DataFrame({
@@ -252,11 +308,11 @@ lines = [f"* {labels[r.column]} at θ1 = {r.theta1:.0f}°: printed {r.printed:.4
 md("The largest printed-cell errors, each contradicted by the paper's own neighbouring cells:\n\n" + "\n".join(lines))
 
 # %% [markdown]
-# ## 3. Headline numbers, in one crank sense
+# ## 3. Headline numbers, and the crank sense
 #
-# The paper does not say which way the crank turns. Its printed crank angle from front to back dead centre holds in one sense only, so we
-# take that sense for every claim that depends on it and give the other sense as a note, not as a second verdict. A tolerance
-# whose source starts with *our reading* is ours, not the paper's.
+# The paper does not say which way the crank turns. The sense is therefore a named scenario (a choice in the configuration,
+# with both alternatives listed): the verdicts below are taken in the sense of the scenario, and the table after them sets every
+# sense-dependent claim in both senses. A tolerance whose source starts with *our reading* is ours, not the paper's.
 
 # %%
 
@@ -276,7 +332,7 @@ head_table = pd.DataFrame({
     "error from": head.numerical_source.fillna(""),
     "over the rounding of the printed parameters": ["–" if pd.isna(lo) else f"{lo:.{decimals(t) + 1}f} … {hi:.{decimals(t) + 1}f}"
                                                     for lo, hi, t in zip(head.input_low, head.input_high, head.tolerance)],
-    "decided by": head.decided_by.fillna(""),
+    "decided by": head.decided_by.fillna("").map(lambda k: {"l4_m": "l4", "l7_m": "l7", "theta4_deg": "θ4", "theta7_deg": "θ7"}.get(k, k)),
     "unit": head.unit,
     "verdict": head.verdict,
 })
@@ -292,12 +348,28 @@ table(fitted_notes[["quantity", "published", "tolerance", "reproduced", "verdict
 md("The verdicts are taken at the printed parameters, the numbers the paper states; the fit of section 2 is our reading of what Table 1 was "
    f"computed with, so what it gives is a note. The fitted parameters lie within their rounding intervals ({int(fnd.fit_at_bound)} of them on a bound), "
    "so the fitted set is one of the parameter sets the range column above spans.")
-notes = other.merge(head[["id", "quantity", "published", "reproduced"]], on="id")
-table(notes[["quantity", "published", "reproduced", "ours (other sense)", "other sense"]].rename(columns={"reproduced": f"ours ({sense})"}),
-      {"published": "{:g}", f"ours ({sense})": "{:.2f}", "ours (other sense)": "{:.2f}"},
-      caption="Notes, not verdicts: the same claims read for the crank turning the other way (deg)")
+both = pd.DataFrame({"quantity": [pub[q]["quantity"] for q in sense_value.index],
+                     "published": [f"{pub[q]['value']:g} (± {t:g})" for q, t in zip(sense_value.index, fnd.sense_tolerance.values)]})
+for s in senses:
+    both[f"ours, {sense_label[s]}"] = [f"{v:.2f}" for v in sense_value[s]]
+    both[f"verdict, {sense_label[s]}"] = sense_verdict[s].values
+table(both, caption="Every sense-dependent claim in both crank senses, at the printed parameters (deg; our numerical error as in the table above). "
+      "The velocity peaks are the evidence for the sense that does not rest on the printed front-to-back angle itself")
+peaks_pick = fnd.attrs["sense_picked_by_peaks"]
+md(f"**Which sense.** The printed {pub['span_front_to_back']['value']:g}° from front to back dead centre holds for the "
+   f"{esc(sense_label[chosen] if sense_verdict.loc['span_front_to_back', chosen] == 'matches' else sense_label[other_sense])} only, but "
+   "choosing the sense to make it hold proves nothing about it. The velocity peaks are independent evidence: the sley's fastest run "
+   f"towards the back comes {sense_value.loc['rate_peak_1', chosen]:.1f}° after the front dead centre and its fastest run forward "
+   f"{sense_value.loc['rate_peak_2', chosen]:.1f}° after it for the {esc(sense)}, and {sense_value.loc['rate_peak_1', other_sense]:.1f}° and "
+   f"{sense_value.loc['rate_peak_2', other_sense]:.1f}° for the {esc(sense_label[other_sense])}. The paper reads them off its Fig. 3 as "
+   f"\"near {pub['rate_peak_1']['value']:g}° and {pub['rate_peak_2']['value']:g}°\"; "
+   + (f"both hold in one sense only, the {esc(sense_label[peaks_pick])}, which is the sense of the verdicts. " if peaks_pick in senses else
+      f"they hold in {'both senses' if peaks_pick == 'both' else 'neither sense'}, so they do not decide it. ")
+   + "The two senses are mirror images about the front dead centre (a crank angle φ in one is 360° − φ in the other), so the "
+   f"other sense's peaks are 360° minus this sense's: {360 - sense_value.loc['rate_peak_2', chosen]:.1f}° and "
+   f"{360 - sense_value.loc['rate_peak_1', chosen]:.1f}°. The acceleration claim, the front dead centre and the swing do not depend on the sense.")
 verdict_figure(head, "Beat-up: published headline numbers against ours",
-               note=f"Every sense-dependent number (front to back span, velocity and acceleration peaks) is judged for the {sense}; "
+               note=f"Every sense-dependent number (front to back span, velocity and acceleration peaks) is judged for the {sense} (the scenario); "
                     "front dead centre and swing do not depend on the sense.")
 oat_ids = {"front_dead_centre": "front dead centre (deg)", "span_front_to_back": "front to back (deg)", "swing": "swing (deg)"}
 oat_index = {str(q): i for i, q in enumerate(unc.quantity.values)}
@@ -310,42 +382,44 @@ table(oat, caption=f"Each printed parameter moved alone over its rounding ({int(
       f"values to one digit beyond the published tolerance (± {pub['front_dead_centre']['tolerance']['abs']:g}°), so that the ranges can be read against it")
 md(
     f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "
-    f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. For the {esc(sense)} the velocity peaks fall at "
-    f"{f('rate_peak_neg_reverse'):.1f}° and {f('rate_peak_pos_reverse'):.1f}° from the front dead centre. The largest |θ6''| "
-    f"({f('theta6_accel_abs_max'):.4f} rad/rad²) lies {f('accel_peak_reverse'):.1f}° from the front dead centre; θ6'' and that distance "
+    f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. The velocity peaks are zeros of θ6'' located the same way; for the "
+    f"{esc(sense)} they fall {f('rate_peak_1'):.2f}° and {f('rate_peak_2'):.2f}° after the front dead centre. The largest |θ6''| "
+    f"({f('theta6_accel_abs_max'):.4f} rad/rad²) lies {f('accel_peak'):.1f}° from the front dead centre; θ6'' and that distance "
     "are the same in both senses."
 )
 
 # %% [markdown]
 # ### Fig. 3 regenerated: sley motion from the front dead centre
 #
-# The crank angle φ is measured from the front dead centre for the crank turning towards decreasing θ1, the sense of section 3.
-# Table 1's θ6' is dθ6/dθ1 (θ1 increasing); in this sense the sley's rate per unit φ is −θ6', drawn so; θ6'' is the same in both senses.
+# The crank angle φ is measured from the front dead centre in the crank sense of the verdicts (section 3). Table 1's θ6' is
+# dθ6/dθ1 (θ1 increasing); the sley's rate per unit φ is θ6' times the sign of the crank's turn, drawn so; θ6'' is the same in both senses.
 
 # %%
 front = f("front_dead_centre")
-phi = np.mod(front - ds.crank_angle_fine.values, 360.0)
+phi = np.mod(SIGN[chosen] * (ds.crank_angle_fine.values - front), 360.0)
 order = np.argsort(phi)
 fig, axes = plt.subplots(3, 1, figsize=(9, 8), sharex=True, constrained_layout=True)
 for ax, var, ylabel in (
     (axes[0], "theta6", "sley angle θ6 (deg)"),
-    (axes[1], "theta6_rate", "dθ6/dφ = −θ6' (rad/rad)"),
+    (axes[1], "theta6_rate", f"dθ6/dφ = {'−' if SIGN[chosen] < 0 else ''}θ6' (rad/rad)"),
     (axes[2], "theta6_accel", "θ6'' (rad/rad²)"),
 ):
-    sense = -1 if var == "theta6_rate" else 1  # a rate changes sign with the sense of rotation
-    ax.plot(phi[order], sense * ds[var + "_fine"].values[order], "C0", label="ours")
-    p_phi = np.mod(front - ds.crank_angle.values, 360.0)
-    ax.plot(p_phi, sense * printed[var], "kx", ms=5, label="Table 1 (printed)")
+    sign = SIGN[chosen] if var == "theta6_rate" else 1  # a rate changes sign with the sense of rotation
+    ax.plot(phi[order], sign * ds[var + "_fine"].values[order], "C0", label="ours")
+    p_phi = np.mod(SIGN[chosen] * (ds.crank_angle.values - front), 360.0)
+    ax.plot(p_phi, sign * printed[var], "kx", ms=5, label="Table 1 (printed)")
     ax.set_ylabel(ylabel)
     ax.grid(alpha=0.3)
 for x in (pub["rate_peak_1"]["value"], pub["rate_peak_2"]["value"]):
     axes[1].axvline(x, color="C3", ls=":", lw=1)
 axes[1].text(pub["rate_peak_1"]["value"] + 2, axes[1].get_ylim()[1] * 0.8, "published peaks", color="C3", fontsize=8)
-axes[2].set_xlabel("crank angle φ from the front dead centre (deg, crank turning towards decreasing θ1)")
+axes[2].set_xlabel(f"crank angle φ from the front dead centre (deg, {sense})")
 axes[2].set_xticks(range(0, 361, 30))
 axes[0].legend(fontsize=8)
 plt.show()
-caption("Sense and signs: crank angle φ from the front dead centre, counted for the crank turning towards decreasing θ1 (the one sense in which every claim is judged). Sley angle θ6, its rate dθ6/dφ = −θ6' (Table 1's θ6' is per unit of increasing θ1, so its printed values appear with the sign reversed) and its acceleration θ6'' (the same in both senses), all per unit crank angle. Crosses: Table 1 as printed; red dotted lines: the published velocity peaks.")
+caption(f"Sense and signs: crank angle φ (deg) from the front dead centre, counted for the {sense} (the sense of the verdicts). Sley angle θ6 (deg), its rate dθ6/dφ (rad/rad; Table 1's θ6' is per unit of increasing θ1, so "
+        + ("its printed values appear with the sign reversed" if SIGN[chosen] < 0 else "its printed values appear as printed")
+        + ") and its acceleration θ6'' (rad/rad², the same in both senses), all per unit crank angle. Crosses: Table 1 as printed; red dotted lines: the published velocity peaks.")
 
 # %% [markdown]
 # ## 4. Which printed equations do not follow from (3) and (10)
@@ -392,8 +466,9 @@ table(
         [(k, v["value"], v["status"], v["reason"]) for k, v in fb.items()]
         + [("scaled six-bar crank (m)", win_cfg["comparison"]["scaled_crank_m"], "sourced", "paper, Sec. 3"),
            ("reed stroke S (m)", win_cfg["comparison"]["stroke_m"], "sourced", "paper, Sec. 3 (1511M value)")],
-        columns=["value", "number", "status", "reason"],
-    )
+        columns=["config key of the four-bar, or quantity", "number", "status", "reason"],
+    ),
+    caption="The four-bar's assumed inputs (the first column lists config keys of the four-bar section, then two printed quantities)",
 )
 md(
     f"Solved cloth-fell radii: six-bar {float(win.reed_radius_sixbar):.1f} mm (scaled swing {float(win.swing_sixbar_scaled):.2f}°), "
@@ -407,7 +482,7 @@ md(
 # %%
 sw = fb["weft_clearance_m"]["value"] * 1e3
 fig, ax = plt.subplots(figsize=(9, 4), constrained_layout=True)
-x = np.mod(-win.angle_from_front.values, 360.0)  # the window study counts towards increasing θ1; shown in the sense of section 3
+x = np.mod(SIGN[chosen] * win.angle_from_front.values, 360.0)  # the window study counts towards increasing θ1; shown in the sense of section 3
 order4 = np.argsort(x)
 x = x[order4]
 ax.plot(x, win.reed_sixbar.values[order4], "C0-", label="six-bar (crank 62 mm)")
@@ -417,14 +492,14 @@ ax.text(2, sw + 2, f"S_w = {sw:.0f} mm (assumed)", fontsize=8)
 for name, colour in (("reed_sixbar", "C0"), ("reed_fourbar", "C1")):
     values = win[name].values[order4]
     ax.fill_between(x, 0, values, where=values > sw, color=colour, alpha=0.12)
-ax.set_xlabel("crank angle from the front dead centre (deg, crank turning towards decreasing θ1)")
+ax.set_xlabel(f"crank angle from the front dead centre (deg, {sense})")
 ax.set_ylabel("reed distance from its front position S (mm)")
 ax.set_title(f"Fig. 4 regenerated: reed displacement at cloth-fell height, equal stroke {win_cfg['comparison']['stroke_m'] * 1e3:g} mm")
 ax.set_xticks(range(0, 361, 30))
 ax.grid(alpha=0.3)
 ax.legend(fontsize=8)
 plt.show()
-caption("Reed distance behind its front position at cloth-fell height over a crank turn, against the crank angle from the front dead centre counted for the crank turning towards decreasing θ1 (the sense of section 3; the assumed four-bar's crank is taken to turn the same way), for the scaled six-bar and the assumed four-bar at equal stroke; shaded: where the reed is further back than S_w (the weft window, a total crank angle that does not depend on the sense).")
+caption(f"Reed distance (mm) behind its front position at cloth-fell height over a crank turn, against the crank angle (deg) from the front dead centre counted for the {sense} (the sense of section 3; the assumed four-bar's crank is taken to turn the same way), for the scaled six-bar and the assumed four-bar at equal stroke; shaded: where the reed is further back than S_w (the weft window, a total crank angle that does not depend on the sense).")
 
 # %% [markdown]
 # ### What the published 168°, 147° and 21° constrain

@@ -2,6 +2,10 @@
 
 # The six-bar without its crank (the window study scales the crank to comparison.scaled_crank_m).
 SIXBAR_FRAME = [f"sixbar.{k}" for k in ("l2_m", "l3_m", "l4_m", "l5_m", "l6_m", "l7_m", "theta4_deg", "theta7_deg", "branch_rocker", "branch_sley")]
+# The whole mechanism; the crank sense (a named scenario) is read only where a sense-dependent number is: its value
+# by the motion study, its choices and labels by the comparison (which computes both senses), never its reason.
+SIXBAR_MECHANISM = ["sixbar.l1_m", *SIXBAR_FRAME]
+SENSE_CHOICE = ["sixbar.crank_sense.value", "sixbar.crank_sense.choices", "sixbar.crank_sense.choice_labels"]
 
 
 rule beatup_sixbar:
@@ -11,7 +15,7 @@ rule beatup_sixbar:
         "results/beatup/sixbar.nc",
     params:
         study="linkwork.papers.beatup.studies:sixbar",
-        cfg=section("beatup", "sixbar", "closed_form_signs", "grids", "numerics"),
+        cfg=section("beatup", *SIXBAR_MECHANISM, "sixbar.crank_sense.value", "closed_form_signs", "grids", "numerics"),
     script:
         STUDY
 
@@ -36,7 +40,7 @@ rule beatup_accuracy:
         timings="results/beatup/accuracy_timings.json",
     params:
         study="linkwork.papers.beatup.accuracy:accuracy",
-        cfg=section("beatup", "sixbar", "accuracy"),
+        cfg=section("beatup", *SIXBAR_MECHANISM, "accuracy"),
     script:
         STUDY
 
@@ -53,7 +57,7 @@ rule beatup_compare:
         "results/beatup/findings.nc",
     params:
         study="linkwork.papers.beatup.findings:compare",
-        cfg=section("beatup", "sixbar", "printed_rounding", "table1_fit", "grids.paper_step_deg", "comparison.fourbar_window_band_deg",
+        cfg=section("beatup", *SIXBAR_MECHANISM, *SENSE_CHOICE, "printed_rounding", "table1_fit", "grids.paper_step_deg", "comparison.fourbar_window_band_deg",
             "numerics.scan_points", "numerics.root_xtol_rad"),
     script:
         STUDY

@@ -35,3 +35,19 @@ def four_bar_beatup(fourbar: Mapping[str, Any], arm_to_crank: float | None = Non
 def rounding_half_units(printed_rounding: Mapping[str, float]) -> dict[str, float]:
     """Half a unit of each printed parameter's last digit in SI (m or rad), keyed by SixBar field."""
     return {key.rsplit("_", 1)[0]: (float(np.radians(v)) if key.endswith("_deg") else float(v)) for key, v in printed_rounding.items()}
+
+
+def crank_sense(sixbar: Mapping[str, Any]) -> str:
+    """The crank sense of the scenario (``sixbar.crank_sense``, a labelled choice): 'decreasing' or 'increasing' theta1."""
+    from .model import CRANK_SENSES
+
+    value = str(sixbar["crank_sense"]["value"])
+    if value not in CRANK_SENSES:
+        raise ValueError(f"crank sense must be one of {sorted(CRANK_SENSES)}, got {value!r}")
+    return value
+
+
+def sense_labels(sixbar: Mapping[str, Any]) -> dict[str, str]:
+    """Readable name of each crank sense (the entry's choice_labels), keyed by choice."""
+    entry = sixbar["crank_sense"]
+    return dict(zip(entry["choices"], entry.get("choice_labels", entry["choices"]), strict=True))

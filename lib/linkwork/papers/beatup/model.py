@@ -227,6 +227,66 @@ def from_front(theta1: ArrayLike, front: float, sense: int = 1) -> FloatArray:
     return np.mod(sense * (np.asarray(theta1, dtype=float) - front), TWO_PI)
 
 
+#: The two senses the crank may turn in (the paper does not say which): name -> sign of dtheta1/dt.
+CRANK_SENSES = {"decreasing": -1, "increasing": 1}
+
+
+def rate_extremes(mechanism: SixBar, scan_points: int = 3601, xtol: float = 1.0e-13) -> tuple[float, float]:
+    """Crank angles theta1 (rad) of the largest and of the smallest theta6' over a turn.
+
+    Both are zeros of theta6'' (brentq on a scan grid of ``scan_points``, x-tolerance ``xtol`` rad); of the
+    zeros found, the ones with the largest and smallest theta6' are returned.  Sense-free: theta6' is per unit
+    of increasing theta1.
+    """
+    grid = np.linspace(0.0, TWO_PI, scan_points)
+    accel = lambda t: float(sley_motion(mechanism, np.array([t])).theta6_accel[0])  # noqa: E731
+    roots = np.array(_roots_of(accel, grid, sley_motion(mechanism, grid).theta6_accel, xtol))
+    if roots.size < 2:
+        raise ValueError(f"expected at least two extremes of the sley rate per turn, found {roots.size}")
+    rates = sley_motion(mechanism, roots).theta6_rate
+    return float(roots[np.argmax(rates)]), float(roots[np.argmin(rates)])
+
+
+@dataclass(frozen=True)
+class SenseReading:
+    """The sense-dependent features of the sley motion for a crank turning in ``sense`` (rad).
+
+    sense: +1 towards increasing theta1, -1 towards decreasing.  span_front_to_back: crank angle turned
+    from the front to the back dead centre.  rate_peak_backward / rate_peak_forward: crank angle from the
+    front dead centre, counted in the sense of rotation, of the largest sley speed towards the back (theta6
+    falling; the first peak after the front) and towards the front (the second).  accel_peak: crank-angle
+    distance of the largest |theta6''| from the front dead centre (the same in both senses).
+    """
+
+    sense: int
+    span_front_to_back: float
+    rate_peak_backward: float
+    rate_peak_forward: float
+    accel_peak: float
+
+
+def sense_reading(centres: DeadCentres, extremes: tuple[float, float], accel_peak_theta1: float, sense: int) -> SenseReading:
+    """Read the dead centres (``dead_centres``), the rate extremes (``rate_extremes``: theta1 of the largest
+    and smallest theta6') and the theta1 of the largest |theta6''| (rad) for a crank turning in ``sense``.
+
+    The sley's angular velocity is sense * theta6' * |crank speed|: it moves towards the back (theta6
+    falling) fastest where sense * theta6' is most negative.
+    """
+    if sense not in (1, -1):
+        raise ValueError(f"crank sense must be +1 or -1, got {sense!r}")
+    largest, smallest = extremes
+    backward, forward = (smallest, largest) if sense == 1 else (largest, smallest)
+    phi = lambda t: float(from_front(t, centres.front, sense))  # noqa: E731
+    accel = phi(accel_peak_theta1)
+    return SenseReading(
+        sense,
+        centres.span_forward if sense == 1 else centres.span_reverse,
+        phi(backward),
+        phi(forward),
+        min(accel, TWO_PI - accel),
+    )
+
+
 # --- reed displacement and the weft window ------------------------------------------------------------
 
 

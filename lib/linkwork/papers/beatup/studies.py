@@ -10,10 +10,12 @@ import numpy as np
 import xarray as xr
 
 from ...units import DEG_PER_RAD, angle_grid_deg
-from .adapter import four_bar_beatup, six_bar
+from .adapter import crank_sense, four_bar_beatup, six_bar
 from .model import (
+    CRANK_SENSES,
     dead_centres,
-    from_front,
+    rate_extremes,
+    sense_reading,
     paper_closed_form,
     radius_for_stroke,
     reed_displacement,
@@ -60,32 +62,42 @@ def _grids(section: Mapping[str, Any]):
     return angle_grid_deg(grids["paper_step_deg"]), angle_grid_deg(grids["fine_step_deg"])
 
 
-def headline(mech, fine, fine_deg: np.ndarray, numerics: Mapping[str, Any]) -> dict[str, xr.DataArray]:
-    """Dead centres, swing, front-to-back spans and where the sley's speed and acceleration peak (both senses)."""
+#: The sense-dependent features: scenario variable -> (SenseReading field, long name).
+SENSE_FEATURES = {
+    "span_front_to_back": ("span_front_to_back", "crank angle turned from the front to the back dead centre"),
+    "rate_peak_1": ("rate_peak_backward", "crank angle from the front dead centre of the largest sley speed towards the back (first peak)"),
+    "rate_peak_2": ("rate_peak_forward", "crank angle from the front dead centre of the largest sley speed towards the front (second peak)"),
+    "accel_peak": ("accel_peak", "crank-angle distance of the largest |theta6''| from the front dead centre"),
+}
+
+
+def headline(mech, fine, fine_deg: np.ndarray, numerics: Mapping[str, Any], sense: str) -> dict[str, xr.DataArray]:
+    """Dead centres, swing, and the sense-dependent features (front-to-back span, velocity and acceleration peaks)
+    in both crank senses (``<name>_by_sense`` along ``crank_sense``) and in the scenario's ``sense`` (``<name>``)."""
     data = {}
     dc = dead_centres(mech, numerics["scan_points"], numerics["root_xtol_rad"])
     data["front_dead_centre"] = _scalar(dc.front * DEG, "deg", "crank angle of the front dead centre (theta6 maximum)")
     data["back_dead_centre"] = _scalar(dc.back * DEG, "deg", "crank angle of the back dead centre (theta6 minimum)")
     data["swing"] = _scalar(dc.swing * DEG, "deg", "total sley swing")
-    data["span_forward"] = _scalar(dc.span_forward * DEG, "deg", "crank angle front -> back, crank turning towards increasing theta1")
-    data["span_reverse"] = _scalar(dc.span_reverse * DEG, "deg", "crank angle front -> back, crank turning towards decreasing theta1")
-    for sense, tag in ((1, "forward"), (-1, "reverse")):
-        phi = from_front(np.radians(fine_deg), dc.front, sense) * DEG
-        rate = sense * fine.theta6_rate
-        data[f"rate_peak_pos_{tag}"] = _scalar(phi[np.argmax(rate)], "deg", f"crank angle from front dead centre of the largest forward-going sley speed ({tag} sense)")
-        data[f"rate_peak_neg_{tag}"] = _scalar(phi[np.argmin(rate)], "deg", f"crank angle from front dead centre of the largest backward-going sley speed ({tag} sense)")
-        data[f"accel_peak_{tag}"] = _scalar(
-            min(phi[np.argmax(np.abs(fine.theta6_accel))], 360 - phi[np.argmax(np.abs(fine.theta6_accel))]),
-            "deg",
-            f"crank-angle distance of the largest |theta6''| from the front dead centre ({tag} sense)",
-        )
+    extremes = rate_extremes(mech, numerics["scan_points"], numerics["root_xtol_rad"])
+    data["rate_max_theta1"] = _scalar(extremes[0] * DEG, "deg", "crank angle theta1 of the largest theta6' (a zero of theta6'')")
+    data["rate_min_theta1"] = _scalar(extremes[1] * DEG, "deg", "crank angle theta1 of the smallest theta6' (a zero of theta6'')")
+    accel_theta1 = float(np.radians(fine_deg[np.argmax(np.abs(fine.theta6_accel))]))
+    readings = [sense_reading(dc, extremes, accel_theta1, CRANK_SENSES[name]) for name in CRANK_SENSES]
+    names = list(CRANK_SENSES)
+    for var, (field, long_name) in SENSE_FEATURES.items():
+        values = np.array([getattr(r, field) for r in readings]) * DEG
+        data[f"{var}_by_sense"] = xr.DataArray(values, dims="crank_sense", coords={"crank_sense": names},
+                                               attrs={"units": "deg", "long_name": f"{long_name}, in each crank sense"})
+        data[var] = _scalar(values[names.index(sense)], "deg", f"{long_name} (crank turning towards {sense} theta1)")
     data["theta6_accel_abs_max"] = _scalar(np.abs(fine.theta6_accel).max(), "rad rad-2", "largest |theta6''| over a turn")
     return data
 
 
 def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
     """Six-bar angles and derivatives on the paper's and the fine grid with the headline numbers: what the
-    published numbers are read from.  Returns (Dataset, mechanism, paper-grid motion)."""
+    published numbers are read from, the sense-dependent ones in the crank sense of the scenario
+    (``sixbar.crank_sense``) and, beside them, in both senses.  Returns (Dataset, mechanism, paper-grid motion)."""
     mech = six_bar(section["sixbar"])
     paper_deg, fine_deg = _grids(section)
     paper, fine = (sley_motion(mech, np.radians(g)) for g in (paper_deg, fine_deg))
@@ -93,8 +105,13 @@ def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
         "crank_angle": ("crank_angle", paper_deg, {"units": "deg", "long_name": "crank angle theta1 (paper grid)"}),
         "crank_angle_fine": ("crank_angle_fine", fine_deg, {"units": "deg", "long_name": "crank angle theta1 (fine grid)"}),
     }
-    data = {**_motion_vars(paper, "crank_angle"), **_motion_vars(fine, "crank_angle_fine", "_fine"), **headline(mech, fine, fine_deg, section["numerics"])}
-    return xr.Dataset(data, coords=coords), mech, paper
+    sense = crank_sense(section["sixbar"])
+    data = {**_motion_vars(paper, "crank_angle"), **_motion_vars(fine, "crank_angle_fine", "_fine"),
+            **headline(mech, fine, fine_deg, section["numerics"], sense)}
+    ds = xr.Dataset(data, coords=coords)
+    ds["crank_sense"].attrs.update(units="1", long_name="sense the crank turns in: towards decreasing or increasing theta1")
+    ds.attrs.update(crank_sense=sense)
+    return ds, mech, paper
 
 
 def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
