@@ -169,14 +169,39 @@ def check_names(config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] 
             check_names(value, schema, node["items"], (*path, i))
 
 
+def check_labelled(node: Any, path: tuple = ()) -> None:
+    """Every labelled entry is one value of its own range or choices: a range with its low end below its high end
+    holding the value, a choice's value among its choices, one name in prose per choice."""
+    if not isinstance(node, Mapping):
+        return
+    if {"value", "status", "reason"} <= set(node):
+        where = f"config key {_key(path)}"
+        if "choices" in node:
+            if node["value"] not in node["choices"]:
+                raise ConfigError(f"{where}.value: {_short(node['value'])} is not one of its choices {_short(node['choices'])}")
+            if "choice_labels" in node and len(node["choice_labels"]) != len(node["choices"]):
+                raise ConfigError(f"{where}.choice_labels: {len(node['choice_labels'])} names for {len(node['choices'])} choices")
+        if "range" in node and isinstance(node["value"], (int, float)):
+            low, high = node["range"]
+            if not low < high:
+                raise ConfigError(f"{where}.range: {_short(node['range'])} is not a range (the low end must be below the high end)")
+            if not low <= node["value"] <= high:
+                raise ConfigError(f"{where}.value: {_short(node['value'])} lies outside its own range {_short(node['range'])}")
+        return
+    for key, value in node.items():
+        check_labelled(value, (*path, key))
+
+
 def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
-    """Finite numbers and safe names first, then the schema, then the physical checks of every paper section."""
+    """Finite numbers and safe names first, then the schema, then the physical checks of every paper section
+    (their messages name the physics), then every labelled entry against its own range or choices."""
     check_finite(config)
     check_names(config, schema)
     validate_schema(config, schema)
     for paper in PAPERS:
         if paper in config:
             importlib.import_module(f"linkwork.papers.{paper}.checks").check(config[paper], paper)
+    check_labelled(config)
     if "sweeps" in config:
         check_sweeps(config["sweeps"], config)
 
