@@ -32,8 +32,8 @@ FAR = 1e30
 FORCE_WEIGHT = 100.0
 #: Coordinates this many step tolerances from a face of the box are tried on the face after a search.
 SNAP = 10.0
-#: Starts of a consistent-set search: the best points evaluated so far.
-CONSISTENT_STARTS = 3
+#: Starts of a consistent-set search: the best points evaluated so far (a forced search: the best one).
+CONSISTENT_STARTS = 2
 
 
 class Evaluator:
@@ -142,7 +142,7 @@ def consistent_set(ev: Evaluator, rows: Sequence[int], lower: np.ndarray, upper:
         return (int(matched.sum()) + (0 if force is None or matched[force] else -len(rows) - 1), float(np.sum(weight * np.minimum(viol, 1.0))))
 
     points, _ = ev.points()
-    ranked = sorted(points, key=lambda u: (-score(u)[0], score(u)[1]))[:CONSISTENT_STARTS]
+    ranked = sorted(points, key=lambda u: (-score(u)[0], score(u)[1]))[:CONSISTENT_STARTS if force is None else 1]
     for start in ranked:
         _powell(lambda u: score(u)[1], np.asarray(start, dtype=float).copy(), evaluations, xtol)
     points, _ = ev.points()
