@@ -125,17 +125,20 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
 
 
 def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str, float] | None = None, caption: str | None = None,
-              scenario: int = 0) -> None:
+              scenario: int = 0, skip: set[str] | frozenset = frozenset()) -> None:
     """Each assumed input moved alone over its range (in one scenario, the first by default): the range it gives
     each listed quantity.  The input column lists config keys (marked as such).
 
-    ``quantities``: published id -> column label; ``scale``: id -> display factor."""
+    ``quantities``: published id -> column label; ``scale``: id -> display factor; ``skip``: input paths (without
+    ``.value``) left out of the table, e.g. those a model does not read."""
     scale = scale or {}
     index = {str(q): i for i, q in enumerate(unc.quantity.values)}
     low = unc.oat_low.values[scenario] if "scenario" in unc.oat_low.dims else unc.oat_low.values
     high = unc.oat_high.values[scenario] if "scenario" in unc.oat_high.dims else unc.oat_high.values
     rows = []
     for k, name in enumerate(unc.input.values):
+        if str(name).removesuffix(".value") in skip:
+            continue
         row = {"input (config key)": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": str(unc.input_reason.values[k])}
         for qid, label in quantities.items():
             q = index[f"{model}|{qid}"]

@@ -16,7 +16,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, esc, inputs, load, md, provenance, table, verdict_figure
+from _common import answer, caption, design_text, esc, inputs, load, md, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
 
@@ -375,10 +375,11 @@ oat_ids = {"front_dead_centre": "front dead centre (deg)", "span_front_to_back":
 oat_index = {str(q): i for i, q in enumerate(unc.quantity.values)}
 oat_places = {q: decimals(pub[q]["tolerance"]["abs"]) + 1 for q in oat_ids}
 INPUT_LABEL = {"sixbar.l4_m": "l4 (m)", "sixbar.l7_m": "l7 (m)", "sixbar.theta4_deg": "θ4 (deg)", "sixbar.theta7_deg": "θ7 (deg)"}
+oat_low, oat_high = (unc[v].isel(scenario=0).values if "scenario" in unc[v].dims else unc[v].values for v in ("oat_low", "oat_high"))
 oat = pd.DataFrame({"input": [INPUT_LABEL.get(str(n), str(n)) for n in unc.input.values], "range": unc.input_range.values,
-                    **{label: [f"{unc.oat_low.values[k, oat_index['|' + q]]:.{oat_places[q]}f} … {unc.oat_high.values[k, oat_index['|' + q]]:.{oat_places[q]}f}"
+                    **{label: [f"{oat_low[k, oat_index['|' + q]]:.{oat_places[q]}f} … {oat_high[k, oat_index['|' + q]]:.{oat_places[q]}f}"
                                for k in range(unc.input.size)] for q, label in oat_ids.items()}})
-table(oat, caption=f"Each printed parameter moved alone over its rounding ({int(unc.samples)} samples in all, Latin hypercube included); "
+table(oat, caption=f"Each printed parameter moved alone over its rounding, {esc(sense)} ({design_text(unc)}); "
       f"values to one digit beyond the published tolerance (± {pub['front_dead_centre']['tolerance']['abs']:g}°), so that the ranges can be read against it")
 md(
     f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "

@@ -16,7 +16,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, provenance, table, verdict_figure
+from _common import answer, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
 from linkwork.papers.heald.model import MODEL_INPUTS
@@ -115,22 +115,15 @@ if fnd.attrs.get("notes"):
 
 # %%
 def inputs_table(unc, model, quantities):
-    """Each input the model reads moved alone over its range (or to its other choice): the range it gives each claim's
-    measure.  The inputs the model does not read are left out (they do not move it: a test checks the list)."""
-    index = {str(q): i for i, q in enumerate(unc.quantity.values)}
-    rows, left_out = [], []
-    for k, path in enumerate(unc.input.values):
-        name = str(path).removesuffix(".value").rsplit(".", 1)[-1]
-        if str(path).startswith("parameters.") and name not in MODEL_INPUTS[model]:
-            left_out.append(name)
-            continue
-        row = {"input (config key)": str(path).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why this range": str(unc.input_reason.values[k])}
-        for qid, label in quantities.items():
-            q = index[f"{model}|{qid}"]
-            row[label] = f"{unc.oat_low.values[k, q]:.4g} … {unc.oat_high.values[k, q]:.4g}"
-        rows.append(row)
-    table(pd.DataFrame(rows), caption=f"Model {model}: each input it reads moved alone over its range ({int(unc.samples)} samples in all, Latin hypercube included). "
-          + (f"Not listed, because model {model} does not read them: {', '.join(INPUT_WORDS.get(n, n) for n in left_out)}." if left_out else ""))
+    """Each input the model reads moved alone over its range, in the first drive scenario: the range it gives each
+    claim's measure.  The inputs the model does not read are left out (they do not move it: a test checks the list)."""
+    left_out = [str(p).removesuffix(".value") for p in unc.input.values
+                if str(p).startswith("parameters.") and str(p).removesuffix(".value").rsplit(".", 1)[-1] not in MODEL_INPUTS[model]]
+    words = ", ".join(INPUT_WORDS.get(n.rsplit(".", 1)[-1], n) for n in left_out)
+    scenario = str(unc.scenario.values[0]) if "scenario" in unc.dims else ""
+    oat_table(unc, quantities, model=model, skip=set(left_out),
+              caption=f"Model {model}" + (f", {scenario}" if scenario else "") + f": each input it reads moved alone over its range ({design_text(unc)}). "
+              + (f"Not listed, because model {model} does not read them: {words}." if left_out else ""))
 
 
 #: Plain names of the inputs a model may leave out (for the captions' prose).
@@ -166,11 +159,14 @@ at_params = {
     "forces_grow_with_frequency": lambda s: f"grow over {float(s.growth_fraction):.0%} of the band",
     "limit_41_89": lambda s: f"lowest resonance {float(s.first_resonance):.2f} rad/s",
 }
-verdicts = cmp.set_index(["model", "id"])["verdict"]
+# one verdict per drive scenario, in the comparison's order, joined for the table
+verdicts = cmp.groupby(["model", "id"], sort=False).apply(
+    lambda g: "; ".join(f"{sc}: {v}" for sc, v in zip(g.get("scenario", [""] * len(g)), g.verdict, strict=True)) if len(g) > 1 else g.verdict.iloc[0],
+    include_groups=False)
 rows = []
 for m in models:
     for claim in fnd.claim.values:
-        row = {"model": m, "claim": claim_labels[claim], "verdict (over the assumed inputs' ranges)": verdicts[(m, claim)],
+        row = {"model": m, "claim": claim_labels[claim], "verdict (over the assumed inputs' ranges), per drive scenario": verdicts[(m, claim)],
                "at the assumed parameters": at_params[claim](ds.sel(model=m))}
         for sweep in fnd.sweep.values:
             text = str(fnd.holds_for.sel(model=m, claim=claim, sweep=sweep).values)
