@@ -41,6 +41,13 @@ def load(path: Path):
     return data
 
 
+def assumed(files) -> dict[str, dict]:
+    """The paper's labelled config entries, whole (value, status, reason, range or choices), by dotted key path: read
+    from its assumptions result, the one input that carries the reasons (studies receive values only)."""
+    ds = load(files["assumptions"])
+    return {str(k): json.loads(str(v)) for k, v in zip(ds.entry.values, ds.entry_json.values, strict=True)}
+
+
 def esc(value) -> str:
     """Text from config or results, safe to put into Markdown/HTML."""
     return html.escape(str(value), quote=True)
@@ -124,10 +131,11 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
     table(out, caption=caption)
 
 
-def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str, float] | None = None, caption: str | None = None,
-              scenario: int = 0, skip: set[str] | frozenset = frozenset()) -> None:
+def oat_table(unc, quantities: dict[str, str], entries: dict[str, dict], model: str = "", scale: dict[str, float] | None = None,
+              caption: str | None = None, scenario: int = 0, skip: set[str] | frozenset = frozenset()) -> None:
     """Each assumed input moved alone over its range (in one scenario, the first by default): the range it gives
-    each listed quantity.  The input column lists config keys (marked as such).
+    each listed quantity, and why that range (from ``entries``, the labelled config entries: ``assumed``).  The
+    input column lists config keys (marked as such).
 
     ``quantities``: published id -> column label; ``scale``: id -> display factor; ``skip``: input paths (without
     ``.value``) left out of the table, e.g. those a model does not read."""
@@ -139,7 +147,9 @@ def oat_table(unc, quantities: dict[str, str], model: str = "", scale: dict[str,
     for k, name in enumerate(unc.input.values):
         if str(name).removesuffix(".value") in skip:
             continue
-        row = {"input (config key)": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": str(unc.input_reason.values[k])}
+        entry = entries.get(str(name).removesuffix(".value"), {})
+        why = entry.get("range_reason") or entry.get("reason") or str(unc.input_reason.values[k])  # a printed value's rounding: its own text
+        row = {"input (config key)": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": why}
         for qid, label in quantities.items():
             q = index[f"{model}|{qid}"]
             f = scale.get(qid, 1.0)

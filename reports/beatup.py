@@ -16,7 +16,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, design_text, esc, inputs, load, md, provenance, table, verdict_figure
+from _common import answer, assumed, caption, design_text, esc, inputs, load, md, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
 
@@ -461,7 +461,7 @@ md(
 # its foremost position.
 
 # %%
-fb = win_cfg["fourbar"]
+fb = {k: assumed(files)[f"fourbar.{k}"] for k in win_cfg["fourbar"]}  # with their reasons
 table(
     pd.DataFrame(
         [(k, v["value"], v["status"], v["reason"]) for k, v in fb.items()]

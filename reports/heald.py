@@ -16,7 +16,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
 from linkwork.papers.heald.model import MODEL_INPUTS
@@ -31,7 +31,8 @@ cfg = json.loads(ds.attrs["config_json"])
 models = [str(m) for m in ds.model.values]
 many = float(fnd.many_times)
 limit = float(fnd.limit_rad_s)
-drive_labels = dict(zip(cfg["drive"]["frequency"]["choices"], cfg["drive"]["frequency"]["choice_labels"], strict=True))
+entries = assumed(files)  # reasons, ranges and choices of the labelled config entries
+drive_labels = dict(zip(entries["drive.frequency"]["choices"], entries["drive.frequency"]["choice_labels"], strict=True))
 model_names = {"A": "physical linkage (model A)", "B": "chain of eq. (2) (model B)"}
 
 answer(fnd)
@@ -88,7 +89,7 @@ if fnd.attrs.get("notes"):
 # **What the paper does.** It models the heald motion of an STB loom as a mechanical chain in Druzhinsky's sense.
 # Lumped masses and springs are two-terminal elements with complex mobilities K = V/Q (mass 1/(jωm), spring jω/k).
 # The motion is kinematically excited at joint D, and the joints E and F get Vulfson's clearance stiffness
-# k_τ = k_n|R|/(k_nΔ + |R|). The total mobility is stated as eq. (2), the input force as Q = V/K, and the joint forces
+# k_τ = kₙ|R|/(kₙΔ + |R|). The total mobility is stated as eq. (2), the input force as Q = V/K, and the joint forces
 # are plotted against the main-shaft frequency (Figs. 5–6). **No parameter is printed**, so the figures cannot be
 # reproduced number for number. What can be checked is the structure of eq. (2) and, for each claim, the parameter
 # ranges under which it holds.
@@ -103,7 +104,7 @@ if fnd.attrs.get("notes"):
 #   bell-crank-7 side reduced to E, joint F likewise, and the warp spring with the heald frame. The driven node carries
 #   no mass: eq. (2) holds only then (section 3).
 #
-# An "ideal" joint is Vulfson's Δ → 0 limit (the pin's own bending stiffness k_n). With perfectly rigid joints model A
+# An "ideal" joint is Vulfson's Δ → 0 limit (the pin's own bending stiffness kₙ). With perfectly rigid joints model A
 # is a redundant closed loop, in which the split of force between E and F is undefined.
 #
 # **The drive frequency is a scenario.** The paper drives its chain at the main-shaft frequency. In plain weave a heald
@@ -121,7 +122,7 @@ def inputs_table(unc, model, quantities):
                 if str(p).startswith("parameters.") and str(p).removesuffix(".value").rsplit(".", 1)[-1] not in MODEL_INPUTS[model]]
     words = ", ".join(INPUT_WORDS.get(n.rsplit(".", 1)[-1], n) for n in left_out)
     scenario = str(unc.scenario.values[0]) if "scenario" in unc.dims else ""
-    oat_table(unc, quantities, model=model, skip=set(left_out),
+    oat_table(unc, quantities, entries, model=model, skip=set(left_out),
               caption=f"Model {model}" + (f", {scenario}" if scenario else "") + f": each input it reads moved alone over its range ({design_text(unc)}). "
               + (f"Not listed, because model {model} does not read them: {words}." if left_out else ""))
 
@@ -204,7 +205,7 @@ table(flips.rename(columns={"flip_model": "model", "flip_claim": "claim", "flip_
 if "threshold_reaction_ratio_A" in fnd:
     md(
         f"Named thresholds. Model A: the E/F claim holds once |R_E|/|R_F| exceeds **{float(fnd.threshold_reaction_ratio_A):.4g}** "
-        f"(|R_F| at its assumed value), close to the ratio {many:g} itself, because k_τ ≈ |R|/Δ while |R| ≪ k_nΔ. "
+        f"(|R_F| at its assumed value), close to the ratio {many:g} itself, because k_τ ≈ |R|/Δ while |R| ≪ kₙΔ. "
         f"Model B: the lowest resonance under the drive is the warp branch √(k_O/M_P); the limit claim holds between the flip "
         "values of M_P and k_O in the table (the band is the limit ± 10 %)."
     )
@@ -213,12 +214,13 @@ if "threshold_reaction_ratio_A" in fnd:
 # ## 1. Parameters (all assumed: the paper prints none)
 
 # %%
-rows = [(k, v["value"], v["status"], v["reason"]) for k, v in cfg["parameters"].items()]
-rows.append(("displacement amplitude at D (m)", cfg["excitation"]["displacement_amplitude_m"]["value"], "assumed", cfg["excitation"]["displacement_amplitude_m"]["reason"]))
+rows = [(k, entries[f"parameters.{k}"]["value"], entries[f"parameters.{k}"]["status"], entries[f"parameters.{k}"]["reason"]) for k in cfg["parameters"]]
+amplitude = entries["excitation.displacement_amplitude_m"]
+rows.append(("displacement amplitude at D (m)", amplitude["value"], amplitude["status"], amplitude["reason"]))
 table(pd.DataFrame(rows, columns=["parameter (config key)", "value", "status", "reason"]), {"value": "{:g}"})
 md(
     f"Joint stiffnesses from Vulfson's model: k_E = {float(ds.k_E.sel(joints='elastic')):.3g} N/m and "
-    f"k_F = {float(ds.k_F.sel(joints='elastic')):.3g} N/m with clearance; k_n = {float(ds.k_E.sel(joints='ideal')):.3g} N/m "
+    f"k_F = {float(ds.k_F.sel(joints='elastic')):.3g} N/m with clearance; kₙ = {float(ds.k_E.sel(joints='ideal')):.3g} N/m "
     "without (the ideal joint). The excitation is a harmonic drive displacement X at D, so V = jωX.\n\n"
     f"**Two drive amplitudes, two uses.** The joint-force curves and every claim measure (sections 2–4b) use the small displacement amplitude "
     f"X = {float(ds.attrs['displacement_amplitude_m']) * 1e3:g} mm at D, comparable with the clearance, as the paper's linear chain presumes; "
@@ -230,7 +232,7 @@ md(
 # ### 1b. The joint reactions from the mechanism's own kinetostatics
 #
 # Vulfson's k_τ needs the reaction |R| in each joint. Kinetostatics gives it: the forces of the ideal-joint chain (pins of
-# stiffness k_n, no clearance) when the heald stroke at D (first harmonic, assumed) is driven at the operating speed (assumed).
+# stiffness kₙ, no clearance) when the heald stroke at D (first harmonic, assumed) is driven at the operating speed (assumed).
 
 # %%
 rk = ds.reaction_kinetostatic
@@ -242,23 +244,23 @@ md(
     "in closed form, checked against the network in the tests): each joint carries only its own branch, whose ideal pin does not "
     "depend on the reaction, so nothing is circular, and the assumed reactions do not enter model B.\n\n"
     "**Model A cannot use them: the split is circular.** With both joints rigid the frame is driven from both sides, a statically "
-    "indeterminate loop: the ideal chain splits the load evenly only because both pins are given the same k_n. With clearance the load "
+    "indeterminate loop: the ideal chain splits the load evenly only because both pins are given the same kₙ. With clearance the load "
     "splits by k_E : k_F, and k_τ depends on the share each joint carries. Solving R = |Q(ω_op; k_τ(R))| gives the self-consistent "
     f"reactions |R_E| = {float(ds.reaction_self_consistent_A.sel(joint='E')):.0f} N, |R_F| = {float(ds.reaction_self_consistent_A.sel(joint='F')):.0f} N "
     f"(converged: {'yes' if int(ds.self_consistent_converged_A) else 'no'}), and with them the smallest E/F force ratio over the band is "
     f"{float(ds.ratio_EF_min_self_consistent_A):.3f}. But the fixed point is weak: along the split the map has slope "
-    f"{float(ds.self_consistent_split_slope_A):.3f} (at 1 every split would reproduce itself), because k_τ ≈ |R|/Δ while |R| ≪ k_nΔ "
-    f"(k_nΔ = {float(ds.clearance_pin_product.sel(joint='E')):.0f} N here). Quasi-statically the fixed point is |R_E| − |R_F| = k_n(Δ_F − Δ_E): "
+    f"{float(ds.self_consistent_split_slope_A):.3f} (at 1 every split would reproduce itself), because k_τ ≈ |R|/Δ while |R| ≪ kₙΔ "
+    f"(kₙΔ = {float(ds.clearance_pin_product.sel(joint='E')):.0f} N here). Quasi-statically the fixed point is |R_E| − |R_F| = kₙ(Δ_F − Δ_E): "
     "the split is set by the difference of the two clearances, not by the mechanism's kinetostatics. A split of "
     + (f"{many:g} : 1 needs Δ_F − Δ_E = {float(fnd.threshold_clearance_difference_A) * 1e6:.1f} µm, " if "threshold_clearance_difference_A" in fnd else "")
-    + f"well inside the assumed clearance range ({cfg['parameters']['clearance_E']['range'][0] * 1e6:g}–{cfg['parameters']['clearance_E']['range'][1] * 1e6:g} µm) "
+    + f"well inside the assumed clearance range ({entries['parameters.clearance_E']['range'][0] * 1e6:g}–{entries['parameters.clearance_E']['range'][1] * 1e6:g} µm) "
     "and unknowable for a worn mechanism.\n\n"
     f"**What this does to model A's E/F claim.** With the mechanism's own reactions (kinetostatic, or self-consistent: equal at equal clearances) "
     f"model A's E/F ratio is {float(ds.ratio_EF_min_self_consistent_A):.3f}, and the claim **fails**. It holds only if the reactions are split at least "
     + (f"{float(fnd.threshold_reaction_ratio_A):.4g} : 1, " if "threshold_reaction_ratio_A" in fnd else "several to one, ")
     + "which the kinetostatics of a symmetric linkage do not give. The assumed reactions |R_E|, |R_F| "
-    f"({cfg['parameters']['reaction_E']['range'][0]:g}–{cfg['parameters']['reaction_E']['range'][1]:g} N, below the kinetostatic magnitudes) stand for that "
-    "split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ k_nΔ) a common factor on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the "
+    f"({entries['parameters.reaction_E']['range'][0]:g}–{entries['parameters.reaction_E']['range'][1]:g} N, below the kinetostatic magnitudes) stand for that "
+    "split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ kₙΔ) a common factor on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the "
     "range of the split, not of the magnitude, is what decides. Model A's 'depends on assumptions' on this claim therefore means: it holds only for an "
     "unequal split of the reactions that the paper does not give and the kinetostatics do not produce."
 )
@@ -314,10 +316,10 @@ md(f"Does the drive frequency change a verdict at the assumed inputs? **{'no' if
 # ## 3. Eq. (2): exact for model B, and only while the driven node has no mass
 #
 # A driven node carrying three spring→mass branches, with no mass of its own, has
-# 1/K = Σ_i jω k_i/(ω_i² − ω²) with ω_i² = k_i/m_i. Putting this over a common denominator gives exactly the form of eq. (2).
+# 1/K = Σ_i jω kᵢ/(ω_i² − ω²) with ω_i² = kᵢ/m_i. Putting this over a common denominator gives exactly the form of eq. (2).
 # The numerator is Π(ω_i² − ω²), three factors (ω09, ω010, ω011, the velocity resonances where K = 0). The denominator
 # is jω(k_E7 + k_F8 + k_O)(ω07² − ω²)(ω08² − ω²): degree 5 in ω against the numerator's 6. Here ω07 and ω08 are the
-# roots of Σ_i k_i Π_(j≠i) (ω_j² − ω²), the force resonances where K → ∞. Each root lies between two consecutive ω_i,
+# roots of Σ_i kᵢ Π_(j≠i) (ω_j² − ω²), the force resonances where K → ∞. Each root lies between two consecutive ω_i,
 # because the sum runs from −∞ to +∞ between its poles, so zeros and poles interlace.
 
 # %%
@@ -458,7 +460,7 @@ axes[0].axhline(float(ds.significant_harmonic), color="C3", ls=":", lw=1, label=
 axes[0].set_yscale("log")
 axes[0].set_ylim(1e-4, 2)
 axes[0].set_xlabel("harmonic h of the shaft speed")
-axes[0].set_ylabel("|c_h| / |c_1|")
+axes[0].set_ylabel("|cₕ| / |c₁|")
 axes[0].legend(fontsize=8)
 for i, m in enumerate(models):
     ax = axes[i + 1]
@@ -487,15 +489,15 @@ md(
 rows = []
 for h in ds.harmonic.values:
     if int(ds.cam_harmonic_present.sel(harmonic=h)):
-        row = {"harmonic h": int(h), "|c_h|/|c_1|": float(ds.cam_harmonic_amplitude.sel(harmonic=h)),
+        row = {"harmonic h": int(h), "|cₕ|/|c₁|": float(ds.cam_harmonic_amplitude.sel(harmonic=h)),
                "counted": "yes" if float(ds.cam_harmonic_amplitude.sel(harmonic=h)) >= float(ds.significant_harmonic) else "no"}
         for m in models:
             row[f"model {m}: meets the lowest resonance at (rad/s)"] = float(ds.cam_harmonic_speed.sel(model=m, harmonic=h))
             row[f"model {m}: limit verdict if h is the highest counted"] = str(fnd.verdict_limit_by_harmonic.sel(model=m, harmonic=h).values)
         rows.append(row)
-table(pd.DataFrame(rows), {"|c_h|/|c_1|": "{:.2g}", **{f"model {m}: meets the lowest resonance at (rad/s)": "{:.2f}" for m in models}})
+table(pd.DataFrame(rows), {"|cₕ|/|c₁|": "{:.2g}", **{f"model {m}: meets the lowest resonance at (rad/s)": "{:.2f}" for m in models}})
 weak_matches = [f"h = {r['harmonic h']} and no higher (a fraction above {float(ds.cam_harmonic_window_low.sel(harmonic=r['harmonic h'])):.2g} and at most "
-                f"{r['|c_h|/|c_1|']:.2g}) would put model {m}'s limit" for r in rows for m in models
+                f"{r['|cₕ|/|c₁|']:.2g}) would put model {m}'s limit" for r in rows for m in models
                 if r["counted"] == "no" and r[f"model {m}: limit verdict if h is the highest counted"] == "matches"]
 md(
     ("So the cam's limit verdict depends on the significance fraction: counting " + "; ".join(weak_matches)

@@ -36,7 +36,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, assumed, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
 files = inputs()
 ked = load(files["result"])
@@ -55,7 +55,8 @@ material = cfg["materials"][cfg["material"]["name"]]
 ked_cfg = json.loads(ked.attrs["config_json"])
 CLAIM_IDS = ["mass_reduced", "lighter_distorts_more", "sections_govern_deflection", "sections_govern_stress"]
 initial_mm = ", ".join(f"{v * 1e3:g}" for v in sorted(set(cfg["initial_diameters_m"])))
-gravity_entry = json.loads(pub_pt.attrs["config_json"])["fe"]["gravity_m_s2"]
+entries = assumed(files)  # reasons, ranges and choices of the labelled config entries
+gravity_entry = entries["fe.gravity_m_s2"]
 gravity_word = dict(zip(gravity_entry["choices"], gravity_entry["choice_labels"]))[gravity_entry["value"]]
 
 # %% [markdown]
@@ -124,11 +125,12 @@ rows = [
     ("arm side, branch", f"{g['arm_side']:+d}, {g['branch']:+d}", "", "chosen below"),
 ]
 MATERIAL_NAMES = {"yield_Pa": ("yield strength", "Pa"), "youngs_modulus_Pa": ("Young's modulus", "Pa"), "density_kg_m3": ("density", "kg/m³")}
-for key, v in material.items():
+for key in material:
     name, unit = MATERIAL_NAMES.get(key, (key, ""))
+    v = entries[f"materials.{cfg['material']['name']}.{key}"]
     rows.append((name, f"{v['value']:g}", unit, f"{v['status']}: {v['reason']}"))
 rows.append(("safety factor", cfg["material"]["safety_factor"], "", f"sourced (allowable {float(opt.allowable):.1f} MPa)"))
-rows.append(("[x_S1]", cfg["optimization"]["reference_diameter_m"]["value"], "m", cfg["optimization"]["reference_diameter_m"]["reason"]))
+rows.append(("[x_S1]", cfg["optimization"]["reference_diameter_m"]["value"], "m", entries["optimization.reference_diameter_m"]["reason"]))
 table(pd.DataFrame(rows, columns=["parameter", "value", "unit", "source"]))
 
 # %% [markdown]
@@ -248,7 +250,7 @@ md(
 # The paper writes the undamped equation of motion and prints no damping; our dynamic solution needs one.
 
 # %%
-zeta = ked_cfg["fe"]["damping_ratio"]
+zeta = entries["fe.damping_ratio"]
 md(
     f"**Assumed Rayleigh damping.** C = α M + β K with the damping ratio ζ = {float(ked.damping_ratio):g} at the first two natural "
     f"frequencies ({esc(zeta['status'])}: {esc(zeta['reason'])}; range {zeta['range'][0]:g}–{zeta['range'][1]:g}, "
@@ -398,7 +400,7 @@ md(
 # ## 4. What moves the match (at the published optimum)
 
 # %%
-oat_table(unc, {"Ux": "Ux (mm)", "Uy": "Uy (mm)", "distortion": "distortion (mm)", "stress_max": "max stress (MPa)",
+oat_table(unc, entries=entries, quantities={"Ux": "Ux (mm)", "Uy": "Uy (mm)", "distortion": "distortion (mm)", "stress_max": "max stress (MPa)",
                 "lighter_distorts_more": "distortion ratio", "sections_govern_stress": "coupler/arm stress sensitivity"},
           scale={"Ux": 1e3, "Uy": 1e3, "distortion": 1e3})
 md("Numerical choices at the published optimum (the baseline is the compared solution):")

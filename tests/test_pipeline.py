@@ -330,6 +330,31 @@ def test_values_only_strips_labels_but_keeps_what_a_rule_names():
     assert labelled_entries(section)["gravity"]["choice_labels"] == ["off", "on"]
 
 
+def test_a_rules_params_change_with_a_reason_only_where_the_rule_names_it():
+    """narrow: a rule's params are values; a reason edit leaves them equal, a range edit changes them only where the
+    rule names the range or takes the design fields (the uncertainty design); the choices travel with the design."""
+    import copy
+
+    from linkwork.configformat import DESIGN_FIELDS, narrow
+
+    section = {"fe": {"damping_ratio": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"},
+                      "steps": 3},
+               "gravity": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}}
+    edited = copy.deepcopy(section)
+    edited["fe"]["damping_ratio"]["reason"] = "another reason"
+    edited["gravity"]["reason"] = "another reason"
+    ranged = copy.deepcopy(section)
+    ranged["fe"]["damping_ratio"]["range"] = [0.01, 0.06]
+    for paths in (["fe", "gravity"], ["fe.damping_ratio", "fe.damping_ratio.range"]):
+        for fields in ((), DESIGN_FIELDS):
+            assert narrow(edited, paths, fields) == narrow(section, paths, fields)  # a reason reaches no study
+    assert narrow(ranged, ["fe", "gravity"]) == narrow(section, ["fe", "gravity"])
+    assert narrow(ranged, ["fe.damping_ratio", "fe.damping_ratio.range"]) != narrow(section, ["fe.damping_ratio", "fe.damping_ratio.range"])
+    design = narrow(section, ["fe", "gravity"], DESIGN_FIELDS)
+    assert design["gravity"] == {"value": 0.0, "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}
+    assert design["fe"]["damping_ratio"] == {"value": 0.02, "range": [0.01, 0.05]}
+
+
 def test_assumptions_hold_every_labelled_entry_whole():
     from linkwork.pipeline.assumptions import assumptions
 

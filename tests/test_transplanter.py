@@ -542,3 +542,34 @@ def test_a_constant_tip_force_enters_the_dynamic_solution_as_a_static_load():
     assert np.abs(qs.tip).max() > 1e-5
     np.testing.assert_allclose(dyn.tip, qs.tip, rtol=1e-6, atol=1e-9)
     np.testing.assert_allclose(ked(slow, disc, PUBLISHED_POINT, MAT, THETA, "dynamic", revolutions=2).tip, 0.0, atol=1e-10)
+
+
+@pytest.mark.parametrize("solution", ["quasi-static", "dynamic"])
+def test_the_inputs_the_searches_hold_do_not_move_the_searched_values(config, solution):
+    """The bounded searches hold [x_S1] (and, for the quasi-static solution, the damping ratio) at their nominal
+    values (uncertainty.held): each moved alone to both ends of its range leaves every searched value (all at the
+    published optimum) bit for bit; an input the searches keep (the damping ratio of the dynamic solution, Young's
+    modulus) moves them."""
+    from linkwork.pipeline.uncertainty import Scenario, apply, evaluate
+    from linkwork.papers.transplanter import uncertainty as U
+
+    section = copy.deepcopy(config["transplanter"])
+    section["fe"]["compared_solution"]["value"] = solution
+    published = load_yaml("config/published/transplanter.yaml")
+    start = PUBLISHED_POINT  # no optimiser runs: any start
+
+    def values(cfg):
+        found = evaluate({**published, "tables": []}, U.results(cfg, published, start, optimise=False))
+        return np.array([v for v in found.values()])
+
+    nominal = values(section)
+    assert np.isfinite(nominal).sum() >= 6
+    held = U.held(Scenario("", {"fe.compared_solution.value": solution}))
+    assert U.NOT_AT_THE_PUBLISHED_POINT in held and (U.DYNAMIC_ONLY in held) == (solution == "quasi-static")
+    for inp in U.inputs(section):
+        if inp.choices:
+            continue
+        for end in (inp.low, inp.high):
+            moved = values(apply(section, {inp.path: end}))
+            same = np.array_equal(moved, nominal, equal_nan=True)
+            assert same == (inp.path in held), (inp.path, end)

@@ -239,3 +239,23 @@ def test_a_transplanter_sample_optimised_from_the_nominal_optimum_reaches_the_co
     assert np.abs(warm - cold).max() < 1e-9  # m: far below the paper's 0.01 mm digits
     assert not np.allclose(cold, nominal, rtol=0, atol=1e-6)  # the corner does move the optimum
     assert warm_info["evaluations"] < cold_info["evaluations"]
+
+
+def test_a_vertex_ends_the_search_only_where_no_input_moved_inwards_improves_it():
+    """First-order optimality at a vertex of the box, one probe per input: a value increasing in both inputs has
+    its maximum at (1, 1) (the search stops there after two probes); a value peaking inside the box near that
+    vertex is not stopped there, and the search then finds the interior maximum."""
+    from linkwork.pipeline.search import Evaluator, extreme, vertex_is_local_extreme
+
+    rising = lambda u: float(u[0] + 2 * u[1])  # noqa: E731
+    assert vertex_is_local_extreme(lambda u: -rising(u), np.array([1.0, 1.0]), 0.01)
+    assert not vertex_is_local_extreme(lambda u: -rising(u), np.array([1.0, 0.0]), 0.01)  # b moved inwards raises it
+    assert not vertex_is_local_extreme(lambda u: -rising(u), np.array([0.5, 1.0]), 0.01)  # not a vertex
+    peak = lambda u: np.array([-(u[0] - 0.9) ** 2 - (u[1] - 0.8) ** 2])  # noqa: E731
+    calls = []
+    ev = Evaluator(lambda u: calls.append(1) or peak(u), 2)
+    value, at = extreme(ev, 0, 1.0, [np.array([1.0, 1.0])], 200, 1e-6)
+    assert value == pytest.approx(0.0, abs=1e-8) and at == pytest.approx([0.9, 0.8], abs=1e-3)
+    ev = Evaluator(lambda u: np.array([rising(u)]), 2)
+    value, at = extreme(ev, 0, 1.0, [np.array([1.0, 1.0])], 200, 1e-6)
+    assert value == 3.0 and list(at) == [1.0, 1.0] and ev.evaluations == 3  # the vertex and one probe per input

@@ -53,20 +53,34 @@ def is_labelled(node: Any) -> bool:
     return isinstance(node, Mapping) and {"value", "status", "reason"} <= set(node)
 
 
-def values_only(section: Mapping[str, Any], keep: Iterable[str] = ()) -> dict[str, Any]:
+#: The label fields the uncertainty design reads (the ranges, and the choices with their names); not the reasons.
+DESIGN_FIELDS = ("range", "choices", "choice_labels")
+
+
+def values_only(section: Mapping[str, Any], keep: Iterable[str] = (), fields: Iterable[str] = ()) -> dict[str, Any]:
     """A copy of ``section`` in which every labelled entry holds only its ``value`` (a study reads values; the
     uncertainty design reads ranges and choices; the reports read reasons), except the label fields named by the
-    dotted paths in ``keep`` ('fe.damping_ratio.range' keeps that entry's range)."""
+    dotted paths in ``keep`` ('fe.damping_ratio.range' keeps that entry's range) and the label ``fields`` kept on
+    every entry (``DESIGN_FIELDS`` for the uncertainty design)."""
     kept = {tuple(p.split(".")) for p in keep}
+    everywhere = set(fields)
 
     def strip(node: Any, path: tuple[str, ...]) -> Any:
         if is_labelled(node):
-            return {k: copy.deepcopy(v) for k, v in node.items() if k == "value" or (*path, k) in kept}
+            return {k: copy.deepcopy(v) for k, v in node.items() if k == "value" or k in everywhere or (*path, k) in kept}
         if isinstance(node, Mapping):
             return {k: strip(v, (*path, k)) for k, v in node.items()}
         return copy.deepcopy(node)
 
     return strip(section, ())
+
+
+def narrow(section: Mapping[str, Any], paths: Iterable[str], fields: Iterable[str] = ()) -> dict[str, Any]:
+    """A rule's params: the key ``paths`` of ``section`` (``pick``), every labelled entry reduced to its value, except
+    a label field a path names itself ('sixbar.crank_sense.choices') and the label ``fields`` kept everywhere.  So an
+    edit of a reason, a range or the choices reruns only the rules that name them."""
+    paths = list(paths)
+    return values_only(pick(section, paths), keep=paths, fields=fields)
 
 
 def labelled_entries(section: Mapping[str, Any], prefix: str = "") -> dict[str, dict[str, Any]]:

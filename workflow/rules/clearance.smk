@@ -86,7 +86,7 @@ rule clearance_compare:
         "results/clearance/findings.nc",
     params:
         study="linkwork.papers.clearance.findings:compare",
-        cfg=section("clearance", *(f"scenes.{s}.effects" for s in CLEARANCE_SCENES), "assumed.e0_m"),  # the named effects: the stray-evaluation check
+        cfg=section("clearance", *(f"scenes.{s}.effects" for s in CLEARANCE_SCENES), "assumed.e0_m", "assumed.e0_m.range"),  # the named effects: the stray-evaluation check
     script:
         STUDY
 

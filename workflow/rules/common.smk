@@ -3,7 +3,7 @@ import sys
 from functools import lru_cache
 from pathlib import Path
 
-from linkwork.configformat import pick
+from linkwork.configformat import DESIGN_FIELDS, labelled_entries, narrow
 from linkwork.papers import PAPERS
 from linkwork.pipeline.deps import closure, relative
 
@@ -32,12 +32,19 @@ def code(*entries):
     return code_of(ROOT / "workflow/scripts/study.py", *entries)
 
 
-def section(paper, *paths):
-    """Exactly the given key paths of a paper's config section (a rule's params.cfg)."""
-    return pick(config[paper], paths)
+def section(paper, *paths, design=False):
+    """Exactly the given key paths of a paper's config section (a rule's params.cfg), each labelled entry reduced to
+    its value unless a path names a label field itself; ``design``: every entry keeps its range and choices too (the
+    uncertainty design).  Reasons reach only the assumptions rule, so a reason edit reruns no study."""
+    return narrow(config[paper], paths, DESIGN_FIELDS if design else ())
+
+
+def assumptions_cfg(paper):
+    """Every labelled entry of a paper's section, whole (the assumptions rule: the reports' reasons and ranges)."""
+    return labelled_entries(config[paper])
 
 # On a cluster (profiles/slurm) these run on the submitting host: each reads finished results and computes for
 # about a second (benchmarks/measured/job_resources.json), less than a submission costs. Locally: no effect.
 localrules:
     all, readme_findings, accuracy_summary, sweep_gather, clearance_claims, clearance_crosscheck_summary,
-    stiffness_compare, beatup_compare, heald_compare, transplanter_compare, clearance_compare,
+    stiffness_compare, beatup_compare, heald_compare, transplanter_compare, clearance_compare, assumptions,

@@ -13,7 +13,7 @@ rule heald_chain:
         "results/heald/chain.nc",
     params:
         study="linkwork.papers.heald.studies:chain",
-        cfg=section("heald", *HEALD_MODEL, "models", "sweeps", "cam"),
+        cfg=section("heald", *HEALD_MODEL, "models", "sweeps", "cam", "cam.rise_fraction.range", "parameters.c_joint.range"),
     script:
         STUDY
 
@@ -43,6 +43,6 @@ rule heald_compare:
         "results/heald/findings.nc",
     params:
         study="linkwork.papers.heald.findings:compare",
-        cfg=section("heald", *HEALD_MODEL, "models"),
+        cfg=section("heald", *HEALD_MODEL, "models", design=True),  # the flip bisections read the ranges
     script:
         STUDY

@@ -7,7 +7,23 @@
 def paper_report(paper, **results):
     uncertainty = {"uncertainty": f"results/{paper}/uncertainty.nc"} if paper in UNCERTAIN_PAPERS else {}
     return {**results, **uncertainty, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
-            "published": f"config/published/{paper}.yaml"}
+            "published": f"config/published/{paper}.yaml", "assumptions": f"results/{paper}/assumptions.nc"}
+
+
+rule assumptions:
+    # the one rule that reads the reasons: an edit of a reason reruns this step and its paper's report, nothing else
+    input:
+        code=code("linkwork.pipeline.assumptions"),
+    output:
+        "results/{paper}/assumptions.nc",
+    wildcard_constraints:
+        paper="|".join(PAPERS),
+    params:
+        study="linkwork.pipeline.assumptions:assumptions",
+        paper=lambda wildcards: wildcards.paper,
+        cfg=lambda wildcards: assumptions_cfg(wildcards.paper),
+    script:
+        STUDY
 
 
 REPORT_INPUTS = {

@@ -32,6 +32,7 @@ rule transplanter_ked:
     params:
         study="linkwork.papers.transplanter.studies:ked_responses",
         cfg=section("transplanter", *TRANSPLANTER_MODEL, *TRANSPLANTER_DYNAMIC, "initial_diameters_m", "fe.angle_step_deg", "fe.resonance_warning_ratio",
+                    "fe.damping_ratio.range",
                     "fe.newmark_study", "fe.damping_study"),
     script:
         STUDY

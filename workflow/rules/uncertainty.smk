@@ -12,11 +12,11 @@ def uncertainty_cfg(paper, index):
     """The config values batch ``index`` reads: the paper's model, the ranges and the study's settings; for the
     clearance paper only the keys of the scenes its sample moves."""
     if paper == "beatup":
-        return section("beatup", "sixbar", "printed_rounding", "grids", "numerics.scan_points", "numerics.root_xtol_rad", "uncertainty")
+        return section("beatup", "sixbar", "printed_rounding", "grids", "numerics.scan_points", "numerics.root_xtol_rad", "uncertainty", design=True)
     if paper == "heald":
-        return section("heald", *HEALD_MODEL, "models", "uncertainty")
+        return section("heald", *HEALD_MODEL, "models", "uncertainty", design=True)
     if paper == "transplanter":
-        return section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "initial_diameters_m", "fe.angle_step_deg", "optimization.slsqp_ftol", "uncertainty")
+        return section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "initial_diameters_m", "fe.angle_step_deg", "optimization.slsqp_ftol", "uncertainty", design=True)
     job = CLEARANCE_UNCERTAINTY[index]
     keys = {k for s in job["scenes"] for k in clearance_adapter.scene_keys(CLEARANCE, job["variant"], s)} - {"statistics.record_cycles"}
     return section("clearance", *sorted(keys), "statistics.uncertainty_record_cycles")
@@ -32,7 +32,7 @@ def uncertainty_args(paper, index):
 def uncertainty_gather_cfg(paper):
     """The gather step reads the ranges; the clearance paper also judges its claims there (threshold, variants)."""
     if paper == "clearance":
-        return section("clearance", "claims", "assumed", "uncertainty", "statistics.batch_cycles", "statistics.confidence", *(f"variants.{v}" for v in CLEARANCE_VARIANTS))
+        return section("clearance", "claims", "assumed", "uncertainty", "statistics.batch_cycles", "statistics.confidence", *(f"variants.{v}" for v in CLEARANCE_VARIANTS), design=True)
     return uncertainty_cfg(paper, 0)
 
 

@@ -16,7 +16,7 @@ module_name, _, function_name = sm.params.study.partition(":")
 function = getattr(importlib.import_module(module_name), function_name)
 cfg = sm.params.cfg
 args = dict(getattr(sm.params, "args", None) or {})
-paper = module_name.split(".")[2] if module_name.startswith("linkwork.papers.") else module_name.split(".")[-1]
+paper = getattr(sm.params, "paper", None) or (module_name.split(".")[2] if module_name.startswith("linkwork.papers.") else module_name.split(".")[-1])
 label = f"{sm.rule}" + (f" ({', '.join(f'{k}={v}' for k, v in sm.wildcards.items())})" if len(sm.wildcards) else "")
 print(f"{label}: {(function.__doc__ or function_name).strip().splitlines()[0]}", flush=True)
 start = time.perf_counter()

@@ -14,7 +14,10 @@ def _text(values: Any) -> str:
 
 def assumptions(cfg: Mapping[str, Any]):
     """Rule study: every labelled entry of the section ``cfg`` (dims entry): its key path, value, status, reason,
-    range or choices and why that range."""
+    range or choices and why that range, and the whole entry as JSON (``entry_json``, what the reports look up).
+    ``cfg``: the section, or its labelled entries by dotted key path (``configformat.labelled_entries``)."""
+    import json
+
     import numpy as np
     import xarray as xr
 
@@ -31,6 +34,7 @@ def assumptions(cfg: Mapping[str, Any]):
             "range": ("entry", column(lambda e: " / ".join(map(str, e.get("choice_labels", e["choices"]))) if "choices" in e else _text(e.get("range"))),
                       {**text, "long_name": "plausible range, or the alternatives of a choice ('' if none)"}),
             "range_reason": ("entry", column(lambda e: str(e.get("range_reason", ""))), {**text, "long_name": "why that range ('' if none)"}),
+            "entry_json": ("entry", column(lambda e: json.dumps(e, sort_keys=True)), {**text, "long_name": "the whole entry as JSON"}),
         },
         coords={"entry": ("entry", np.array(list(found), dtype=object), {**text, "long_name": "config key path"})},
         attrs={"title": "labelled config entries: values, statuses, reasons, ranges"},

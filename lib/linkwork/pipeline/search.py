@@ -8,7 +8,9 @@ the box returning every compared quantity at once, so one cache serves every sea
 * **Extremes.**  A value's interval over the assumed inputs is its minimum and maximum over the box.  Each search
   starts from the best of the samples (nominal, one at a time, corners, Latin hypercube) and of the *monotone
   corner* (every input at the end of its range that moved the value the wanted way when moved alone), then runs
-  scipy's bounded Powell method for at most ``evaluations`` model evaluations.  The samples only start it.
+  scipy's bounded Powell method for at most ``evaluations`` model evaluations.  The samples only start it.  A start
+  at a vertex of the box where no input moved inwards improves the value ends the search there (one probe per
+  input, shared by every value whose extreme sits at that vertex).
 * **Consistent set.**  Per scenario and model variant, one point of the box under which the most rows match at
   once (a row matches at a point when its value lies in its acceptance region; numerical error bars are the
   comparison's, not the search's).  The count is maximised through a capped violation (each row's distance
@@ -101,9 +103,28 @@ def extreme(ev: Evaluator, q: int, sign: float, starts: Sequence[np.ndarray], ev
         objective(np.asarray(u, dtype=float))
     if best["u"] is None:
         return np.nan, np.full(ev.dim, np.nan)
+    if vertex_is_local_extreme(objective, best["u"], SNAP * xtol):
+        return sign * best["f"], best["u"]
     _powell(objective, best["u"].copy(), evaluations, xtol)
     objective(snapped(best["u"], xtol))
     return sign * best["f"], best["u"]
+
+
+def vertex_is_local_extreme(objective: Callable[[np.ndarray], float], u: np.ndarray, step: float) -> bool:
+    """Whether ``u`` is a vertex of the unit box at which no input moved inwards by ``step`` lowers ``objective``
+    (the first-order optimality condition at a vertex, checked by one probe per input).  Such a vertex ends the
+    search: the extremes of a value monotone in each input lie at vertices, which the samples include, and the
+    probes from one vertex are shared (cached) by every value whose extreme sits there."""
+    u = np.asarray(u, dtype=float)
+    if u.size == 0 or not np.all((u == 0.0) | (u == 1.0)):
+        return False
+    here = objective(u)
+    for i in range(u.size):
+        probe = u.copy()
+        probe[i] = step if u[i] == 0.0 else 1.0 - step
+        if objective(probe) < here:
+            return False
+    return True
 
 
 def snapped(u: np.ndarray, xtol: float) -> np.ndarray:
@@ -183,79 +204,108 @@ def _end_values(ds: Any, labels: Sequence[str], prefix: str, inputs: Sequence[An
 
 
 def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
-           results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any]) -> Any:
+           results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any],
+           held: Callable[[Any], set[str]] | None = None) -> Any:
     """The gathered study ``ds`` (linkwork.pipeline.uncertainty.summary) with each headline value's low and high
     replaced by its extremes over the box (bounded searches from the samples), where they were found, and per
     scenario and model variant the best consistent assumption set.  ``settings``: ``evaluations`` per search and
-    ``xtol`` (unit-box step tolerance).  Table cells keep the samples' range (corners included)."""
-    from .uncertainty import _prefix, apply, continuous, evaluate, scenarios
+    ``xtol`` (unit-box step tolerance).  Table cells keep the samples' range (corners included).
+
+    ``held(scenario)``: the input paths the paper declares its searched values do not read in that scenario (the
+    search holds them at their nominal values and needs no evaluation to learn that they are flat)."""
+    from .uncertainty import continuous, scenarios
 
     ranged, scens = continuous(inputs), scenarios(inputs)
-    headline_only = {**published, "tables": []}
     keys = [str(k) for k in ds.quantity.values]
-    labels, of = [str(x) for x in ds.sample.values], [str(x) for x in ds.sample_scenario.values]
     lower, upper, tol = acceptance_regions(published, keys)
-    headline = [q for q in range(len(keys)) if np.isfinite(tol[q])]
     models = list(dict.fromkeys(k.split("|", 1)[0] for k in keys))
+    found = [_search_scenario(ds, n, scen, cfg, published, ranged, results, settings, (held or (lambda _: set()))(scen), models)
+             for n, scen in enumerate(scens)]
     low, high = ds.low.values.copy(), ds.high.values.copy()
     shape_at = (len(scens), len(ranged), len(keys))
     low_at, high_at = np.full(shape_at, np.nan), np.full(shape_at, np.nan)
-    matched_best = np.full((len(scens), len(keys)), np.nan)
-    in_set = np.full((len(scens), len(keys)), np.nan)
-    count = np.zeros((len(scens), len(models)))
-    candidates = np.zeros((len(scens), len(models)))
+    matched_best, in_set = np.full((len(scens), len(keys)), np.nan), np.full((len(scens), len(keys)), np.nan)
+    count, candidates = np.zeros((len(scens), len(models))), np.zeros((len(scens), len(models)))
     best_at = np.full((len(scens), len(models), len(ranged)), np.nan)
     evaluations = np.zeros(len(scens))
-    budget, xtol = int(settings["evaluations"]), float(settings["xtol"])
-    for n, scen in enumerate(scens):
-        rows = [i for i, o in enumerate(of) if o == scen.label]
-        if not rows:
+    for n, part in enumerate(found):
+        if part is None:
             continue
-
-        def fun(u: np.ndarray, scen=scen) -> np.ndarray:  # the headline values only: table cells are not searched
-            moved = {inp.path: inp.to_value(x) for inp, x in zip(ranged, u, strict=True)}
-            found = evaluate(headline_only, results(apply(cfg, {**scen.values, **moved})))
-            return np.array([found.get(tuple(k.split("|", 1)), np.nan) for k in keys])
-
-        ev = Evaluator(fun, len(ranged))
-        ev.seed(_unit_points(ds, ranged, rows), ds.value.values[rows])
-        prefix = _prefix(scen, n == 0)
-        nominal_u = np.array([inp.to_unit(inp.nominal) for inp in ranged])
-        nominal_v = ds.nominal.values[n]
-        ends = (_end_values(ds, labels, prefix, ranged, "low", nominal_v), _end_values(ds, labels, prefix, ranged, "high", nominal_v))
-        points, values = ev.points()
-        for q in headline:
-            if not np.isfinite(nominal_v[q]) or not ranged:
-                continue
-            for sign in (-1.0, 1.0):
-                finite = np.isfinite(values[:, q])
-                start = points[finite][np.argmax(sign * values[finite, q])] if finite.any() else nominal_u
-                corner = monotone_corner(ends[0][:, q], ends[1][:, q], nominal_u, sign)
-                v, u = extreme(ev, q, sign, [start, corner], budget, xtol)
-                at = np.array([inp.to_value(x) for inp, x in zip(ranged, u, strict=True)]) if np.isfinite(v) else np.full(len(ranged), np.nan)
-                if sign < 0 and np.isfinite(v):
-                    low[n, q], low_at[n, :, q] = min(v, low[n, q]) if np.isfinite(low[n, q]) else v, at
-                elif np.isfinite(v):
-                    high[n, q], high_at[n, :, q] = max(v, high[n, q]) if np.isfinite(high[n, q]) else v, at
-        for m, model in enumerate(models):
-            rows_m = [q for q in headline if keys[q].startswith(f"{model}|") and np.isfinite(nominal_v[q])]
-            # robust deviations (the whole interval outside the region) cannot join a consistent set
-            rows_m = [q for q in rows_m if not (high[n, q] < lower[q] or low[n, q] > upper[q])]
-            candidates[n, m] = len(rows_m)
-            if not rows_m:
-                continue
-            lo, hi, sc = lower[rows_m], upper[rows_m], tol[rows_m]
-            best, ok = consistent_set(ev, rows_m, lo, hi, sc, budget if ranged else 0, xtol)
-            count[n, m] = ok.sum()
-            best_at[n, m] = [inp.to_value(x) for inp, x in zip(ranged, best, strict=True)]
-            for j, q in enumerate(rows_m):
-                matched_best[n, q] = float(ok[j])
-                in_set[n, q] = float(ok[j])
-                if not ok[j] and ranged:
-                    _, forced = consistent_set(ev, rows_m, lo, hi, sc, budget, xtol, force=j)
-                    in_set[n, q] = float(forced[j] and forced.sum() >= ok.sum())
-        evaluations[n] = ev.evaluations
+        low[n], high[n], low_at[n], high_at[n] = part["low"], part["high"], part["low_at"], part["high_at"]
+        matched_best[n], in_set[n], count[n], candidates[n] = part["matched_best"], part["in_set"], part["count"], part["candidates"]
+        best_at[n], evaluations[n] = part["best_at"], part["evaluations"]
     return _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings)
+
+
+def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], ranged: Sequence[Any],
+                     results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any], held: set[str],
+                     models: Sequence[str]) -> dict[str, np.ndarray] | None:
+    """The searches of one scenario (``refine``): extremes of each headline value and the consistent sets, over the
+    inputs not ``held`` (held inputs stay nominal; their entries in the ``*_at`` points are their nominal values)."""
+    from .uncertainty import _prefix, apply, evaluate
+
+    keys = [str(k) for k in ds.quantity.values]
+    labels, of = [str(x) for x in ds.sample.values], [str(x) for x in ds.sample_scenario.values]
+    rows = [i for i, o in enumerate(of) if o == scen.label]
+    if not rows:
+        return None
+    headline_only = {**published, "tables": []}
+    lower, upper, tol = acceptance_regions(published, keys)
+    headline = [q for q in range(len(keys)) if np.isfinite(tol[q])]
+    free = [k for k, inp in enumerate(ranged) if inp.path not in held]
+    sub = [ranged[k] for k in free]
+    budget, xtol = int(settings["evaluations"]), float(settings["xtol"])
+
+    def fun(u: np.ndarray) -> np.ndarray:  # the headline values only: table cells are not searched
+        moved = {inp.path: inp.to_value(x) for inp, x in zip(sub, u, strict=True)}
+        found = evaluate(headline_only, results(apply(cfg, {**scen.values, **moved})))
+        return np.array([found.get(tuple(k.split("|", 1)), np.nan) for k in keys])
+
+    def full(u: np.ndarray) -> np.ndarray:  # a point of the searched inputs as every input's value
+        at = np.array([float(inp.nominal) for inp in ranged])
+        at[free] = [inp.to_value(x) for inp, x in zip(sub, u, strict=True)]
+        return at
+
+    ev = Evaluator(fun, len(sub))
+    ev.seed(_unit_points(ds, ranged, rows)[:, free], ds.value.values[rows])  # held inputs do not move these values
+    prefix = _prefix(scen, n == 0)
+    nominal_u = np.array([inp.to_unit(inp.nominal) for inp in sub])
+    nominal_v = ds.nominal.values[n]
+    ends = (_end_values(ds, labels, prefix, sub, "low", nominal_v), _end_values(ds, labels, prefix, sub, "high", nominal_v))
+    out = {"low": ds.low.values[n].copy(), "high": ds.high.values[n].copy(), "low_at": np.full((len(ranged), len(keys)), np.nan),
+           "high_at": np.full((len(ranged), len(keys)), np.nan), "matched_best": np.full(len(keys), np.nan), "in_set": np.full(len(keys), np.nan),
+           "count": np.zeros(len(models)), "candidates": np.zeros(len(models)), "best_at": np.full((len(models), len(ranged)), np.nan)}
+    points, values = ev.points()
+    for q in headline:
+        if not np.isfinite(nominal_v[q]) or not sub:
+            continue
+        for sign, end in ((-1.0, "low"), (1.0, "high")):
+            finite = np.isfinite(values[:, q])
+            start = points[finite][np.argmax(sign * values[finite, q])] if finite.any() else nominal_u
+            corner = monotone_corner(ends[0][:, q], ends[1][:, q], nominal_u, sign)
+            v, u = extreme(ev, q, sign, [start, corner], budget, xtol)
+            if np.isfinite(v):
+                old = out[end][q]
+                out[end][q] = v if not np.isfinite(old) else (min(v, old) if sign < 0 else max(v, old))
+                out[f"{end}_at"][:, q] = full(u)
+    for m, model in enumerate(models):
+        rows_m = [q for q in headline if keys[q].startswith(f"{model}|") and np.isfinite(nominal_v[q])]
+        # robust deviations (the whole interval outside the region) cannot join a consistent set
+        rows_m = [q for q in rows_m if not (out["high"][q] < lower[q] or out["low"][q] > upper[q])]
+        out["candidates"][m] = len(rows_m)
+        if not rows_m:
+            continue
+        lo, hi, sc = lower[rows_m], upper[rows_m], tol[rows_m]
+        best, ok = consistent_set(ev, rows_m, lo, hi, sc, budget if sub else 0, xtol)
+        out["count"][m] = ok.sum()
+        out["best_at"][m] = full(best)
+        for j, q in enumerate(rows_m):
+            out["matched_best"][q] = out["in_set"][q] = float(ok[j])
+            if not ok[j] and sub:
+                _, forced = consistent_set(ev, rows_m, lo, hi, sc, budget, xtol, force=j)
+                out["in_set"][q] = float(forced[j] and forced.sum() >= ok.sum())
+    out["evaluations"] = ev.evaluations
+    return out
 
 
 def _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings):
@@ -285,6 +335,7 @@ def _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, ca
 
 
 def searcher(cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
-             results: Callable[[Mapping[str, Any]], Sequence[Any]]) -> Callable[[Any], Any]:
-    """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``)."""
-    return lambda ds: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"])
+             results: Callable[[Mapping[str, Any]], Sequence[Any]], held: Callable[[Any], set[str]] | None = None) -> Callable[[Any], Any]:
+    """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``); ``held``: see
+    ``refine``."""
+    return lambda ds: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"], held)

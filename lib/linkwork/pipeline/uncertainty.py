@@ -90,8 +90,8 @@ def labelled_inputs(section: Mapping[str, Any], prefix: str = "") -> Iterator[In
     for key, value in section.items():
         path = f"{prefix}{key}"
         if isinstance(value, Mapping):
-            if {"value", "status", "reason"} <= set(value) and ("range" in value or "choices" in value):
-                reason = str(value.get("range_reason", value["reason"]))
+            if "value" in value and ("range" in value or "choices" in value):  # a rule passes values and design fields only
+                reason = str(value.get("range_reason", value.get("reason", "")))
                 if "choices" in value:
                     yield Input(path + ".value", value["value"], float("nan"), float("nan"), reason, tuple(value["choices"]),
                                 labels=tuple(value.get("choice_labels", ())))

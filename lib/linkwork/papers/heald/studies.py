@@ -82,10 +82,6 @@ def interlaced(zeros: np.ndarray, poles: np.ndarray, rtol: float = 1e-9) -> bool
     return bool(all(z[i] <= p[i] + tol and p[i] <= z[i + 1] + tol for i in range(p.size)))
 
 
-def _labelled_attrs(cfg: Mapping[str, Any]) -> dict[str, str]:
-    return {f"param_{k}": f"{v['value']:g} ({v['status']}: {v['reason']})" for k, v in cfg["parameters"].items()}
-
-
 def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
     """Q, Q_E, Q_F with ideal and elastic joints for both models, resonances, claim measures, sweeps."""
     p = parameters(cfg)
@@ -184,7 +180,7 @@ def chain(cfg: Mapping[str, Any]) -> xr.Dataset:
     data.update(cam_data)
     coords.update(cam_coords)
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(_labelled_attrs(cfg), title="Heald motion as mechanical chains")
+    ds.attrs.update(title="Heald motion as mechanical chains")  # the parameters' reasons: results/heald/assumptions.nc
     ds.attrs.update(displacement_amplitude_m=amp, frequency_points=int(w.size))
     return ds
 

@@ -317,7 +317,6 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
         resonance_warning=(f"crank speed within a factor {warn:g} of the first natural frequency ({ratio:.2f})" if ratio < warn else "none"),
         element=fe["element"], elements_per_member=str(fe["elements_per_member"]),
         newmark_output_step_deg=newmark["output_step"], newmark_reference_step_deg=float(fe["newmark_study"]["reference_step_deg"]),
-        damping_threshold_crossings=damping["crossings"], damping_range_reason=str(fe["damping_ratio"].get("range_reason", "")),
-        damping_reason=str(fe["damping_ratio"]["reason"]),
+        damping_threshold_crossings=damping["crossings"],
     )
     return ds
