@@ -20,12 +20,15 @@ import matplotlib.pyplot as plt
 import pandas as pd
 from _common import caption, inputs, load, md, show_log_log, table
 
+from linkwork.papers.clearance.words import in_words
+
 files = inputs()
 ds = load(files["result"])
 timing = load(files["timings"])
 times = timing["seconds"]
 df = pd.DataFrame({"method": ds.method.values, "setting": ds.setting.values, "error": ds.error.values, "pipeline": ds.pipeline.values.astype(bool)})
 df["time_s"] = [times[f"{m}/{s}"] for m, s in zip(df.method, df.setting)]
+df["setting"] = df.setting.map(in_words)  # the clearance scenes by name, not by code
 methods = list(dict.fromkeys(df.method))
 
 # %%
@@ -58,7 +61,8 @@ caption("Error against each method's reference versus wall time (log-log), one p
 # with its time as a multiple of the pipeline's.
 
 # %%
-rows = [(m, h["pipeline_setting"], h["pipeline_error"], h["pipeline_s"], h["best_other_setting"], h["best_other_error"], h["best_other_time_ratio"])
+rows = [(m, in_words(h["pipeline_setting"]), h["pipeline_error"], h["pipeline_s"], in_words(h["best_other_setting"]), h["best_other_error"],
+         h["best_other_time_ratio"])
         for m, h in timing["highlights"].items()]
 table(pd.DataFrame(rows, columns=["method", "pipeline setting", "its error", "its time (s)", "most accurate other setting", "its error ", "its time / pipeline's"]),
       {"its error": "{:.1e}", "its error ": "{:.1e}", "its time (s)": "{:.2e}", "its time / pipeline's": "{:.1f}"})
@@ -70,7 +74,7 @@ md(
 )
 
 # %%
-table(df.sort_values(["method", "time_s"]), {"error": "{:.1e}", "time_s": "{:.2e}"})
+table(df.sort_values(["method", "time_s"]).rename(columns={"time_s": "wall time (s)"}), {"error": "{:.1e}", "wall time (s)": "{:.2e}"})
 
 # %% [markdown]
 # ## Integrators side by side: linkwork, scipy and Exudyn on one clearance scene
@@ -97,7 +101,7 @@ if "crosscheck_wp" in files:
         ax.loglog(t[ok], np.maximum(e[ok], 1e-16), "o-", label=f"{m} ({origin})")
     ax.loglog(xw.exudyn_time_s.values, xw.exudyn_error.values, "s--", label="Exudyn (Newmark, fixed step)")
     show_log_log(ax, "wall time (s)", "relative error of the RMS deviation from ideal",
-                 f"Work-precision on {xw.attrs['scene']} ({xw.attrs['variant']}) against {xw.attrs['reference']}: error of the claims' measure versus "
+                 f"Work-precision on {in_words(xw.attrs['scene'])} ({xw.attrs['variant']}) against {xw.attrs['reference']}: error of the claims' measure versus "
                  "wall time; tolerances from loose (left) to tight (right) for the adaptive integrators, steps for Exudyn.")
     r = xw.time_ratio_at_equal_error
     rows = [(str(m), *(f"{v:.1f}" if np.isfinite(v) else "not reached" for v in r.sel(compared_method=m).values)) for m in r.compared_method.values]

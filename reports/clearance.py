@@ -8,38 +8,25 @@
 # ---
 
 # %% [markdown]
-# # Four-bar with clearance joints and lubrication: reproduction report
-
-# %%
-from _common import esc, md
-
-from linkwork.papers import CITATIONS
-
-md(f"**Paper.** {esc(CITATIONS['clearance'])}")
-
-# %% [markdown]
-# **What the paper does.** It models a four-bar (ground, crank, coupler, rocker) as a planar multibody system with
-# Baumgarte stabilisation and gives joint 1 (crank–coupler) and/or joint 2 (coupler–rocker) a radial clearance. Dry
-# contact follows Lankarani–Nikravesh with a modified Coulomb friction; lubricated joints follow Sommerfeld's
-# long-bearing film. It integrates with RK4 and plots the rocker's angular acceleration (Figs. 5–7) and the crank
-# torque (Figs. 8–10) against the ideal. **No number is printed**, so the paper's three claims are judged with robust
-# measures.
-#
-# **What we do.** Bodies are in (x, y, φ). The ideal joints and the driver are constraints with the paper's Baumgarte
-# stabilisation (α = β = 250). Clearance joints are force elements. Each scene names its effects, and its right-hand
-# side is generated from exactly those effects and compiled. Dry scenes use adaptive Dormand–Prince 5(4). The
-# lubricated scenes are stiff (the squeeze film is a damper of about 1e7–1e8 N·s/m on bodies of about 1 kg) and use
-# BDF. The ideal scene is inverse dynamics, with no time integration.
+# # Li et al. 2017: four-bar with clearance joints and lubrication — reproduction report
 
 # %%
 import json
+import textwrap
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
-NAMES = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
+from linkwork.papers import CITATIONS
+from linkwork.papers.clearance.findings import VARIANT_WORDS, film_cap_text
+from linkwork.papers.clearance.words import CLAIM_WORDS, QUANTITY_WORDS, SCENE_WORDS, in_words
+
+md(f"**Paper.** {esc(CITATIONS['clearance'])}")
+NAMES = QUANTITY_WORDS
+UNITS = {"rocker_acceleration": "rad/s²", "crank_torque": "N·m"}
+OUTCOME = {1: "holds", 0: "fails", -1: "undetermined"}
 files = inputs()
 claims = load(files["result"])
 wp = load(files["accuracy"])
@@ -56,6 +43,67 @@ dry_cfg = json.loads(scenes[(variants[0], "dry_both")].attrs["config_json"])
 lub_cfg = json.loads(scenes[(variants[0], "lubricated_both")].attrs["config_json"])
 summary = claims[[v for v in claims.data_vars if v.startswith("summary_")]]
 
+
+def worded(df: pd.DataFrame) -> pd.DataFrame:
+    """A table with every code name in its text cells shown in words."""
+    return df.apply(lambda col: col.map(lambda x: in_words(x) if isinstance(x, str) else x))
+
+
+answer(fnd)
+
+# %%
+scene_codes = [str(s) for s in claims.scene.values]
+panels = [(q, m) for q in claims.quantity.values for m in claims.measure.values]
+# per variant a row of panels and, under it, a row of boxes naming the orderings each claim needs on that measure
+fig, axes = plt.subplots(2 * len(variants), len(panels), figsize=(18, 7.4 * len(variants)), constrained_layout=True, squeeze=False,
+                         height_ratios=[3.2, 1.3] * len(variants))
+for r, v in enumerate(sorted(variants, key=lambda v: v != fnd.attrs["defensible_model"])):  # the defensible variant first
+    outcome = claims.comparison_outcome.sel(variant=v).values
+    for c, (q, m) in enumerate(panels):
+        ax = axes[2 * r, c]
+        mean = claims.mean_deviation.sel(variant=v, measure=m, quantity=q).values
+        half = claims.ci_half_width.sel(variant=v, measure=m, quantity=q).values
+        for k, sc in enumerate(scene_codes):
+            colour = "C1" if sc in SCENE_WORDS and sc.startswith("dry") else "C2"
+            valid = bool(np.isfinite(half[k]))
+            ax.errorbar([k], [mean[k]], yerr=[[half[k]], [half[k]]] if valid else None, fmt="o", ms=7, capsize=5, color=colour,
+                        mfc=colour if valid else "white")
+        ax.set_yscale("log")
+        ax.set_xticks(range(len(scene_codes)), [textwrap.fill(SCENE_WORDS[s], 11) for s in scene_codes], fontsize=6.5)
+        measure = "RMS" if m == "rms" else "peak"
+        ax.set_ylabel(f"mean {measure} deviation from the ideal ({UNITS[str(q)]})")
+        ax.set_title(f"{VARIANT_WORDS[v]}:\n{measure} deviation of the {NAMES[str(q)]}", fontsize=9)
+        ax.grid(alpha=0.3, which="both", axis="y")
+        needs = {}
+        for label, claim, o in zip(claims.comparison.values, claims.comparison_claim.values, outcome):
+            if str(label).startswith(f"{m} {q}:"):
+                needs.setdefault(str(claim), []).append(f"  {in_words(str(label).split(': ', 1)[1])}: {OUTCOME[int(o)]}")
+        text = "\n".join(f"{CLAIM_WORDS[k]} needs\n" + "\n".join(lines) for k, lines in needs.items())
+        box = axes[2 * r + 1, c]
+        box.axis("off")
+        box.text(0.0, 1.0, text, transform=box.transAxes, fontsize=7, va="top", ha="left",
+                 bbox={"facecolor": "white", "edgecolor": "0.7"})
+plt.show()
+caption(f"The claims' measures per clearance scene: for each variant (rows) and each response and measure (columns), the mean "
+        f"over the recorded cycles of each cycle's deviation from the ideal curve (orange: dry, green: lubricated), with its "
+        f"{claims.attrs['confidence']:.0%} confidence interval (batch means); an open marker is a scene without a valid interval "
+        "(not settled or not stationary). The box under each panel lists the orderings each claim needs on that measure and "
+        "whether each holds beyond both the interval and the numerical error, fails, or stays undetermined. Logarithmic scale.")
+
+# %% [markdown]
+# **What the paper does.** It models a four-bar (ground, crank, coupler, rocker) as a planar multibody system with
+# Baumgarte stabilisation and gives joint 1 (crank–coupler) and/or joint 2 (coupler–rocker) a radial clearance. Dry
+# contact follows Lankarani–Nikravesh with a modified Coulomb friction; lubricated joints follow Sommerfeld's
+# long-bearing film. It integrates with RK4 and plots the rocker's angular acceleration (Figs. 5–7) and the crank
+# torque (Figs. 8–10) against the ideal. **No number is printed**, so the paper's three claims are judged with robust
+# measures.
+#
+# **What we do.** Bodies are in (x, y, φ). The ideal joints and the driver are constraints with the paper's Baumgarte
+# stabilisation (α = β = 250). Clearance joints are force elements. Each scene names its effects, and its right-hand
+# side is generated from exactly those effects and compiled. Dry scenes use adaptive Dormand–Prince 5(4). The
+# lubricated scenes are stiff (the squeeze film is a damper of about 1e7–1e8 N·s/m on bodies of about 1 kg) and use
+# BDF. The ideal scene is inverse dynamics, with no time integration.
+
 # %% [markdown]
 # ## Summary: each claim per parameter variant
 #
@@ -66,19 +114,18 @@ summary = claims[[v for v in claims.data_vars if v.startswith("summary_")]]
 # shared "undetermined (numerics)" whichever margin it is).
 
 # %%
-answer(fnd)
 for v in variants:
-    comparison_table(cmp[cmp.model == v], caption=f"variant {v}: 1 = the claim holds on the means; the error is 1 where the confidence interval or the numerical error decides an ordering")
-unsteady = [f"{esc(v)} {esc(s_)} ({'not settled' if not int(summary.summary_settled.sel(variant=v, run=s_)) else 'not stationary'})"
+    comparison_table(cmp[cmp.model == v], caption=f"variant {v} ({VARIANT_WORDS[v].removeprefix('with ')}): 1 = the claim holds on the means; the error is 1 where the confidence interval or the numerical error decides an ordering")
+unsteady = [f"{esc(v)}, {esc(SCENE_WORDS[str(s_)])} ({'not settled' if not int(summary.summary_settled.sel(variant=v, run=s_)) else 'not stationary'})"
             for v in variants for s_ in claims.scene.values
             if not int(summary.summary_settled.sel(variant=v, run=s_)) or not int(claims.stationary.sel(variant=v, scene=s_))]
 e0_spec = lub_cfg["assumed"]["e0_m"]
 md(("**Scenes without a valid interval** (their orderings are not decided): " + ", ".join(unsteady) + "." if unsteady else
     "Every scene settled and its record is stationary.")
-   + " " + " ".join(f"In the {esc(v)} variant, lubricated_2 reaches an eccentricity ratio of {float(fnd.lubricated_2_eccentricity_max.sel(variant=v)):.2f} at the nominal e0, "
+   + " " + " ".join(f"In the {esc(v)} variant, {SCENE_WORDS['lubricated_2']} reaches an eccentricity ratio of {float(fnd.lubricated_2_eccentricity_max.sel(variant=v)):.2f} at the nominal e0, "
                     f"above the film cap {float(fnd.film_cap_at_e0_high.sel(variant=v)):.2f} at e0 = {max(e0_spec['range']):g} m, the top of our e0 range."
                     for v in variants if int(fnd.beyond_film_cap_at_e0_high.sel(variant=v))))
-oat_table(unc, {c: f"{c} ({v})" for c in ("acceleration_order", "torque_order", "lubrication_close")}, model=fnd.attrs["paper_model"])
+oat_table(unc, {c: f"{CLAIM_WORDS[c]}, {fnd.attrs['paper_model']} variant" for c in CLAIM_WORDS}, model=fnd.attrs["paper_model"])
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
     "*slender*: J = mL²/12, the variant whose dry penetration stays below the clearance (our validity limit). Each verdict is broken down below by measure, cycle and tolerance."
@@ -88,26 +135,27 @@ md(
 stat = claims[["mean_deviation", "ci_half_width", "numerical_error", "lag1_autocorrelation", "recorded_cycles"]].to_dataframe().reset_index()
 stat = stat.rename(columns={"mean_deviation": "mean", "ci_half_width": f"{claims.attrs['confidence']:.0%} half-width", "numerical_error": "numerical error",
                             "lag1_autocorrelation": "lag-1 autocorrelation", "recorded_cycles": "cycles"})
-table(stat, {"mean": "{:.4g}", f"{claims.attrs['confidence']:.0%} half-width": "{:.3g}", "numerical error": "{:.3g}", "lag-1 autocorrelation": "{:.2f}", "cycles": "{:.0f}"},
+table(worded(stat), {"mean": "{:.4g}", f"{claims.attrs['confidence']:.0%} half-width": "{:.3g}", "numerical error": "{:.3g}", "lag-1 autocorrelation": "{:.2f}", "cycles": "{:.0f}"},
       caption="Mean over the recorded cycles of the deviation from the ideal curve (rad/s² for the acceleration, N·m for the torque), its confidence "
               "half-width (empty: the scene did not settle or its record is not stationary) and its numerical error at the tight tolerance "
               f"({esc(claims.attrs['tight_settings'])})")
 steady = claims.half_change.to_dataframe().reset_index().merge(claims.cycle_spread.to_dataframe().reset_index(), on=["variant", "quantity", "scene"])
 steady["stationary"] = [("yes" if int(claims.stationary.sel(variant=v, scene=s_)) else "no") for v, s_ in zip(steady.variant, steady.scene)]
 steady.columns = ["variant", "quantity", "scene", "change between the record's halves / mean", "(largest − smallest) / mean per cycle", "stationary"]
-table(steady, {"change between the record's halves / mean": "{:.3f}", "(largest − smallest) / mean per cycle": "{:.3g}"},
+table(worded(steady), {"change between the record's halves / mean": "{:.3f}", "(largest − smallest) / mean per cycle": "{:.3g}"},
       caption=f"Stationarity of each recorded RMS deviation: not stationary where the halves' means differ by more than {claims.attrs['stationarity_tolerance']:g} "
               f"of the mean and beyond their {claims.attrs['confidence']:.0%} Welch interval (either quantity)")
-md(f"**Interval:** {esc(claims.attrs['ci_method'])} (batches of {claims.attrs['batch_cycles']} cycles). **Decision:** {esc(claims.attrs['decision_rule'])}. "
+md(f"**Interval:** {esc(in_words(claims.attrs['ci_method']))} (N batches, S the standard deviation of the batch means; batches of {claims.attrs['batch_cycles']} cycles). **Decision:** {esc(claims.attrs['decision_rule'])}. "
    f"**Numerical error:** {esc(claims.attrs['numerical_error_method'])}.")
 comp = claims[["comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome", "comparison_decided_by"]].to_dataframe().reset_index()
 comp["outcome"] = comp.pop("comparison_outcome").map({1: "holds", 0: "fails", -1: "undetermined"})
 comp = comp.rename(columns={"comparison_difference": "difference of the means", "comparison_statistical": "statistical margin",
                             "comparison_numerical": "numerical error", "comparison_claim": "claim", "comparison_decided_by": "decided by"})
-table(comp, {"difference of the means": "{:.4g}", "statistical margin": "{:.3g}", "numerical error": "{:.3g}"},
+table(worded(comp), {"difference of the means": "{:.4g}", "statistical margin": "{:.3g}", "numerical error": "{:.3g}"},
       caption="Every ordering the claims are made of: difference of the means (> 0 as claimed), its margins, outcome and what leaves it undetermined "
               "(empty margin: a scene did not settle or is not stationary). The thresholds of claim 3 are our reading of 'close to the ideal': "
-              f"a lubricated scene below {claims.attrs['close_to_ideal_ratio']:g} × its dry one, and lubricated_2 above lubricated_1 (the ripples the paper sees at joint 2)")
+              f"a lubricated scene below {claims.attrs['close_to_ideal_ratio']:g} × its dry one, and the {SCENE_WORDS['lubricated_2']} above the "
+              f"{SCENE_WORDS['lubricated_1']} (the ripples the paper sees at joint 2)")
 
 # %%
 for v in variants:
@@ -117,7 +165,7 @@ for v in variants:
             ax = axes[row, col]
             for k, sc in enumerate(claims.scene.values):
                 vals = claims.cycle_deviation.sel(variant=v, measure=m, quantity=q, scene=sc).values
-                ax.semilogy(claims.cycle.values, vals, "o-", ms=3, lw=0.8, color=f"C{k}", label=str(sc))
+                ax.semilogy(claims.cycle.values, vals, "o-", ms=3, lw=0.8, color=f"C{k}", label=SCENE_WORDS[str(sc)])
             ax.set_title(f"{v}: {m.upper() if m == 'rms' else m} deviation of the {NAMES[q]} per cycle")
             ax.set_xlabel("recorded cycle (after settling)")
             ax.set_ylabel(f"{m} deviation ({unit})")
@@ -233,14 +281,14 @@ show["summary_settled"] = ["no (by the latest cycle)" if ok != 1 else ("yes" if 
                            for v, r, ok in zip(show.variant, show.run, show.summary_settled)]
 show.columns = ["variant", "scene", "integrator", "steps", "settle cycles", "settled", "recorded cycles", "cycle-to-cycle change (first → last)",
                 "max drift |Φ| (m)", "contact evaluations", "friction evaluations", "lubrication evaluations"]
-table(show, {"max drift |Φ| (m)": "{:.1e}", "steps": "{:.0f}", "settle cycles": "{:.0f}", "recorded cycles": "{:.0f}", "contact evaluations": "{:.0f}", "friction evaluations": "{:.0f}", "lubrication evaluations": "{:.0f}"})
+table(worded(show), {"max drift |Φ| (m)": "{:.1e}", "steps": "{:.0f}", "settle cycles": "{:.0f}", "recorded cycles": "{:.0f}", "contact evaluations": "{:.0f}", "friction evaluations": "{:.0f}", "lubrication evaluations": "{:.0f}"})
 md(
     f"Settling criterion: {esc(scenes[(variants[0], 'dry_both')].attrs['settle_criterion'])}. "
-    + (f"Not settled by the latest cycle: {', '.join(f'{esc(v)} {esc(r)}' for v, r, ok in zip(per_run.variant, per_run.run, per_run.summary_settled) if ok != 1)}. " if (per_run.summary_settled != 1).any() else "Every scene settled by its criterion. ")
-    + (f"Settled but with a record that is not stationary (treated as not settled): {', '.join(f'{esc(v)} {esc(s_)}' for v in variants for s_ in claims.scene.values if not int(claims.stationary.sel(variant=v, scene=s_)) and int(summary.summary_settled.sel(variant=v, run=s_)))}. "
+    + (f"Not settled by the latest cycle: {', '.join(f'{esc(v)}, {esc(SCENE_WORDS[r])}' for v, r, ok in zip(per_run.variant, per_run.run, per_run.summary_settled) if ok != 1)}. " if (per_run.summary_settled != 1).any() else "Every scene settled by its criterion. ")
+    + (f"Settled but with a record that is not stationary (treated as not settled): {', '.join(f'{esc(v)}, {esc(SCENE_WORDS[str(s_)])}' for v in variants for s_ in claims.scene.values if not int(claims.stationary.sel(variant=v, scene=s_)) and int(summary.summary_settled.sel(variant=v, run=s_)))}. "
        if any(not int(claims.stationary.sel(variant=v, scene=s_)) and int(summary.summary_settled.sel(variant=v, run=s_)) for v in variants for s_ in claims.scene.values) else "")
     + f"Periodic to within {claims.attrs['periodic_spread']:.0%} (the per-cycle RMS deviation of both quantities spreads by less over the record): "
-    + (", ".join(f"{esc(v)} {esc(s_)}" for v in variants for s_ in claims.scene.values
+    + (", ".join(f"{esc(v)}, {esc(SCENE_WORDS[str(s_)])}" for v in variants for s_ in claims.scene.values
                  if bool((claims.cycle_spread.sel(variant=v, scene=s_) < claims.attrs["periodic_spread"]).all())) or "none")
     + "; the other scenes vary from cycle to cycle, so the claims are judged on the means over the recorded cycles with their intervals. "
     + ("The evaluation counters show that an effect a scene does not name is never evaluated: the lubrication count is zero "
@@ -255,7 +303,7 @@ md(
 joints = runs[runs.summary_max_eccentricity_ratio.notna()][["variant", "run", "joint", "summary_contact_label", "summary_contact_value", "summary_max_eccentricity_ratio",
                                                           "summary_max_contact_force", "summary_max_film_force"]]
 joints.columns = ["variant", "scene", "joint", "deepest contact", "value", "max eccentricity / c", "max dry contact force (N)", "max film force (N)"]
-table(joints, {"value": "{:.2f}", "max eccentricity / c": "{:.2f}", "max dry contact force (N)": "{:.3g}", "max film force (N)": "{:.3g}"},
+table(worded(joints), {"value": "{:.2f}", "max eccentricity / c": "{:.2f}", "max dry contact force (N)": "{:.3g}", "max film force (N)": "{:.3g}"},
       caption="Joint extremes over the recorded cycles: the deepest penetration into the bushing, or the smallest gap where the journal never touched")
 ideal_forces = per_run[["variant"]].drop_duplicates().assign(
     A=[float(summary.summary_ideal_force_A.sel(variant=v, run="ideal")) for v in per_run.variant.drop_duplicates()],
@@ -285,16 +333,16 @@ validity = pd.DataFrame([
      "time beyond the film cap (%)": 100 * ds.attrs.get("validity_beyond_film_cap_fraction", np.nan),
      "warning": ds.attrs["validity_warnings"] or "inside both models"}
     for (v, s), ds in sorted(scenes.items()) if s != "ideal"])
-table(validity, {"value": "{:.3g}", "time beyond the film cap (%)": "{:.3g}"},
+table(worded(validity), {"value": "{:.3g}", "time beyond the film cap (%)": "{:.3g}"},
       caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:g} c, our reading of where Hertz contact ends)")
 outside = validity[validity.warning != "inside both models"]
-md("**Scenes outside the model's validity:** " + ", ".join(f"`{esc(v)}/{esc(s)}`" for v, s in zip(outside.variant, outside.scene)) + "."
+md("**Scenes outside the model's validity:** " + ", ".join(f"{esc(v)}, {esc(SCENE_WORDS[s])}" for v, s in zip(outside.variant, outside.scene)) + "."
    if len(outside) else "Every scene stays inside the range of its contact and film models.")
 pm = fnd.attrs["paper_model"]
 md(
     f"**Where the {esc(pm)} set leaves its models, in numbers.** Its dry penetration reaches {float(fnd.dry_penetration_max.sel(variant=pm)):.2f} c, and "
     f"its dry crank torque reaches {float(fnd.dry_torque_max.sel(variant=pm)):.3g} N·m (ideal linkage: {float(fnd.ideal_torque_max.sel(variant=pm)):.3g} N·m) "
-    f"on a crank of {float(fnd.crank_mass):g} kg. Its lubricated_2 journal runs at eccentricity ratios up to "
+    f"on a crank of {float(fnd.crank_mass):g} kg. Its journal with {SCENE_WORDS['lubricated_2']} runs at eccentricity ratios up to "
     f"{float(fnd.lubricated_2_eccentricity_max.sel(variant=pm)):.3f}, "
     + ("beyond" if int(fnd.beyond_film_cap.sel(variant=pm)) else "inside")
     + f" the film cap {float(fnd.film_cap.sel(variant=pm)):.3f} (1 − e0/c): there the result depends on the assumed e0, which is one of the "
@@ -303,9 +351,10 @@ md(
     "**Friction in the lubricated scenes.** They name friction: where the film breaks down and the journal meets its bushing, the dry "
     "contact acts with the same modified Coulomb friction as in the dry scenes, so the friction thresholds v0 and v1 are inputs of these "
     "scenes too. Friction acted (evaluations > 0) in "
-    + (", ".join(f"{esc(str(v))} {esc(str(s_))}" for v in fnd.variant.values for s_ in fnd.scene.values
+    + (", ".join(f"{esc(str(v))}, {esc(SCENE_WORDS[str(s_)])}" for v in fnd.variant.values for s_ in fnd.scene.values
                  if float(fnd.lubricated_friction_evaluations.sel(variant=v, scene=s_)) > 0) or "no lubricated scene")
     + "; in the others the journals never touched their bushings."
+    + (f"\n\n**Beyond the film cap.** {esc(film_cap_text(fnd))}" if film_cap_text(fnd) else "")
 )
 
 # %% [markdown]
@@ -325,14 +374,14 @@ for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
         err = wp.error.sel(scene=scene).values[sel]
         n = wp.steps.sel(scene=scene).values[sel]
         ok = np.isfinite(err)
-        ax.loglog(n[ok], err[ok], "o-", label=method)
+        ax.loglog(n[ok], err[ok], "o-", label=in_words(method))
         for ni, ei, lab in zip(n[ok], err[ok], wp.setting.values[sel][ok]):
             ax.annotate(lab.split()[1], (ni, ei), fontsize=6)
     chosen = [str(s_).rsplit(" (", 1)[0] for s_, flag in zip(wp.wp_setting.values, wp.wp_pipeline.values) if flag and str(s_).endswith(f"({scene})")]
     for label in chosen:
         i = list(wp.setting.values).index(label)
         ax.plot(float(wp.steps.sel(scene=scene).values[i]), float(wp.error.sel(scene=scene).values[i]), "k*", ms=14, label="pipeline setting")
-    ax.set_title(f"{scene} ({wp.attrs['variant']}, {wp.attrs['horizon_cycles']} cycle)")
+    ax.set_title(f"{SCENE_WORDS[str(scene)]} ({wp.attrs['variant']}, {wp.attrs['horizon_cycles']} cycle)")
     ax.set_xlabel("accepted steps")
     ax.set_ylabel("relative error of the RMS deviation from ideal")
     ax.grid(alpha=0.3, which="both")
@@ -341,12 +390,12 @@ plt.show()
 caption("Accuracy of the clearance integrators: relative error of the claims' measure (RMS deviation from the ideal curve) against the accepted steps, per integrator and setting (labels: tolerance or step); the star is the pipeline's setting.")
 lines = []
 for scene in wp.scene.values:
-    parts = [f"{m}: {float(wp.best_error.sel(scene=scene, wp_method_name=m)):.1e} at best ({wp.best_setting.sel(scene=scene, wp_method_name=m).item()})"
+    parts = [f"{m}: {float(wp.best_error.sel(scene=scene, wp_method_name=m)):.1e} at best ({in_words(wp.best_setting.sel(scene=scene, wp_method_name=m).item())})"
              for m in wp.wp_method_name.values if np.isfinite(float(wp.best_error.sel(scene=scene, wp_method_name=m)))]
-    lines.append(f"* **{scene}**: " + "; ".join(parts) + f". Pointwise error {float(wp.pointwise_error_min.sel(scene=scene)):.1e}–"
+    lines.append(f"* **{SCENE_WORDS[str(scene)]}**: " + "; ".join(parts) + f". Pointwise error {float(wp.pointwise_error_min.sel(scene=scene)):.1e}–"
                  f"{float(wp.pointwise_error_max.sel(scene=scene)):.1e}.")
 md(
-    f"Reference: {wp.attrs['reference']}. The pipeline settings are {wp.attrs['pipeline_settings']}.\n\n" + "\n".join(lines) + "\n\n"
+    f"Reference: {in_words(wp.attrs['reference'])}. The pipeline settings are {in_words(wp.attrs['pipeline_settings'])}.\n\n" + "\n".join(lines) + "\n\n"
     f"The error shown is that of the RMS deviation from the ideal curve over {wp.attrs['horizon_cycles']} cycle from the start, before the journals "
     "start their impacts; the error table of the claims (numerical error, pipeline against the tight tolerance "
     f"{esc(claims.attrs['tight_settings'])}) is over recorded cycles after settling, where impacts make it larger. The pointwise error "
@@ -367,10 +416,9 @@ md(
 if "crosscheck_ideal" in files:
     xc = load(files["crosscheck_ideal"])
     fig, ax = plt.subplots(figsize=(7, 4.2), constrained_layout=True)
-    labels = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
     for v in xc.variant.values:
         for q, marker in zip(xc.quantity.values, ("o", "s")):
-            ax.loglog(xc.step.values, xc.relative_difference.sel(variant=v, quantity=q).values, marker + "-", label=f"{v}: {labels[str(q)]}")
+            ax.loglog(xc.step.values, xc.relative_difference.sel(variant=v, quantity=q).values, marker + "-", label=f"{v}: {NAMES[str(q)]}")
     ax.axhline(xc.attrs["agreement"], color="k", ls=":", lw=1, label="agreement bound (our choice)")
     show_log_log(ax, "Exudyn's time step (s)", "max |Exudyn − linkwork| / max |linkwork|",
                  f"Ideal scene, {xc.attrs['cycles']} crank turns from the dead point: largest difference between Exudyn ({xc.attrs['engine']}) "
@@ -406,7 +454,7 @@ if "crosscheck_dry" in files:
     for (v, sc), d in dry_xc.items():
         for q in d.quantity.values:
             m, se = d["mean"].sel(quantity=q).values, d.standard_error.sel(quantity=q).values
-            rows.append((v, sc, names[str(q)], *(f"{a:.4g} ± {b:.2g}" for a, b in zip(m, se)), f"{float(d.relative_difference.sel(quantity=q)):+.1%}",
+            rows.append((v, SCENE_WORDS[sc], names[str(q)], *(f"{a:.4g} ± {b:.2g}" for a, b in zip(m, se)), f"{float(d.relative_difference.sel(quantity=q)):+.1%}",
                          f"{float(d.margin.sel(quantity=q)):.3g}", "agree" if bool(d.agree.sel(quantity=q)) else "differ"))
     settings = list(next(iter(dry_xc.values())).setting.values)
     table(pd.DataFrame(rows, columns=["variant", "scene", "RMS deviation from ideal of", *settings, "Exudyn − linkwork (of the means)", "margin", "verdict"]), {})
@@ -421,7 +469,7 @@ if "crosscheck_dry" in files:
             for k, (setting, colour) in enumerate(zip(d.setting.values, ("C0", "C1", "C2", "C3"))):
                 vals = d.cycle_rms_deviation.sel(quantity=q).values[k]
                 ax.plot(np.full(vals.size, i + (k - 1.5) * 0.12), vals, "o", ms=3, color=colour, label=setting if i == 0 else None)
-        ax.set_xticks(range(len(keys)), [f"{v}\n{sc}" for v, sc in keys], fontsize=8)
+        ax.set_xticks(range(len(keys)), [f"{v}\n{textwrap.fill(SCENE_WORDS[sc], 16)}" for v, sc in keys], fontsize=8)
         ax.set_ylabel(f"RMS deviation from ideal per cycle, {names[q]}")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)

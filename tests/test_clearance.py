@@ -341,3 +341,28 @@ def test_an_undetermined_ordering_names_the_margin_that_decides_it():
     assert undecided_reason(1.0, 0.5, 2.0, []) == "numerical error"
     assert undecided_reason(1.0, float("inf"), 0.1, ["dry_both"]) == "statistics (not settled / not stationary: dry_both)"
     assert claim_reason(["", "numerical error", "statistical margin", "numerical error"]) == "numerical error; statistical margin"
+
+
+def test_the_answer_is_two_plain_sentences_read_from_the_results():
+    """answer() on a hand-made comparison table and findings: at most two sentences, no code name, the verdicts
+    per variant and the penetration numbers as given (not typed)."""
+    import re
+
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers.clearance.findings import answer
+    from prose import leaks
+
+    verdicts = {"slender": ("undetermined (numerics)", "deviates", "undetermined (numerics)"),
+                "decoded": ("deviates", "undetermined (numerics)", "undetermined (numerics)")}
+    table = pd.DataFrame([{"model": v, "id": c, "role": "headline", "verdict": verdict}
+                          for v, row in verdicts.items() for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)])
+    findings = xr.Dataset({"dry_penetration_max": ("variant", [1.37, 0.61]), "physically_consistent": ("variant", [0, 1]),
+                           "beyond_film_cap_fraction": (("variant", "scene"), [[1.0, 0.2, 1.0], [0.0, 0.0, 0.0]])},
+                          coords={"variant": ["decoded", "slender"], "scene": ["lubricated_1", "lubricated_2", "lubricated_both"]})
+    text = answer(table, findings)
+    assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 2, text
+    assert leaks(text) == [], leaks(text)
+    assert text.startswith("No claim") and "1.4 times the clearance" in text and "0.61" in text and "outside the contact model" in text
+    assert "claim 2 (crank-torque order) fails" in text and "text claim 1 fails" in text

@@ -11,6 +11,7 @@ import xarray as xr
 
 from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs
 from .validity import PENETRATION_LIMIT
+from .words import CLAIM_WORDS, SCENE_WORDS, in_words
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
@@ -44,7 +45,7 @@ def with_reasons(table: pd.DataFrame, claims: xr.Dataset) -> pd.DataFrame:
     out = table.copy()
     for i, row in out.iterrows():
         if row.verdict == "undetermined (numerics)" and row.model in claims.variant.values and row["id"] in claims.claim.values:
-            out.at[i, "decided_by"] = str(claims.claim_decided_by.sel(variant=row.model, claim=row["id"]).item())
+            out.at[i, "decided_by"] = in_words(claims.claim_decided_by.sel(variant=row.model, claim=row["id"]).item())
     return out
 
 
@@ -120,23 +121,54 @@ def physics(claims: xr.Dataset, cfg: Mapping[str, Any] | None = None, uncertaint
                "scene": ("scene", np.array(LUBRICATED_SCENES, dtype=object), {"units": "1", "long_name": "lubricated scene"})})
 
 
+VARIANT_WORDS = {DEFENSIBLE: "with slender-rod inertias (our defensible reading)",
+                 PAPER_MODEL: "with the inertias as decoded from the text"}
+#: A claim's verdict class as a predicate of the claim(s) in plain words.
+VERDICT_PREDICATE = {"matches": ("holds", "hold"), "deviates": ("fails", "fail"),
+                     "undetermined (numerics)": ("is undetermined by the numerics", "are undetermined by the numerics")}
+
+
+def verdicts_text(table: pd.DataFrame, variant: str, short: bool = False) -> str:
+    """One variant's headline claims grouped by verdict, in words, the failing ones first ('claim 2 (...) fails, while
+    claim 1 (...) and claim 3 (...) are undetermined by the numerics'); ``short``: the claims by number alone."""
+    rows = table[(table.role == "headline") & (table.model == variant)]
+    parts = []
+    for verdict in sorted(dict.fromkeys(rows.verdict), key=lambda v: v != "deviates"):
+        ids = [CLAIM_WORDS.get(str(c), str(c)) for c in rows[rows.verdict == verdict]["id"]]
+        ids = [c.split(" (")[0] for c in ids] if short else ids
+        singular, plural = VERDICT_PREDICATE.get(verdict, (verdict, verdict))
+        parts.append(f"{' and '.join(ids)} {singular if len(ids) == 1 else plural}")
+    return parts[0] + (", while " + ", ".join(parts[1:]) if len(parts) > 1 else "")
+
+
 def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
-    """Does the paper hold up? Sentences chosen and filled from the claims' verdicts and the physics per variant."""
+    """Does the paper hold up? Two sentences filled from the results: the claims' verdicts per variant, then
+    whether the paper's own (decoded) variant stays inside the contact model."""
     headline = table[table.role == "headline"]
     confirmed = headline[headline.verdict == "matches"]
-
-    def consistency(variant: str) -> str:
-        ok = bool(findings.physically_consistent.sel(variant=variant))
-        depth = float(findings.dry_penetration_max.sel(variant=variant))
-        return (f"the dry penetration stays below the clearance (our validity limit: at most {depth:.2f} of it)" if ok else
-                f"the dry penetration reaches {depth:.1f} times the clearance, beyond our validity limit of {PENETRATION_LIMIT:g} clearance (far outside Hertz contact)")
-
-    lead = "No claim is confirmed." if confirmed.empty else f"{len(confirmed)} of the claims are confirmed ({', '.join(sorted(set(confirmed.model)))})."
-    return (
-        f"{lead} On the slender-rod variant, {consistency(DEFENSIBLE)}, the three claims: {count_text(table, DEFENSIBLE)}. "
-        f"With the inertias as decoded from the text, {consistency(PAPER_MODEL)}: {count_text(table, PAPER_MODEL)}. The paper prints no "
-        f"number, so each claim is judged on our own measures of its figures.{film_cap_text(findings)}"
-    )
+    lead = ("No claim of the paper is confirmed" if confirmed.empty else
+            f"{confirmed['id'].nunique()} of the paper's {headline['id'].nunique()} claims are confirmed "
+            "on at least one variant")
+    depth = {v: float(findings.dry_penetration_max.sel(variant=v)) for v in (DEFENSIBLE, PAPER_MODEL)}
+    ok = {v: bool(findings.physically_consistent.sel(variant=v)) for v in (DEFENSIBLE, PAPER_MODEL)}
+    first = (f"{lead}: {VARIANT_WORDS[DEFENSIBLE]} {verdicts_text(table, DEFENSIBLE)}; "
+             f"{VARIANT_WORDS[PAPER_MODEL]} {verdicts_text(table, PAPER_MODEL, short=True)}.")
+    if ok[PAPER_MODEL] and not ok[DEFENSIBLE]:
+        second = ("The slender-rod verdicts lie outside the contact model, because their deepest dry penetration "
+                  f"reaches {depth[DEFENSIBLE]:.1f} times the clearance, beyond our validity limit of "
+                  f"{PENETRATION_LIMIT:g} clearance (decoded inertias: {depth[PAPER_MODEL]:.2f} of it, inside).")
+    elif ok[PAPER_MODEL]:
+        second = ("Both variants stay inside the contact model: the deepest dry penetration is "
+                  f"{depth[PAPER_MODEL]:.2f} of the clearance with the decoded inertias and {depth[DEFENSIBLE]:.2f} "
+                  "with slender rods, below our validity limit of "
+                  f"{PENETRATION_LIMIT:g} clearance.")
+    else:
+        second = ("The decoded variant's verdicts lie outside the contact model, because its deepest dry penetration "
+                  f"reaches {depth[PAPER_MODEL]:.1f} times the clearance, beyond our validity limit of "
+                  f"{PENETRATION_LIMIT:g} clearance "
+                  + (f"(slender rods: {depth[DEFENSIBLE]:.2f} of it, inside)." if ok[DEFENSIBLE] else
+                     f"(slender rods: {depth[DEFENSIBLE]:.1f} times, also outside)."))
+    return f"{first} {second}"
 
 
 def film_cap_text(findings: xr.Dataset) -> str:
@@ -146,8 +178,9 @@ def film_cap_text(findings: xr.Dataset) -> str:
     parts = []
     for v in findings.variant.values:
         frac = findings.beyond_film_cap_fraction.sel(variant=v)
-        always = [str(s) for s in findings.scene.values if float(frac.sel(scene=s)) >= 1.0]
+        always = [SCENE_WORDS[str(s)] for s in findings.scene.values if float(frac.sel(scene=s)) >= 1.0]
         if always:
-            parts.append(f" With the {v} inertias, {' and '.join(always)} run beyond the film cap during 100 % of the recorded time: "
-                         "claim 3 there is judged on the dry contact, not on a film.")
-    return "".join(parts)
+            who = VARIANT_WORDS.get(str(v), str(v)).capitalize()
+            parts.append(f" {who}, the scenes with {' and with '.join(always)} run beyond the film cap during all of "
+                         "their recorded time: claim 3 there is judged on the dry contact, not on a film.")
+    return "".join(parts).strip()

@@ -1,0 +1,30 @@
+"""The clearance paper's code names in words, for everything a reader sees (answer, reports, tables, legends).
+
+The one home of this mapping: the findings and the reports import it.  Kept apart from ``studies`` (where the
+scenes are simulated) so that a change of wording reruns only the comparison and the reports, never a scene."""
+
+from __future__ import annotations
+
+import re
+
+JOINT_WORDS = {"1": "joint 1", "2": "joint 2", "both": "both joints"}
+KIND_WORDS = {"dry": "dry clearance", "lubricated": "lubricated clearance"}
+#: Scene code -> words ('dry_2' -> 'dry clearance at joint 2').
+SCENE_WORDS = {"ideal": "ideal joints", **{f"{kind}_{joint}": f"{kw} at {jw}"
+                                          for kind, kw in KIND_WORDS.items() for joint, jw in JOINT_WORDS.items()}}
+#: Claim id -> words (the paper's three claims, in its order).
+CLAIM_WORDS = {"acceleration_order": "claim 1 (rocker-acceleration order)",
+               "torque_order": "claim 2 (crank-torque order)",
+               "lubrication_close": "claim 3 (lubrication close to the ideal)"}
+#: Compared response -> words.
+QUANTITY_WORDS = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
+#: Symbols of the interval's description -> words.
+SYMBOL_WORDS = {"n_b": "N", "s_b": "S"}
+WORDS = {**SCENE_WORDS, **CLAIM_WORDS, **QUANTITY_WORDS, **SYMBOL_WORDS}
+_NAMES = sorted((re.escape(k) for k in WORDS if "_" in k), key=len, reverse=True)
+_CODE = re.compile(r"(?<![\w])(" + "|".join(_NAMES) + r")(?![\w])")
+
+
+def in_words(text: str) -> str:
+    """``text`` with every code name of this paper replaced by its words."""
+    return _CODE.sub(lambda m: WORDS[m.group(1)], str(text))
