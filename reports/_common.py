@@ -12,6 +12,7 @@ import html
 import json
 import math
 import os
+import re
 from pathlib import Path
 
 import pandas as pd
@@ -109,6 +110,33 @@ def _range(low: float, high: float, tolerance: float) -> str:
     return f"{_num(low, digits)} … {_num(high, digits)}"
 
 
+#: Unit suffixes of config keys, dropped when a key is named in prose (the unit is in the table's unit column).
+_UNIT_SUFFIXES = ("_kg_m3", "_m_s2", "_m_s", "_Pa_s", "_Pa", "_deg", "_rpm", "_m2", "_m4", "_m", "_kg", "_s")
+_GREEK = {"theta": "θ", "eta": "η", "zeta": "ζ", "omega": "ω", "alpha": "α", "beta": "β"}
+_NAMES = {"youngs_modulus": "Young's modulus"}
+
+
+def key_words(text: str) -> str:
+    """Config key names in ``text`` ('theta4_deg', 'damping_ratio', 'density_kg_m3') as words for prose: the unit
+    suffix dropped, Greek letters spelt as such, underscores as spaces ('θ4', 'damping ratio', 'density'); a symbol
+    with a capital subscript ('clearance_E', 'M_P') stays as written."""
+    def word(m: re.Match) -> str:
+        key = m.group(0)
+        for suffix in _UNIT_SUFFIXES:
+            if key.endswith(suffix) and len(key) > len(suffix):
+                key = key[: -len(suffix)]
+                break
+        if key != key.lower():  # a symbol with a subscript (clearance_E, M_P): kept as written
+            return m.group(0)
+        if key in _NAMES:
+            return _NAMES[key]
+        for name, letter in _GREEK.items():
+            key = re.sub(rf"^{name}(?=\d|_|$)", letter, key)
+        return key.replace("_", " ")
+
+    return re.sub(r"(?<![\w.])[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)+(?![\w.])", word, text)
+
+
 def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: float = 1.0, digits: int = 5) -> None:
     """Published numbers beside ours with the verdict's ingredients: tolerance and its source, our numerical
     error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
@@ -124,7 +152,7 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
         "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
         "error from": rows.numerical_source,
         "over the assumed inputs": [_range(lo * scale, hi * scale, t * scale) for lo, hi, t in zip(rows.input_low, rows.input_high, rows.tolerance)],
-        "decided by": rows.decided_by.fillna(""),
+        "decided by": rows.decided_by.fillna("").map(key_words),
         "unit": rows.unit,
         "verdict": rows.verdict,
     })

@@ -16,7 +16,7 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, design_text, esc, inputs, load, md, provenance, table, verdict_figure
+from _common import answer, assumed, caption, design_text, esc, key_words, inputs, load, md, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
 
@@ -332,7 +332,7 @@ head_table = pd.DataFrame({
     "error from": head.numerical_source.fillna(""),
     "over the rounding of the printed parameters": ["–" if pd.isna(lo) else f"{lo:.{decimals(t) + 1}f} … {hi:.{decimals(t) + 1}f}"
                                                     for lo, hi, t in zip(head.input_low, head.input_high, head.tolerance)],
-    "decided by": head.decided_by.fillna("").map(lambda k: {"l4_m": "l4", "l7_m": "l7", "theta4_deg": "θ4", "theta7_deg": "θ7"}.get(k, k)),
+    "decided by": head.decided_by.fillna("").map(key_words),
     "unit": head.unit,
     "verdict": head.verdict,
 })

@@ -17,7 +17,7 @@ import textwrap
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
+from _common import answer, assumed, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
 from linkwork.papers import CITATIONS
 from linkwork.papers.clearance.findings import VARIANT_WORDS, film_cap_text
@@ -119,13 +119,14 @@ for v in variants:
 unsteady = [f"{esc(v)}, {esc(SCENE_WORDS[str(s_)])} ({'not settled' if not int(summary.summary_settled.sel(variant=v, run=s_)) else 'not stationary'})"
             for v in variants for s_ in claims.scene.values
             if not int(summary.summary_settled.sel(variant=v, run=s_)) or not int(claims.stationary.sel(variant=v, scene=s_))]
-e0_spec = lub_cfg["assumed"]["e0_m"]
+entries = assumed(files)  # reasons, ranges and choices of the labelled config entries
+e0_spec = entries["assumed.e0_m"]
 md(("**Scenes without a valid interval** (their orderings are not decided): " + ", ".join(unsteady) + "." if unsteady else
     "Every scene settled and its record is stationary.")
    + " " + " ".join(f"In the {esc(v)} variant, {SCENE_WORDS['lubricated_2']} reaches an eccentricity ratio of {float(fnd.lubricated_2_eccentricity_max.sel(variant=v)):.2f} at the nominal e0, "
                     f"above the film cap {float(fnd.film_cap_at_e0_high.sel(variant=v)):.2f} at e0 = {max(e0_spec['range']):g} m, the top of our e0 range."
                     for v in variants if int(fnd.beyond_film_cap_at_e0_high.sel(variant=v))))
-oat_table(unc, {c: f"{CLAIM_WORDS[c]}, {fnd.attrs['paper_model']} variant" for c in CLAIM_WORDS}, model=fnd.attrs["paper_model"])
+oat_table(unc, {c: f"{CLAIM_WORDS[c]}, {fnd.attrs['paper_model']} variant" for c in CLAIM_WORDS}, entries, model=fnd.attrs["paper_model"])
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
     "*slender*: J = mL²/12, the variant whose dry penetration stays below the clearance (our validity limit). Each verdict is broken down below by measure, cycle and tolerance."
@@ -187,8 +188,7 @@ rows += [("ground", f"{dry_cfg['ground_m']} m", "decoded"), ("crank speed", f"{d
          ("E, ν", f"{j['youngs_modulus_Pa'] / 1e9:g} GPa, {j['poisson']}", "decoded"),
          ("restitution, friction", f"{j['restitution']}, {j['friction']}", "decoded"),
          ("viscosity", f"{lub_cfg['joints']['viscosity_Pa_s']} Pa·s", "decoded"), ("contact law", j["contact_law"], "paper")]
-assumed = {**dry_cfg.get("assumed", {}), **lub_cfg.get("assumed", {})}
-rows += [(k.replace("_", " "), f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in assumed.items()]
+rows += [(k.removeprefix("assumed.").replace("_", " "), f"{v['value']:g}", f"{v['status']}: {v['reason']}") for k, v in entries.items() if k.startswith("assumed.")]
 rows += [("centres of mass", "mid-link", "assumed"), ("gravity", "on (the scenes name it)", "assumed: the paper's 'no-load' means no external load"),
          ("start", "crank and coupler extended (rocker dead point), journals centred", "paper / assumed")]
 table(pd.DataFrame(rows, columns=["parameter", "value", "source"]))

@@ -90,3 +90,20 @@ def test_prose_check_finds_code_names_key_paths_and_templates_but_not_marked_con
     assert "gravity_m_s2" not in found and "theta4_deg" not in found and "config_sha256" not in found
     assert not any(f.startswith("K_h") or f in ("e.g", "index.html") for f in found)
     assert leaks("Plain words, θ4 = 2.5°, Δ_E and the K_c maximum.") == []
+
+
+def test_config_key_names_become_words_in_the_reports_tables():
+    """The comparison tables' 'decided by' column names config keys in words (unit suffix dropped, Greek letters
+    spelt, underscores as spaces); symbols with a capital subscript stay as written; the prose check then passes."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "reports"))
+    from _common import key_words
+    from prose import leaks
+
+    assert key_words("jointly (largest alone: theta4_deg)") == "jointly (largest alone: θ4)"
+    assert key_words("youngs_modulus_Pa, density_kg_m3") == "Young's modulus, density"
+    assert key_words("damping_ratio") == "damping ratio"
+    assert key_words("clearance_E, M_P, k_O") == "clearance_E, M_P, k_O"
+    assert leaks(key_words("decided by theta7_deg, l4_m and damping_ratio")) == []

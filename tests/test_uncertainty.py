@@ -42,7 +42,7 @@ def test_design_choices_are_scenarios_never_sampled_values():
     assert len(samples(ins, 0, 3, corner_limit=3)) == 3 * 5  # more corners than the limit: none
 
 
-def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, evaluations=200, choices=None):
+def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, evaluations=200, choices=None, workers=1, flat_rtol=1e-9):
     """A toy paper: inputs ``names`` in ``ranges`` (config section {name: labelled entry}), its results the
     variables of ``fun(**inputs)``; the study's samples, summary and bounded searches as a paper's gather runs them."""
     import xarray as xr
@@ -53,7 +53,8 @@ def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, eval
     cfg = {n: {"value": float(np.mean(r)), "status": "assumed", "reason": "toy", "range": list(r)} for n, r in zip(names, ranges)}
     if choices:
         cfg["mode"] = {"value": choices[0], "status": "assumed", "reason": "toy", "choices": list(choices)}
-    cfg["uncertainty"] = {"lhs_points": lhs_points, "batch_size": 1000, "seed": 1, "search": {"corner_limit": corner_limit, "evaluations": evaluations, "xtol": 1e-4}}
+    cfg["uncertainty"] = {"lhs_points": lhs_points, "batch_size": 1000, "seed": 1, "search": {"corner_limit": corner_limit, "evaluations": evaluations, "xtol": 1e-4,
+                                                                                       "flat_rtol": flat_rtol}}
     ins = list(labelled_inputs({k: v for k, v in cfg.items() if k != "uncertainty"}))
 
     def results(c):
@@ -63,7 +64,7 @@ def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, eval
         return [xr.Dataset({k: ((), float(v)) for k, v in fun(**args).items()})]
 
     batch = batch_dataset(cfg, ins, samples(ins, lhs_points, 1, corner_limit), published, results)
-    return gathered(ins, [batch], "toy", searcher(cfg, published, ins, results))
+    return gathered(ins, [batch], "toy", searcher(cfg, published, ins, results), workers)
 
 
 def _entry(name, value, tol, relation="eq"):
@@ -259,3 +260,26 @@ def test_a_vertex_ends_the_search_only_where_no_input_moved_inwards_improves_it(
     ev = Evaluator(lambda u: np.array([rising(u)]), 2)
     value, at = extreme(ev, 0, 1.0, [np.array([1.0, 1.0])], 200, 1e-6)
     assert value == 3.0 and list(at) == [1.0, 1.0] and ev.evaluations == 3  # the vertex and one probe per input
+
+
+def test_scenarios_searched_side_by_side_give_the_same_study():
+    """Two worker processes search the scenarios of a study with a choice: the same Dataset as one process."""
+    fun = lambda a, b, mode: {"f": (a - 0.3) ** 2 + b * (2.0 if mode == "y" else 1.0)}  # noqa: E731
+    args = (fun, ["a", "b"], [(0.0, 1.0), (0.0, 1.0)], {"quantities": [_entry("f", 0.5, 0.05)]})
+    one = _toy_study(*args, lhs_points=4, choices=("x", "y", "z"), workers=1)
+    two = _toy_study(*args, lhs_points=4, choices=("x", "y", "z"), workers=2)
+    assert one.sizes["scenario"] == 3
+    assert one.identical(two)
+    assert float(one.low.sel(quantity="|f").isel(scenario=0)) == pytest.approx(0.0, abs=1e-6)  # a = 0.3, b = 0: an interior minimum
+
+
+def test_a_value_flat_over_the_box_is_not_searched():
+    """A ratio in which the inputs cancel moves only by rounding: its interval stays the samples' range and no
+    evaluation is spent on it (the search of a value that does move still runs)."""
+    flat = lambda a, b: {"r": (a / b) * (b / a) * (a + 1.0) / (1.0 + a), "g": a + b}  # noqa: E731
+    args = (flat, ["a", "b"], [(1.0, 3.0), (0.1, 0.7)], {"quantities": [_entry("r", 1.0, 0.1), _entry("g", 2.0, 0.1)]})
+    searched = _toy_study(*args, lhs_points=4, flat_rtol=0.0)
+    skipped = _toy_study(*args, lhs_points=4, flat_rtol=1e-9)
+    assert float(skipped.low.sel(quantity="|r").squeeze()) == float(skipped.value.sel(quantity="|r").min())
+    assert int(skipped.evaluations.squeeze()) < int(searched.evaluations.squeeze())
+    assert float(skipped.high.sel(quantity="|g").squeeze()) == pytest.approx(3.7)

@@ -82,6 +82,8 @@ rule uncertainty_batch:
 
 rule uncertainty_gather:
     priority: LONG_JOB_PRIORITY
+    # the scenarios' bounded searches run side by side (linkwork.pipeline.search.refine, one process per thread)
+    threads: 2
     input:
         unpack(uncertainty_gather_inputs),
     output:

@@ -5,6 +5,7 @@ CSV, a dict to JSON.  Prints one line when it starts and one when it has written
 """
 
 import importlib
+import inspect
 import json
 import sys
 import time
@@ -28,7 +29,9 @@ try:
     }
 except results.UnreadableResult as exc:
     sys.exit(f"{label}: {exc}")
-returned = function(cfg, **args, **inputs)
+# a study that can use the rule's threads gets them as worker processes (not provenance: the result does not depend on them)
+workers = {"workers": sm.threads} if "workers" in inspect.signature(function).parameters else {}
+returned = function(cfg, **args, **workers, **inputs)
 outputs = returned if isinstance(returned, tuple) else (returned,)
 if len(outputs) != len(sm.output):
     sys.exit(f"{label}: {module_name}:{function_name} returned {len(outputs)} objects for {len(sm.output)} outputs")

@@ -348,6 +348,24 @@ COUNT_WORDS = {"matches": "match", "matches as printed": "match as printed", "de
                "deviates as printed": "deviate as printed", "deviates": "deviate", "not reproducible": "not reproducible"}
 
 
+def nominal_rows(table: pd.DataFrame) -> pd.DataFrame:
+    """The rows of the first scenario (the nominal choices) of a comparison table; all rows if it has none."""
+    if "scenario" not in table or not len(table):
+        return table
+    return table[table.scenario.fillna("") == table.scenario.fillna("").iloc[0]]
+
+
+def scenario_changes(table: pd.DataFrame) -> pd.DataFrame:
+    """Per published id (and model), the rows whose verdict differs between the named scenarios: a DataFrame of the
+    non-nominal scenarios' rows where the verdict is not the nominal scenario's."""
+    if "scenario" not in table or not len(table):
+        return table.iloc[0:0]
+    first = nominal_rows(table).set_index(["model", "id"]).verdict
+    rest = table[table.scenario.fillna("") != table.scenario.fillna("").iloc[0]]
+    keys = list(zip(rest.model, rest.id, strict=True))
+    return rest[[first.get(k) is not None and first.get(k) != v for k, v in zip(keys, rest.verdict, strict=True)]]
+
+
 def count_text(table: pd.DataFrame, model: str, role: str = "headline", scenario: str | None = None) -> str:
     """'3 match, 1 deviates, 2 depend on assumptions' for one model's rows of one role (classes that occur) in one
     scenario (default: the first, the nominal choices)."""

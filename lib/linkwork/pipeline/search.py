@@ -127,6 +127,14 @@ def vertex_is_local_extreme(objective: Callable[[np.ndarray], float], u: np.ndar
     return True
 
 
+def is_flat(values: np.ndarray, nominal: float, rtol: float) -> bool:
+    """Whether a value's samples (nominal, one at a time, corners, Latin hypercube) spread by at most ``rtol`` of
+    its magnitude: a value the assumed inputs do not move beyond rounding (a ratio in which they cancel), whose
+    search would chase rounding noise.  Its interval stays the samples' range."""
+    finite = values[np.isfinite(values)]
+    return finite.size > 1 and float(np.ptp(finite)) <= rtol * max(abs(float(nominal)), np.finfo(float).tiny)
+
+
 def snapped(u: np.ndarray, xtol: float) -> np.ndarray:
     """``u`` with every coordinate within SNAP x ``xtol`` of a face of the unit box moved onto it (a search that
     stops at its tolerance next to a corner then tries the corner itself)."""
@@ -205,22 +213,25 @@ def _end_values(ds: Any, labels: Sequence[str], prefix: str, inputs: Sequence[An
 
 def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
            results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any],
-           held: Callable[[Any], set[str]] | None = None) -> Any:
+           held: Callable[[Any], set[str]] | None = None, workers: int = 1) -> Any:
     """The gathered study ``ds`` (linkwork.pipeline.uncertainty.summary) with each headline value's low and high
     replaced by its extremes over the box (bounded searches from the samples), where they were found, and per
     scenario and model variant the best consistent assumption set.  ``settings``: ``evaluations`` per search and
     ``xtol`` (unit-box step tolerance).  Table cells keep the samples' range (corners included).
 
     ``held(scenario)``: the input paths the paper declares its searched values do not read in that scenario (the
-    search holds them at their nominal values and needs no evaluation to learn that they are flat)."""
+    search holds them at their nominal values and needs no evaluation to learn that they are flat).  ``workers``:
+    processes that search the scenarios side by side (each scenario's searches are independent and deterministic,
+    so the result does not depend on it)."""
     from .uncertainty import continuous, scenarios
 
     ranged, scens = continuous(inputs), scenarios(inputs)
     keys = [str(k) for k in ds.quantity.values]
     lower, upper, tol = acceptance_regions(published, keys)
     models = list(dict.fromkeys(k.split("|", 1)[0] for k in keys))
-    found = [_search_scenario(ds, n, scen, cfg, published, ranged, results, settings, (held or (lambda _: set()))(scen), models)
-             for n, scen in enumerate(scens)]
+    held = held or (lambda _: set())
+    tasks = [(ds, n, scen, cfg, published, ranged, results, settings, held(scen), models) for n, scen in enumerate(scens)]
+    found = _map(_search_task, tasks, workers)
     low, high = ds.low.values.copy(), ds.high.values.copy()
     shape_at = (len(scens), len(ranged), len(keys))
     low_at, high_at = np.full(shape_at, np.nan), np.full(shape_at, np.nan)
@@ -235,6 +246,33 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
         matched_best[n], in_set[n], count[n], candidates[n] = part["matched_best"], part["in_set"], part["count"], part["candidates"]
         best_at[n], evaluations[n] = part["best_at"], part["evaluations"]
     return _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings)
+
+
+#: The tasks of the running ``_map``, inherited by its forked workers (they hold closures, which do not pickle).
+_TASKS: list[Any] = []
+
+
+def _run_forked(index: int) -> Any:
+    fun, task = _TASKS[index]
+    return fun(task)
+
+
+def _map(fun: Callable[[Any], Any], tasks: Sequence[Any], workers: int) -> list[Any]:
+    """``[fun(t) for t in tasks]``, in up to ``workers`` forked processes, in order."""
+    if workers <= 1 or len(tasks) <= 1:
+        return [fun(t) for t in tasks]
+    import multiprocessing
+
+    _TASKS[:] = [(fun, t) for t in tasks]
+    try:
+        with multiprocessing.get_context("fork").Pool(min(workers, len(tasks))) as pool:
+            return pool.map(_run_forked, range(len(tasks)), chunksize=1)
+    finally:
+        _TASKS.clear()
+
+
+def _search_task(task: tuple) -> dict[str, np.ndarray] | None:
+    return _search_scenario(*task)
 
 
 def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], ranged: Sequence[Any],
@@ -276,8 +314,9 @@ def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], publish
            "high_at": np.full((len(ranged), len(keys)), np.nan), "matched_best": np.full(len(keys), np.nan), "in_set": np.full(len(keys), np.nan),
            "count": np.zeros(len(models)), "candidates": np.zeros(len(models)), "best_at": np.full((len(models), len(ranged)), np.nan)}
     points, values = ev.points()
+    flat = float(settings["flat_rtol"])
     for q in headline:
-        if not np.isfinite(nominal_v[q]) or not sub:
+        if not np.isfinite(nominal_v[q]) or not sub or is_flat(values[:, q], nominal_v[q], flat):
             continue
         for sign, end in ((-1.0, "low"), (1.0, "high")):
             finite = np.isfinite(values[:, q])
@@ -335,7 +374,7 @@ def _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, ca
 
 
 def searcher(cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
-             results: Callable[[Mapping[str, Any]], Sequence[Any]], held: Callable[[Any], set[str]] | None = None) -> Callable[[Any], Any]:
-    """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``); ``held``: see
-    ``refine``."""
-    return lambda ds: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"], held)
+             results: Callable[[Mapping[str, Any]], Sequence[Any]], held: Callable[[Any], set[str]] | None = None) -> Callable[..., Any]:
+    """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``, called with the
+    Dataset and the number of worker processes); ``held``: see ``refine``."""
+    return lambda ds, workers=1: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"], held, workers)

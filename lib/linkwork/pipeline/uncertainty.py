@@ -332,11 +332,13 @@ def run_batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int, 
     return ds
 
 
-def gathered(inputs: Sequence[Input], batch_datasets: Sequence[Any], title: str, search: Callable[[Any], Any] | None = None):
+def gathered(inputs: Sequence[Input], batch_datasets: Sequence[Any], title: str, search: Callable[..., Any] | None = None,
+             workers: int = 1):
     """Every batch of a paper's study in one Dataset, with the ranges; ``search`` (a Dataset -> Dataset step of
-    ``linkwork.pipeline.search``) replaces the samples' ranges by the box's extremes and adds the consistent sets."""
+    ``linkwork.pipeline.search``, run in ``workers`` processes) replaces the samples' ranges by the box's extremes and
+    adds the consistent sets."""
     ds = summary(batch_datasets, inputs)
     if search is not None:
-        ds = search(ds)
+        ds = search(ds, workers)
     ds.attrs["title"] = title
     return ds

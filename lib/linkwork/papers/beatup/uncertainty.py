@@ -35,7 +35,7 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
     return run_batch(cfg, published, index, inputs(cfg), results)
 
 
-def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any]):
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], workers: int = 1):
     """Rule study: every batch, with each headline value's extremes over the rounding box (bounded searches)."""
     ins = inputs(cfg)
-    return gathered(ins, batches, "Beat-up: rounding of the printed parameters, propagated", searcher(cfg, published, ins, results))
+    return gathered(ins, batches, "Beat-up: rounding of the printed parameters, propagated", searcher(cfg, published, ins, results), workers)

@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import classify, compare_datasets, counts_dataset, findings_attrs, scalar
+from ...pipeline.compare import classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scalar, scenario_changes
 
 
 def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple[float, str]]:
@@ -201,7 +201,9 @@ def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
         return f"the arm's and the coupler's diameters govern the {response}"
     e = findings.elasticity.sel(response="largest tip displacement" if response == "tip deflection" else "peak stress")
     weaker = "coupler" if abs(float(e.sel(member="coupler"))) <= abs(float(e.sel(member="arm"))) else "arm"
-    return f"1 % on the {weaker}'s diameter moves the {response} by at most {float(row.input_high):.2f} %"
+    high = float(row.input_high)
+    return (f"1 % on the {weaker}'s diameter moves the {response} by at most {high:.2f} %" if high >= 0.005
+            else f"1 % on the {weaker}'s diameter leaves the {response} unchanged (at most {high:.1e} %)")
 
 
 #: The same for numbers compared with printed ones.
@@ -245,8 +247,15 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, minimum_diameter_m: float)
         + ("one tip force on the arm would make all four printed diameters fully stressed." if bool(findings.one_load_reconciles) else
            "no single tip force on the arm makes all four printed diameters fully stressed.")
     )
-    response = table[table.id.isin(["Ux", "Uy", "distortion", "stress_max"])]
+    nominal = nominal_rows(table)
+    response = nominal[nominal.id.isin(["Ux", "Uy", "distortion", "stress_max"])]
     words = in_words(response, words=NUMBER_VERDICT_WORDS)
-    second = (f"Of our deflections and stress at the published optimum {words}, "
-              f"and of the paper's claims in words {claims_clause(table, findings)}.")
+    scenario = str(nominal.scenario.iloc[0]) if "scenario" in nominal and len(nominal) else ""
+    changed = scenario_changes(table[table.id.isin(["Ux", "Uy", "distortion", "stress_max", *CLAIM_IDS])])
+    others = table.scenario.nunique() - 1 if "scenario" in table else 0
+    readings = f"the other {NUMBER_WORDS.get(others, str(others))} readings of gravity and of the solution"
+    other = (f"; {readings} change {NUMBER_WORDS.get(changed.id.nunique(), str(changed.id.nunique()))} of these verdicts" if len(changed)
+             else f"; {readings} change none of them" if others else "")
+    second = (f"With {scenario} (our nominal reading), of our deflections and stress at the published optimum {words}, "
+              f"and of the paper's claims in words {claims_clause(nominal, findings)}{other}.")
     return f"{first} {second}"

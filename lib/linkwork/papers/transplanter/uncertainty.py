@@ -74,10 +74,10 @@ def held(scenario: Any) -> set[str]:
     return out
 
 
-def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], optim: Any):
+def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], optim: Any, workers: int = 1):
     """Rule study: every batch, with each headline value's extremes over the box per scenario and the consistent sets
     (bounded searches).  The searches evaluate the headline values only, all of them at the published optimum: the
     optimal diameters are not reproducible (no measure), so a search evaluation runs no optimiser."""
     ins, start = inputs(cfg), optim.d_slsqp.values * 1e-3
     search = searcher(cfg, published, ins, lambda c: results(c, published, start, optimise=False), held)
-    return gathered(ins, batches, "Transplanter: material, gravity and [x_S1], propagated", search)
+    return gathered(ins, batches, "Transplanter: material, gravity and [x_S1], propagated", search, workers)
