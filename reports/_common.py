@@ -157,6 +157,16 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
         "verdict": rows.verdict,
     })
     table(out, caption=caption)
+    verdict_legend(rows.verdict)
+
+
+def verdict_legend(verdicts) -> None:
+    """One line under a verdict table: what each class in it means (the shared definitions)."""
+    from linkwork.pipeline.compare import VERDICT_MEANING, VERDICTS
+
+    used = [v for v in VERDICTS if v in set(verdicts)]
+    if used:
+        md("<small>" + "; ".join(f"*{esc(v)}*: {esc(VERDICT_MEANING[v])}" for v in used) + ".</small>")
 
 
 def oat_table(unc, quantities: dict[str, str], entries: dict[str, dict], model: str = "", scale: dict[str, float] | None = None,
@@ -184,6 +194,40 @@ def oat_table(unc, quantities: dict[str, str], entries: dict[str, dict], model: 
             row[label] = f"{_num(low[k, q] * f, 4)} … {_num(high[k, q] * f, 4)}"
         rows.append(row)
     table(pd.DataFrame(rows), caption=caption or f"Each assumed input moved alone over its range, the others at their assumed values ({design_text(unc)}).")
+
+
+def consistent_sets_table(unc, cmp: pd.DataFrame, reads: dict[str, set[str]] | None = None) -> None:
+    """Per named scenario and model variant, the best consistent assumption set: how many of the rows that are not
+    robust deviations match at once under one set of assumed inputs, which rows, which no consistent set of that
+    size reconciles, and where the set lies (the config keys it moves from their assumed values; with ``reads``,
+    model -> the input names it reads, only those)."""
+    if "consistent_count" not in unc:
+        return
+    name = {f"{m}|{i}": q for m, i, q in zip(cmp.model.fillna(""), cmp.id, cmp.quantity, strict=True)}
+    keys = [str(q) for q in unc.quantity.values]
+    nominal = [float(x) for x in unc.input_nominal.values]
+    rows = []
+    for n, scen in enumerate(unc.scenario.values):
+        for m, model in enumerate(unc.row_model.values):
+            of_model = [k for k, q in enumerate(keys) if q.startswith(f"{model}|") and pd.notna(unc.matched_in_best_set.values[n, k])]
+            if not of_model:
+                continue
+            best = [name.get(keys[k], keys[k]) for k in of_model if unc.matched_in_best_set.values[n, k] == 1]
+            never = [name.get(keys[k], keys[k]) for k in of_model if unc.in_consistent_set.values[n, k] == 0]
+            at = unc.consistent_at.values[n, m]
+            names = [str(p).removesuffix(".value").rsplit(".", 1)[-1] for p in unc.input.values]
+            moved = [f"{names[j]} = {_num(at[j], 4)}" for j in range(at.size)
+                     if pd.notna(at[j]) and not math.isclose(at[j], nominal[j], rel_tol=1e-9, abs_tol=0.0)
+                     and (reads is None or names[j] in reads.get(str(model), names))]
+            rows.append({**({"scenario": str(scen)} if unc.sizes["scenario"] > 1 else {}), **({"model": str(model)} if str(model) else {}),
+                         "rows matched at once": f"{int(unc.consistent_count.values[n, m])} of {int(unc.consistent_candidates.values[n, m])}",
+                         "matched together": "; ".join(best) or "none",
+                         "not reconciled with them": "; ".join(never) or "none",
+                         "the set: config keys moved from their assumed values": ", ".join(moved) or "none (the assumed values)"})
+    if rows:
+        table(pd.DataFrame(rows), caption="The best consistent assumption set per scenario: one point of the assumed inputs' box under which most "
+              "of the rows that are not robust deviations match at once (found by bounded searches). A row 'depends on assumptions' only "
+              "if it matches in such a set; a row that matches only where the others fail is 'not reconciled'.")
 
 
 def design_text(unc) -> str:

@@ -16,7 +16,8 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, design_text, esc, key_words, inputs, load, md, provenance, table, verdict_figure
+from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, load, md, provenance, table,
+                     verdict_figure, verdict_legend)
 
 from linkwork.papers import CITATIONS
 
@@ -66,6 +67,9 @@ answer(fnd)
 
 # %%
 front = f("front_dead_centre")
+# the sley's extreme angles are its angles at the dead centres (selected on the fine grid, not reduced)
+theta6_front = float(ds.theta6_fine.sel(crank_angle_fine=float(ds.front_dead_centre), method="nearest"))
+theta6_back = float(ds.theta6_fine.sel(crank_angle_fine=float(ds.back_dead_centre), method="nearest"))
 fig, axes = plt.subplots(2, 1, figsize=(9, 7), sharex=True, constrained_layout=True)
 style = {chosen: ("C0", "-"), other_sense: ("C1", "--")}
 for s in senses:
@@ -75,19 +79,19 @@ for s in senses:
     axes[0].plot(phi[order], ds.theta6_fine.values[order], color=colour, ls=line, label=sense_label[s])
     axes[1].plot(phi[order], SIGN[s] * ds.theta6_rate_fine.values[order], color=colour, ls=line, label=sense_label[s])
     back = float(ds.span_front_to_back_by_sense.sel(crank_sense=s))
-    axes[0].plot(back, float(ds.theta6_fine.min()), "v", color=colour, ms=8)
-    axes[0].annotate(f"back dead centre {back:.2f}°", (back, float(ds.theta6_fine.min())), textcoords="offset points",
+    axes[0].plot(back, theta6_back, "v", color=colour, ms=8)
+    axes[0].annotate(f"back dead centre {back:.2f}°", (back, theta6_back), textcoords="offset points",
                      xytext=(-8 if s == chosen else 8, -14), ha="right" if s == chosen else "left", fontsize=8, color=colour)
     for q in ("rate_peak_1", "rate_peak_2"):
         x = sense_value.loc[q, s]
-        y = SIGN[s] * float(np.interp(np.mod(front + SIGN[s] * x, 360.0), ds.crank_angle_fine.values, ds.theta6_rate_fine.values))
+        y = SIGN[s] * float(ds.theta6_rate_fine.sel(crank_angle_fine=np.mod(front + SIGN[s] * x, 360.0), method="nearest"))
         axes[1].plot(x, y, "o", color=colour, ms=6)
         axes[1].annotate(f"{x:.1f}°", (x, y), textcoords="offset points", xytext=(6 if s == chosen else -6, -10 if y < 0 else 4),
                          ha="left" if s == chosen else "right", fontsize=8, color=colour)
 p_phi = np.mod(SIGN[chosen] * (ds.crank_angle.values - front), 360.0)
 axes[0].plot(p_phi, printed["theta6"], "kx", ms=5, label=f"Table 1 as printed ({sense_label[chosen]})")
 axes[0].axvline(0, color="k", lw=1)
-axes[0].text(3, 0.5 * float(ds.theta6_fine.min() + ds.theta6_fine.max()), f"front dead centre at φ = 0 (θ1 = {front:.2f}°)", fontsize=8)
+axes[0].text(3, 0.5 * (theta6_back + theta6_front), f"front dead centre at φ = 0 (θ1 = {front:.2f}°)", fontsize=8)
 axes[0].axvline(pub["span_front_to_back"]["value"], color="C3", ls=":", lw=1.5, label=f"printed back dead centre, {pub['span_front_to_back']['value']:g}° after the front")
 for q in ("rate_peak_1", "rate_peak_2"):
     v, tol = pub[q]["value"], pub[q]["tolerance"]["abs"]
@@ -95,7 +99,7 @@ for q in ("rate_peak_1", "rate_peak_2"):
     axes[1].axvline(v, color="C3", ls=":", lw=1)
 axes[1].axhline(0, color="k", lw=0.6)
 axes[0].set_ylabel("sley-sword angle θ6 (deg)")
-axes[0].set_ylim(float(ds.theta6_fine.min()) - 1.2, float(ds.theta6_fine.max()) + 0.6)
+axes[0].set_ylim(min(theta6_back, theta6_front) - 1.2, max(theta6_back, theta6_front) + 0.6)
 axes[1].set_ylabel("sley rate dθ6/dφ (rad per rad of crank)")
 axes[1].set_xlabel("crank angle φ turned since the front dead centre (deg)")
 axes[1].set_xticks(range(0, 361, 30))
@@ -338,6 +342,7 @@ head_table = pd.DataFrame({
 })
 table(head_table, caption=f"Headline numbers, each judged for the {sense}. Values are shown to one digit beyond the tolerance; the range is ours over "
       "the rounding of the printed l4, l7, θ4, θ7 (half a unit of their last digit)")
+verdict_legend(head.verdict)
 fitted_notes = pd.DataFrame({"id": fnd.fitted_note_id.values, "at the joint fit of Table 1": fnd.fitted_note_value.values,
                              "within the tolerance there": np.where(fnd.fitted_note_within.values == 1, "yes", "no")})
 fitted_notes = fitted_notes.merge(head[["id", "quantity", "published", "tolerance", "reproduced", "verdict"]], on="id")
@@ -381,6 +386,7 @@ oat = pd.DataFrame({"input": [INPUT_LABEL.get(str(n), str(n)) for n in unc.input
                                for k in range(unc.input.size)] for q, label in oat_ids.items()}})
 table(oat, caption=f"Each printed parameter moved alone over its rounding, {esc(sense)} ({design_text(unc)}); "
       f"values to one digit beyond the published tolerance (± {pub['front_dead_centre']['tolerance']['abs']:g}°), so that the ranges can be read against it")
+consistent_sets_table(unc, cmp)
 md(
     f"The dead centres are located as zeros of θ6' (Brent's method, x-tolerance {ds.attrs['root_xtol_rad']:.0e} rad). "
     f"The back dead centre is at θ1 = {f('back_dead_centre'):.2f}°. The velocity peaks are zeros of θ6'' located the same way; for the "

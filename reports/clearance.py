@@ -20,8 +20,7 @@ import pandas as pd
 from _common import answer, assumed, caption, comparison_table, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
 from linkwork.papers import CITATIONS
-from linkwork.papers.clearance.findings import VARIANT_WORDS, film_cap_text
-from linkwork.papers.clearance.words import CLAIM_WORDS, QUANTITY_WORDS, SCENE_WORDS, in_words
+from linkwork.papers.clearance.words import CLAIM_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words
 
 md(f"**Paper.** {esc(CITATIONS['clearance'])}")
 NAMES = QUANTITY_WORDS
@@ -354,7 +353,7 @@ md(
     + (", ".join(f"{esc(str(v))}, {esc(SCENE_WORDS[str(s_)])}" for v in fnd.variant.values for s_ in fnd.scene.values
                  if float(fnd.lubricated_friction_evaluations.sel(variant=v, scene=s_)) > 0) or "no lubricated scene")
     + "; in the others the journals never touched their bushings."
-    + (f"\n\n**Beyond the film cap.** {esc(film_cap_text(fnd))}" if film_cap_text(fnd) else "")
+    + (f"\n\n**Beyond the film cap.** {esc(fnd.attrs['film_cap_note'])}" if fnd.attrs.get("film_cap_note") else "")
 )
 
 # %% [markdown]

@@ -16,10 +16,9 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
 from linkwork.papers import CITATIONS
-from linkwork.papers.heald.model import MODEL_INPUTS
 
 files = inputs()
 ds = load(files["result"])
@@ -34,6 +33,7 @@ limit = float(fnd.limit_rad_s)
 entries = assumed(files)  # reasons, ranges and choices of the labelled config entries
 drive_labels = dict(zip(entries["drive.frequency"]["choices"], entries["drive.frequency"]["choice_labels"], strict=True))
 model_names = {"A": "physical linkage (model A)", "B": "chain of eq. (2) (model B)"}
+MODEL_INPUTS = {m: fnd.attrs[f"inputs_of_model_{m}"].split(",") for m in models}  # the parameters each model reads
 
 answer(fnd)
 
@@ -69,7 +69,7 @@ for ax, (cid, label, scale) in zip(axes, claims_drawn, strict=True):
     ax.set_ylim(-0.6, len(models) - 0.4)
     ax.set_title(label, fontsize=9, loc="left")
     ax.grid(alpha=0.3, which="both", axis="x")
-axes[0].set_xlim(min(0.1, 0.5 * float(cmp[cmp.id == "force_E_many_times_F"].input_low.min())), 100)
+axes[0].set_xlim(min(0.1, 0.5 * min(cmp[cmp.id == "force_E_many_times_F"].input_low)), 100)  # room for the lowest range end
 axes[1].set_xlim(-0.02, 1.05)
 handles, labels = axes[0].get_legend_handles_labels()
 fig.legend(handles, labels, loc="outside lower center", ncol=2, fontsize=8)
@@ -149,6 +149,7 @@ for m in models:
     verdict_figure(drawn.assign(quantity=[figure_labels[i] for i in drawn.id]), f"Heald, model {m}: published claims against ours", note=note)
     inputs_table(unc, m, {"force_E_many_times_F": "smallest |Q_E|/|Q_F|", "forces_grow_with_frequency": "growth fraction",
                           "limit_41_89": "shaft frequency meeting the lowest resonance (rad/s)"})
+consistent_sets_table(unc, cmp, reads={m: {*MODEL_INPUTS[m], "displacement_amplitude_m"} for m in models})  # inputs a model does not read: left out
 
 # %%
 sweep_labels = {"reaction_ratio": "|R_E|/|R_F| (|R_F| assumed)", "clearance": "clearance Δ_E = Δ_F, both moved together (m), grid cells",

@@ -141,8 +141,8 @@ joint_verdicts = dict(zip(fnd.joint_model.values, fnd.conclusion_by_joints.value
 lines.append("* **The paper's conclusion (neither stiffness is constant), one verdict per form** from its K_h and K_c claims: "
              + "; ".join(f"{form} {esc(fnd.conclusion_verdict.sel(form=form).item())}" for form in all_forms)
              + f". **The joint model decides it**: welded joints, {joint_verdicts['welded']}; pinned joints, {joint_verdicts['pinned']}. "
-             f"The count of the defensible model holds the conclusion as judged on the pinned joints ({esc(str(fnd.conclusion_counted_for_defensible.values))}), "
-             "since the conclusion is about the machine (section 6).")
+             f"The statics-consistent model's count holds the conclusion as judged over both joint models ({esc(str(fnd.conclusion_counted_for_defensible.values))}), "
+             "since the conclusion is about the machine and the joint model decides it (section 6).")
 md("\n".join(lines))
 ref_bad = headline[(headline.model == ref_form) & (headline.verdict != "matches")]
 bad_text = "; ".join(
@@ -375,8 +375,8 @@ md(
     + f"(mobility {int(fnd.pinned_free_mobility)} with O' free; section 7). "
     + ("The joint model decides the conclusion: it is a finding about the welded idealisation, not about the mechanism. "
        if int(fnd.conclusion_decided_by_joints) else "The joint model does not change the verdict. ")
-    + "The count of the defensible model (the index and the README) therefore holds the conclusion as judged on the pinned joints, "
-    + f"{esc(str(fnd.conclusion_counted_for_defensible.values))}, beside the statics-consistent stiffness numbers."
+    + "The statics-consistent model's count (on the overview page and in the summary above) therefore holds the conclusion as judged over both "
+    + f"joint models, {esc(str(fnd.conclusion_counted_for_defensible.values))}, beside the statics-consistent stiffness numbers."
 )
 
 # %% [markdown]

@@ -357,13 +357,15 @@ def test_answer_is_two_plain_sentences_with_the_results_numbers():
 
     from linkwork.papers.heald.findings import answer
 
-    table = pd.DataFrame({"model": ["A", "A", "B"], "role": "headline", "verdict": ["deviates", "depends on assumptions", "matches"]})
-    chain = xr.Dataset({"eq2_node_mass": 1.6, "eq2_node_mass_difference": 91.83, "eq2_node_mass_difference_at": 66.21, "eq2_node_mass_antiresonance": 66.19034})
-    same = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "matches"]]], dtype=object))})
-    text = answer(table, chain, same)
+    shaft, half = "drive at the main-shaft frequency", "drive at half the main-shaft frequency"
+    table = pd.DataFrame({"model": ["A", "A", "B"] * 2, "id": ["e", "g", "e"] * 2, "role": "headline", "scenario": [shaft] * 3 + [half] * 3,
+                          "verdict": ["deviates", "depends on assumptions", "matches"] * 2})
+    chain = xr.Dataset({"eq2_node_mass": 1.6, "eq2_node_mass_antiresonance": 66.19034,
+                        "eq2_denominator_frequencies": ("denominator_factor", [68.657, 1116.66])})
+    text = answer(table, chain)
     assert len(re.findall(r"(?<!eq)[.!?](\s|$)", text)) <= 2  # "eq. (2)" is no sentence end
     assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
     assert "one deviates and one depends on assumptions" in text and "one matches" in text
-    assert "1.6 kg" in text and "92 times" in text and "66.2 rad/s" in text and "66.19 rad/s" in text and "half the shaft frequency changes no verdict" in text
-    differ = xr.Dataset({"verdict_by_drive": (("model", "claim", "drive"), np.array([[["matches", "deviates"]]], dtype=object))})
-    assert "half the shaft" not in answer(table, chain, differ)
+    assert "1.6 kg" in text and "from eq. (2)'s 68.66 to 66.19 rad/s" in text and "half the shaft frequency changes no verdict" in text
+    table.loc[5, "verdict"] = "deviates"  # the half-shaft drive changes one verdict of model B
+    assert "half the shaft frequency changes 1 of them" in answer(table, chain)

@@ -191,8 +191,10 @@ def test_reports_only_load_and_format(name):
     """A report imports presentation helpers only, never a numerical lib module, and holds no reductions of results."""
     text = (PROJECT / "reports" / f"{name}.py").read_text()
     imports = [line for line in text.splitlines() if line.startswith(("import ", "from "))]
-    allowed = ("import json", "import matplotlib.pyplot as plt", "import numpy as np", "import pandas as pd",
-               "from _common import", "from linkwork.papers import PAPERS", "from linkwork.papers import CITATIONS")
+    allowed = ("import json", "import textwrap", "import matplotlib.pyplot as plt", "from matplotlib.patches import", "import numpy as np",
+               "import pandas as pd", "from _common import", "from linkwork.papers import PAPERS", "from linkwork.papers import CITATIONS",
+               # presentation constants: the verdict classes' names and meanings, the clearance paper's words for its code names
+               "from linkwork.pipeline.compare import VERDICT", "from linkwork.papers.clearance.words import")
     assert all(line.startswith(allowed) for line in imports), imports
     for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
         assert reduction not in text, f"reports/{name}.py computes {reduction}"

@@ -47,7 +47,8 @@ ALL_JOBS = {
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_scene_tight": 12, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
     "accuracy_summary": 1, "sweep_point": 3, "sweep_gather": 2, "report": 8,
-    "uncertainty_batch": 9, "uncertainty_gather": 4, "readme_findings": 1,  # 2 + 2 + 1 + 4 (clearance: per variant and moved scenes)
+    "uncertainty_batch": 19, "uncertainty_gather": 4, "readme_findings": 1,  # 2 + 4 + 9 + 4 (clearance: per variant and moved scenes)
+    "assumptions": 5,  # one per paper: the labelled entries, whole (the reports' reasons)
 }
 
 

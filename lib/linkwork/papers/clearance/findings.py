@@ -11,7 +11,7 @@ import xarray as xr
 
 from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs
 from .validity import PENETRATION_LIMIT
-from .words import CLAIM_WORDS, SCENE_WORDS, in_words
+from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
@@ -34,6 +34,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], claims: xr.Dat
     table = with_reasons(table, claims)
     findings = counts_dataset(table).merge(physics(claims, cfg, uncertainty))
     findings.attrs.update(findings_attrs("Clearance paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings)))
+    findings.attrs["film_cap_note"] = film_cap_text(findings)
     return table, findings
 
 
@@ -121,8 +122,6 @@ def physics(claims: xr.Dataset, cfg: Mapping[str, Any] | None = None, uncertaint
                "scene": ("scene", np.array(LUBRICATED_SCENES, dtype=object), {"units": "1", "long_name": "lubricated scene"})})
 
 
-VARIANT_WORDS = {DEFENSIBLE: "with slender-rod inertias (our defensible reading)",
-                 PAPER_MODEL: "with the inertias as decoded from the text"}
 #: A claim's verdict class as a predicate of the claim(s) in plain words.
 VERDICT_PREDICATE = {"matches": ("holds", "hold"), "deviates": ("fails", "fail"),
                      "undetermined (numerics)": ("is undetermined by the numerics", "are undetermined by the numerics")}

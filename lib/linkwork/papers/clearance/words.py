@@ -28,3 +28,7 @@ _CODE = re.compile(r"(?<![\w])(" + "|".join(_NAMES) + r")(?![\w])")
 def in_words(text: str) -> str:
     """``text`` with every code name of this paper replaced by its words."""
     return _CODE.sub(lambda m: WORDS[m.group(1)], str(text))
+
+
+#: The two parameter variants (sets of link inertias), as a clause of prose.
+VARIANT_WORDS = {"slender": "with slender-rod inertias (our defensible reading)", "decoded": "with the inertias as decoded from the text"}

@@ -82,10 +82,11 @@ def conclusion_counted_once(table: pd.DataFrame, forms: list[str],
     """The comparison rows to count: the conclusion's two claims (K_h, K_c) replaced by one row per form with its
     combined verdict, so each form's count holds the conclusion once, beside its stiffness numbers.
 
-    ``physical`` maps a form to the form whose conclusion verdict it counts instead: the defensible model's
-    numbers are the statics-consistent frame's, but a conclusion about the machine is judged on its real joints."""
+    ``physical`` names the forms that count the conclusion as judged over the joint model (``physical_verdict``):
+    the defensible model's numbers are the statics-consistent frame's, but a conclusion about the machine is judged
+    on both joint models, the scenario that decides it."""
     verdicts = dict(zip(forms, conclusion_verdicts(table, forms), strict=True))
-    counted = [verdicts[(physical or {}).get(f, f)] for f in forms]
+    counted = [verdicts[f] if f not in (physical or {}) else physical_verdict(verdicts) for f in forms]
     rest = table[~table.id.isin(CONCLUSION)]
     rows = pd.DataFrame({"model": forms, "id": "conclusion", "role": "headline", "verdict": counted})
     return pd.concat([rest, rows], ignore_index=True)
@@ -177,6 +178,16 @@ def pinned_comparison(published: Mapping[str, Any], result: xr.Dataset,
     return rows
 
 
+def physical_verdict(verdicts: Mapping[str, str]) -> str:
+    """The conclusion's verdict on the machine, over the joint model (a named scenario): the joint models' common
+    verdict, 'not reproducible' where either cannot be judged, and 'depends on assumptions' where welded and pinned
+    joints disagree (the joint model decides it)."""
+    by_joints = joint_verdicts(verdicts)
+    if "not reproducible" in by_joints.values():
+        return "not reproducible"
+    return by_joints["welded"] if by_joints["welded"] == by_joints["pinned"] else "depends on assumptions"
+
+
 def joint_verdicts(verdicts: Mapping[str, str]) -> dict[str, str]:
     """The conclusion's verdict per joint model from its verdict per form: a joint model's verdict is the one its
     forms share, or 'depends on the form' where they differ."""
@@ -244,8 +255,8 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
                                     {"units": "1", "long_name": "the paper's conclusion per joint model (the scenario that decides it)"})
     data["conclusion_decided_by_joints"] = scalar(len(set(by_joints.values())) > 1, "1",
                                                   "1 if the joint model (welded or pinned) changes the conclusion's verdict")
-    data["conclusion_counted_for_defensible"] = ((), by_joints["pinned"], {"units": "1", "long_name": (
-        "the conclusion's verdict counted in the defensible model's block: the one on the real, pinned joints")})
+    data["conclusion_counted_for_defensible"] = ((), physical_verdict(dict(zip(forms, verdicts, strict=True))), {"units": "1", "long_name": (
+        "the conclusion's verdict counted in the defensible model's block: over the joint model (welded or pinned), which decides it")})
     data["pinned_K_h_exists"] = scalar(0, "1", "0: K_h has no pinned counterpart (the pinned chain with O' free is a mechanism)")
     data["pinned_free_mobility"] = scalar(int(result.mobility.isel(mobility_case=0)), "1",
                                           "mobility of the pinned chain with the crank held and O' free")
@@ -275,7 +286,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     findings = xr.Dataset({**data, **deviations}, coords=coords)
     counts = counts_dataset(conclusion_counted_once(table, forms, physical={DEFENSIBLE: PINNED}))
     counts.verdict_count.attrs["long_name"] = ("comparison rows per model, role and verdict class; the conclusion's two claims count as one row "
-                                               "per form, and the defensible model's block counts it as judged on the real, pinned joints")
+                                               "per form, and the defensible model's block counts it over the joint model (welded or pinned)")
     findings = findings.merge(counts)
     attrs = findings_attrs("Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result))
     attrs["material_statement"] = material_statement(findings, result)
@@ -305,8 +316,12 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
     first = (f"The published stiffness numbers {'follow' if follows else 'do not follow'} the paper's own Tables 1–2 "
              f"({n_own} of {total} within rounding)")
     if not bool(findings.tables_in_equilibrium):
+        size = fair.set_index("id").relative_deviation.abs()
+        stiff = [i for i in size.index if i in ("K_h_max", "K_h_min", "K_c_min", "K_c_max")]
+        means = [i for i in size.index if i.endswith("_mean")]
         first += (f", which are not in equilibrium (a sign error in the coupler's bending moment): with internal forces from "
-                  f"statics {'none' if n_fair == 0 else n_fair} of the {total} match.")
+                  f"statics {'none' if n_fair == 0 else n_fair} of the {total} match (the means within "
+                  f"{100 * size[means].max():.1f} %, the extremes off by up to {100 * size[stiff].max():.0f} %).")
     else:
         first += ", and those tables are in equilibrium."
     by_joints = dict(zip(JOINT_MODELS, findings.conclusion_by_joints.values, strict=True))
@@ -316,7 +331,8 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
               f"{'at least' if bool(findings.pinned_varies_considerably) else 'below'} the {limit:g} we read as 'varies considerably', "
               "and the linear stiffness has no counterpart")
     if by_joints["welded"] == "matches" and by_joints["pinned"] == "deviates":
-        second = f"The conclusion that neither stiffness is constant holds only with the joints welded, as the paper models them ({span}): {pinned}."
+        second = (f"Whether the conclusion that neither stiffness is constant holds depends on the joint model: it holds with the joints "
+                  f"welded, as the paper models them ({span}), while {pinned}.")
     else:
         welded = "holds" if by_joints["welded"] == "matches" else f"is '{by_joints['welded']}'"
         second = (f"The conclusion that neither stiffness is constant {welded} with the joints welded ({span}); {pinned}, "
