@@ -196,7 +196,8 @@ two sides, and the reactions are the branches' own kinetostatic ones (section 1b
 # ### Where each verdict flips
 #
 # For every verdict that one assumed input decides alone, the value of that input (the others at their assumed values) at
-# which the verdict flips, found by bisection between its assumed value and the end of its range that flips it.
+# which the verdict flips, found by bisection between its assumed value and the end of its range that flips it, with the drive at
+# the shaft frequency (the nominal scenario).
 
 # %%
 flips["flip_claim"] = [claim_short[c] for c in flips.flip_claim]

@@ -91,7 +91,7 @@ md(
 * **The 35 coordinates reproduce** with the 8-coordinate element: 9 elements on 10 nodes (AB 1, BC 2, CD 2, BE 4),
   shared translations at the pins, the arm welded to the coupler, fixed pivots, the crank's slope held by the drive,
   and zero curvature (moment) at the pins and at the free tip. Our mesh has **{int(ked.coordinates)}** coordinates.
-* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), {esc(compared)} solution, gravity {gravity_word}, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
+* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), {esc(compared)} solution, {gravity_word}, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
   tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed {pub['Uy'] * 1e3:g}), Ux = {float(base.Ux) * 1e3:.2f} mm (printed {pub['Ux'] * 1e3:g}),
   distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
   Section 3 has the verdicts; section 4 shows which assumptions move these numbers.
@@ -384,7 +384,7 @@ claims_rows = pd.DataFrame(
     ],
     columns=["quantity", f"initial {initial_mm} mm", "the paper's optimum", "our optimum"],
 )
-table(claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]}, caption=f"the claims' measures ({esc(compared)} solution, gravity {gravity_word})")
+table(claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]}, caption=f"the claims' measures ({esc(compared)} solution, {gravity_word})")
 sens = pd.DataFrame(fnd.elasticity.values, columns=[f"{m} diameter" for m in members])
 sens.insert(0, "response", [str(r) for r in fnd.response.values])
 table(sens, {c: "{:+.3f}" for c in sens.columns[1:]}, caption="per cent change of the response per per cent change of each diameter, at the paper's optimum")

@@ -147,9 +147,11 @@ def sweep_boundary(cfg: Mapping[str, Any], published: Mapping[str, Any], flips: 
 def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.DataFrame) -> xr.Dataset:
     """For every verdict that an input decides alone: the value of that input (the others at their assumed
     values) at which the verdict flips, located by bisection between its assumed value and the end of its range
-    that flips it."""
+    that flips it.  In the nominal scenario (the drive at the shaft frequency, as ``cfg`` has it) only: the
+    bisections move one input of the nominal configuration."""
     pub = {q["id"]: q for q in published["quantities"]}
     rows = []
+    table = nominal_rows(table)
     for _, row in table[table.verdict == "depends on assumptions"].iterrows():
         names = [] if str(row.decided_by).startswith("jointly") else [n.strip() for n in str(row.decided_by).split(",")]
         region = acceptance(float(row.published), float(row.tolerance), row.relation)
