@@ -41,8 +41,9 @@ def _machine(m: dict) -> str:
 
 #: The HTML reports (results/reports/).
 REPORTS = 8
-#: The verdict issue's bound on the full reproduction ("at most 3 minutes on the 2-core machine").
-FULL_REPRODUCTION_BOUND_S = 180.0
+#: The clearance-states issue's bound on the full reproduction ("within 4 minutes on the 2-core machine, warm compile
+#: cache"), which the verdict issue adopts.
+FULL_REPRODUCTION_BOUND_S = 240.0
 
 
 def pipeline(f: dict) -> list[str]:

@@ -72,7 +72,7 @@ plt.show()
 caption(
     "Linear stiffness K_h (N/m, left) and rotational stiffness K_c (N·m/rad, right) at the output O' over a crank turn, "
     "crank angle α in degrees counter-clockwise from O→O'. Coloured: the paper's rigid frame (joints A and B welded) in each "
-    "of its three forms; black: the real pinned mechanism with the crank held, whose rocker's rotational stiffness is the "
+    "of its three forms; black: the model with pinned joints and the crank held, whose rocker's rotational stiffness is the "
     "counterpart of K_c (it has no counterpart of K_h). Lines on the 1° grid, dots on the paper's 10° frames. Black markers "
     "and lines: the published extremes and means (the paper prints no crank angle for the K_c extremes). The welded curves "
     f"vary by max/min {float(fnd.welded_max_over_min_least):.2f} to {float(fnd.welded_max_over_min_most):.2f}, the pinned one "
@@ -141,8 +141,8 @@ joint_verdicts = dict(zip(fnd.joint_model.values, fnd.conclusion_by_joints.value
 lines.append("* **The paper's conclusion (neither stiffness is constant), one verdict per form** from its K_h and K_c claims: "
              + "; ".join(f"{form} {esc(fnd.conclusion_verdict.sel(form=form).item())}" for form in all_forms)
              + f". **The joint model decides it**: welded joints, {joint_verdicts['welded']}; pinned joints, {joint_verdicts['pinned']}. "
-             f"The statics-consistent model's count holds the conclusion as judged over both joint models ({esc(str(fnd.conclusion_counted_for_defensible.values))}), "
-             "since the conclusion is about the machine and the joint model decides it (section 6).")
+             f"In the statics-consistent model's count the conclusion is **{esc(str(fnd.conclusion_counted_for_defensible.values))}**: it is a "
+             "claim about the machine, and the joint model decides it (section 6).")
 md("\n".join(lines))
 ref_bad = headline[(headline.model == ref_form) & (headline.verdict != "matches")]
 bad_text = "; ".join(
@@ -373,10 +373,12 @@ md(
     + f"{float(fnd.pinned_max_over_min):.3f}, {'at least' if int(fnd.pinned_varies_considerably) else 'below'} the "
     + f"{float(fnd.conclusion_ratio_threshold):g} we read as 'varies considerably', and the linear stiffness has no pinned counterpart "
     + f"(mobility {int(fnd.pinned_free_mobility)} with O' free; section 7). "
-    + ("The joint model decides the conclusion: it is a finding about the welded idealisation, not about the mechanism. "
+    + ("The joint model decides the conclusion: welded, as the paper models it, it holds; pinned, it does not. "
        if int(fnd.conclusion_decided_by_joints) else "The joint model does not change the verdict. ")
-    + "The statics-consistent model's count (on the overview page and in the summary above) therefore holds the conclusion as judged over both "
-    + f"joint models, {esc(str(fnd.conclusion_counted_for_defensible.values))}, beside the statics-consistent stiffness numbers."
+    + f"In the statics-consistent model's count (on the overview page and in the summary above) the conclusion is therefore "
+    + f"**{esc(str(fnd.conclusion_counted_for_defensible.values))}**, beside the statics-consistent stiffness numbers. The pinned reading is the "
+    + "stiffness at the output (needle) shaft with the crank held; referred to the main shaft through the crank-rocker's varying "
+    + "transmission ratio, which passes through zero at the rocker's dead positions, a stiffness would vary far more: we do not judge that reading."
 )
 
 # %% [markdown]

@@ -327,9 +327,9 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
     by_joints = dict(zip(JOINT_MODELS, findings.conclusion_by_joints.values, strict=True))
     limit = float(findings.conclusion_ratio_threshold)
     span = f"max/min {float(findings.welded_max_over_min_least):.2f}–{float(findings.welded_max_over_min_most):.2f} over the turn"
-    pinned = (f"in the real pinned mechanism the output's rotational stiffness varies by max/min {float(findings.pinned_max_over_min):.2f}, "
-              f"{'at least' if bool(findings.pinned_varies_considerably) else 'below'} the {limit:g} we read as 'varies considerably', "
-              "and the linear stiffness has no counterpart")
+    pinned = (f"in a model with pinned joints and the crank held the rotational stiffness at the output shaft varies by max/min "
+              f"{float(findings.pinned_max_over_min):.2f}, {'at least' if bool(findings.pinned_varies_considerably) else 'below'} the "
+              f"{limit:g} we read as 'varies considerably', and the linear stiffness has no counterpart")
     if by_joints["welded"] == "matches" and by_joints["pinned"] == "deviates":
         second = (f"Whether the conclusion that neither stiffness is constant holds depends on the joint model: it holds with the joints "
                   f"welded, as the paper models them ({span}), while {pinned}.")
