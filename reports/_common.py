@@ -37,8 +37,10 @@ def inputs() -> dict[str, Path | list[Path]]:
 def load(path: Path):
     """Read a report input by its type: netCDF (Dataset), CSV (DataFrame), YAML or JSON (dict)."""
     data = load_result(path)
-    if isinstance(data, pd.DataFrame) and "model" in data:
-        data["model"] = data["model"].fillna("").astype(str)
+    if isinstance(data, pd.DataFrame):  # text columns empty in every row read back as float NaN: make them text
+        for column in ("model", "scenario", "decided_by", "numerical_source", "input_source", "tolerance_source"):
+            if column in data:
+                data[column] = data[column].astype(object).where(data[column].notna(), "").astype(str)
     return data
 
 

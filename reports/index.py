@@ -45,8 +45,8 @@ for paper, title in PAPERS.items():
         "headline rows (defensible model, nominal reading)": (f"{esc(defensible)}: " if defensible else "") + counts(findings, defensible),
     })
     headline = comparison[comparison.role == "headline"]
-    scenario = headline["scenario"].fillna("") if "scenario" in headline else pd.Series([""] * len(headline), index=headline.index)
-    for (model, scen), part in headline.groupby([headline.model.fillna("").astype(str), scenario.astype(str)], sort=False):
+    scenario = headline["scenario"] if "scenario" in headline else pd.Series([""] * len(headline), index=headline.index)
+    for (model, scen), part in headline.groupby([headline.model, scenario], sort=False):
         blocks.append((paper, model, scen, list(part.verdict)))
 table(pd.DataFrame(rows), html_columns=("paper",))
 

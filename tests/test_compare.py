@@ -107,3 +107,19 @@ def test_config_key_names_become_words_in_the_reports_tables():
     assert key_words("damping_ratio") == "damping ratio"
     assert key_words("clearance_E, M_P, k_O") == "clearance_E, M_P, k_O"
     assert leaks(key_words("decided by theta7_deg, l4_m and damping_ratio")) == []
+
+
+def test_nominal_rows_and_the_verdicts_other_scenarios_change():
+    """The first scenario is the nominal one; the rows of the others whose verdict differs from it are the changes;
+    a scenario column that is empty in every row (read back from CSV as NaN) is one scenario."""
+    import pandas as pd
+
+    from linkwork.pipeline.compare import nominal_rows, scenario_changes
+
+    table = pd.DataFrame({"model": ["A"] * 4, "id": ["x", "y"] * 2, "scenario": ["on", "on", "off", "off"],
+                          "verdict": ["matches", "deviates", "matches", "matches"]})
+    assert list(nominal_rows(table).scenario) == ["on", "on"]
+    changed = scenario_changes(table)
+    assert list(changed.id) == ["y"] and list(changed.scenario) == ["off"]
+    empty = table.assign(scenario=float("nan")).iloc[:2]
+    assert len(nominal_rows(empty)) == 2 and scenario_changes(empty).empty

@@ -328,7 +328,7 @@ ROLES = ("headline", "table cell")
 def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
     """Verdict counts per model, scenario, role (headline claims apart from table cells) and class."""
     models = list(dict.fromkeys(table["model"]))
-    scen_of = table["scenario"].fillna("").astype(str) if "scenario" in table else pd.Series([""] * len(table), index=table.index)
+    scen_of = scenario_of(table)
     scens = list(dict.fromkeys(scen_of))
     counts = np.array([[[[int(((table.model == m) & (scen_of == s) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS]
                          for r in ROLES] for s in scens] for m in models])
@@ -348,11 +348,19 @@ COUNT_WORDS = {"matches": "match", "matches as printed": "match as printed", "de
                "deviates as printed": "deviate as printed", "deviates": "deviate", "not reproducible": "not reproducible"}
 
 
+def scenario_of(table: pd.DataFrame) -> pd.Series:
+    """Each row's scenario as text ('' where it has none; a column empty in every row reads back from CSV as NaN)."""
+    if "scenario" not in table:
+        return pd.Series([""] * len(table), index=table.index, dtype=object)
+    return table["scenario"].astype(object).where(table["scenario"].notna(), "").astype(str)
+
+
 def nominal_rows(table: pd.DataFrame) -> pd.DataFrame:
     """The rows of the first scenario (the nominal choices) of a comparison table; all rows if it has none."""
     if "scenario" not in table or not len(table):
         return table
-    return table[table.scenario.fillna("") == table.scenario.fillna("").iloc[0]]
+    scen = scenario_of(table)
+    return table[scen == scen.iloc[0]]
 
 
 def scenario_changes(table: pd.DataFrame) -> pd.DataFrame:
@@ -361,7 +369,8 @@ def scenario_changes(table: pd.DataFrame) -> pd.DataFrame:
     if "scenario" not in table or not len(table):
         return table.iloc[0:0]
     first = nominal_rows(table).set_index(["model", "id"]).verdict
-    rest = table[table.scenario.fillna("") != table.scenario.fillna("").iloc[0]]
+    scen = scenario_of(table)
+    rest = table[scen != scen.iloc[0]]
     keys = list(zip(rest.model, rest.id, strict=True))
     return rest[[first.get(k) is not None and first.get(k) != v for k, v in zip(keys, rest.verdict, strict=True)]]
 
