@@ -179,10 +179,14 @@ def test_real_run_builds_every_output(built):
         html = (built / f"results/reports/{name}.html").read_text()
         assert "Traceback" not in html
         assert 'vnd.jupyter.stderr" tabindex' not in html  # no warnings or errors printed
-        if name != "index":
-            assert "data:image/png;base64" in html  # figures embedded
+        assert "data:image/png;base64" in html  # figures embedded (the index: its verdict matrix)
     index = (built / "results/reports/index.html").read_text()
     assert all(f"{p}.html" in index for p in ("stiffness", "beatup", "clearance", "heald", "transplanter"))
+    # one row per paper (its answer and counts), then the verdict matrix of papers x published numbers per scenario
+    assert index.count("Does it hold up?") + index.count("does it hold up?") >= 1
+    assert "One line per paper, model variant and named scenario" in index
+    for paper in ("beatup", "heald", "transplanter"):  # the best consistent assumption set per scenario is shown
+        assert "rows matched at once" in (built / f"results/reports/{paper}.html").read_text(), paper
 
 
 def test_reports_and_readme_findings_hold_no_code_names_in_prose(built):
