@@ -318,7 +318,7 @@ md(f"Does the drive frequency change a verdict at the assumed inputs? **{'no' if
 # ## 3. Eq. (2): exact for model B, and only while the driven node has no mass
 #
 # A driven node carrying three spring→mass branches, with no mass of its own, has
-# 1/K = Σ_i jω kᵢ/(ω_i² − ω²) with ω_i² = kᵢ/m_i. Putting this over a common denominator gives exactly the form of eq. (2).
+# 1/K = Σ_i jω kᵢ/(ωᵢ² − ω²) with ωᵢ² = kᵢ/mᵢ. Putting this over a common denominator gives exactly the form of eq. (2).
 # The numerator is Π(ω_i² − ω²), three factors (ω09, ω010, ω011, the velocity resonances where K = 0). The denominator
 # is jω(k_E7 + k_F8 + k_O)(ω07² − ω²)(ω08² − ω²): degree 5 in ω against the numerator's 6. Here ω07 and ω08 are the
 # roots of Σ_i kᵢ Π_(j≠i) (ω_j² − ω²), the force resonances where K → ∞. Each root lies between two consecutive ω_i,

@@ -8,7 +8,7 @@
 * Conclusion: "the sections of the planting arm and of the coupler are the important factors of the members'
   largest dynamic stress and of the arm tip's elastic deformation": the elasticity d ln y / d ln d_i of the
   peak stress and of the largest tip displacement to each member's diameter at the published optimum, by
-  central finite differences; "an important factor" is read (in config/published/) as a 1 % change of its
+  central finite differences; "an important factor" is read (in the published numbers' file) as a 1 % change of its
   diameter moving the response by at least a set fraction of 1 %, for the arm and the coupler alike
   (``governing_elasticity``: the smaller of their two |elasticities|).
 SI units inside (kg, m, Pa); the compared solution (quasi-static or dynamic) is the config's.
