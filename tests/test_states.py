@@ -1,0 +1,75 @@
+"""The settled state of a driven system from its Poincaré section (linkwork.engines.states): periods found, the
+transient kept out of the judged window, records that do not repeat called so."""
+
+import numpy as np
+import pytest
+
+from linkwork.engines.states import NOT_PERIODIC, judged_window, repeats_after, section_period
+
+ORBIT3 = np.array([[0.2, -1.0], [0.9, 0.4], [-0.5, 0.1]])  # three section points, two components
+
+
+def _approach(orbit: np.ndarray, cycles: int, amplitude: float, rate: float) -> np.ndarray:
+    """A record that approaches a periodic ``orbit`` geometrically: x_n = orbit[n mod k] + amplitude rate^n (1, -1)."""
+    n = np.arange(cycles)
+    return orbit[n % len(orbit)] + amplitude * rate ** n[:, None] * np.array([1.0, -1.0])
+
+
+def test_a_period_three_orbit_is_period_three_and_its_transient_is_left_out():
+    """An approach to a period-3 orbit from far away (a long transient, amplitude 5, rate 0.8): the period is 3, not
+    1, 2 or 6; the transient ends where the approach falls below the tolerance, and no judged cycle lies in it."""
+    record = _approach(ORBIT3, 120, 5.0, 0.8)
+    tol = 1e-6
+    period, transient = section_period(record, max_period=8, rtol=tol)
+    assert period == 3
+    spread = record[60:].max(axis=0) - record[60:].min(axis=0)
+    # the first cycle from which x[i] and x[i + 3] differ by at most the tolerance in both components
+    diff = 5.0 * 0.8 ** np.arange(120) * (1 - 0.8 ** 3)
+    expected = int(np.flatnonzero(~np.all(diff[:117, None] <= tol * spread, axis=1))[-1]) + 1
+    assert transient == expected and transient > 40  # a long transient, found exactly
+    first, stop = judged_window(120, period, transient, min_cycles=30)
+    assert first >= transient and stop == 120 and (stop - first) % 3 == 0 and stop - first >= 30
+    judged = record[first:stop]
+    # on the orbit, not on the transient: a geometric approach that repeats to tol after one period (contraction
+    # 0.8^3 per period) lies within tol / (1 - 0.8^3) of its limit
+    assert np.all(np.abs(judged - ORBIT3[np.arange(first, stop) % 3]) <= tol * spread / (1 - 0.8 ** 3))
+    assert np.any(np.abs(record[: transient - 3] - ORBIT3[np.arange(transient - 3) % 3]) > tol * spread / (1 - 0.8 ** 3))
+
+
+def test_period_one_and_period_two_are_told_apart():
+    """A fixed point is period 1; an alternation is period 2 (it does not repeat after one cycle)."""
+    fixed = _approach(np.array([[0.3, 0.7]]), 60, 1.0, 0.5)
+    assert section_period(fixed, 8, 1e-9, atol=1e-12)[0] == 1
+    two = _approach(ORBIT3[:2], 60, 1.0, 0.5)
+    assert section_period(two, 8, 1e-9)[0] == 2
+    assert not repeats_after(two[40:], 1, np.full(2, 1e-3)).any()
+
+
+def test_a_chaotic_record_is_not_periodic():
+    """The logistic map at r = 4 (chaotic) repeats with no period up to the bound: not periodic, and nothing is
+    judged as an orbit."""
+    x = np.empty(400)
+    x[0] = 0.2345
+    for i in range(1, x.size):
+        x[i] = 4.0 * x[i - 1] * (1.0 - x[i - 1])
+    period, transient = section_period(x, max_period=12, rtol=1e-6)
+    assert (period, transient) == (NOT_PERIODIC, 400)
+    assert judged_window(400, period, transient, 30) == (400, 400)
+
+
+@pytest.mark.parametrize("cycles", [5, 8])
+def test_a_record_too_short_for_two_periods_is_not_called_periodic(cycles):
+    """A period-3 orbit needs two whole periods after its transient to be recognised; a shorter record is not."""
+    record = _approach(ORBIT3, cycles, 5.0, 0.8)
+    assert section_period(record, 8, 1e-6)[0] == NOT_PERIODIC
+
+
+def test_a_settled_state_with_section_noise_below_the_tolerance_is_periodic():
+    """Integration error on the section (1e-9 of the spread) does not break the period; at 1e-3 of the spread
+    with a tolerance of 1e-6 it does, and the record is not called periodic."""
+    rng = np.random.default_rng(7)
+    record = _approach(ORBIT3, 90, 2.0, 0.7)
+    quiet = record + 1e-9 * rng.standard_normal(record.shape)
+    loud = record + 1e-3 * rng.standard_normal(record.shape)
+    assert section_period(quiet, 8, 1e-6)[0] == 3
+    assert section_period(loud, 8, 1e-6)[0] == NOT_PERIODIC
