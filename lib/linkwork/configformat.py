@@ -44,10 +44,6 @@ def pick(section: Mapping[str, Any], paths: Iterable[str]) -> dict[str, Any]:
     return out
 
 
-#: The fields of a labelled entry beside its value: what the uncertainty design and the reports read, not a study.
-LABEL_FIELDS = ("status", "reason", "range", "range_reason", "choices", "choice_labels")
-
-
 def is_labelled(node: Any) -> bool:
     """Whether a config node is a labelled entry ``{value, status, reason, ...}``."""
     return isinstance(node, Mapping) and {"value", "status", "reason"} <= set(node)

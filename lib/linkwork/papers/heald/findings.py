@@ -297,7 +297,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
     findings = findings.merge(chain[list(EQ2_NODE_MASS)])
     findings = findings.merge(counts_dataset(table))
     findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy)).merge(drive_verdicts(published, chain, accuracy))
-    findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain, findings)))
+    findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain)))
     # the parameters each model reads (for the report's tables, which leave the others out)
     findings.attrs.update({f"inputs_of_model_{m}": ",".join(names) for m, names in MODEL_INPUTS.items()})
     findings.attrs["notes"] = notes(chain, findings)
@@ -350,7 +350,7 @@ def counts_in_words(table: pd.DataFrame, model: str) -> str:
     return " and ".join([", ".join(parts[:-1]), parts[-1]]) if len(parts) > 1 else (parts[0] if parts else "none is judged")
 
 
-def answer(table: pd.DataFrame, chain: xr.Dataset, findings: xr.Dataset | None = None) -> str:
+def answer(table: pd.DataFrame, chain: xr.Dataset) -> str:
     """Does the paper hold up?  Two plain sentences: the claims' counts per model, then eq. (2)'s condition with
     its number (no code names; every number from the results)."""
     changed = scenario_changes(table[table.role == "headline"])
