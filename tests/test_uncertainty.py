@@ -154,16 +154,16 @@ def test_batches_cover_every_sample_once():
 
 def test_labelled_inputs_are_the_ranged_entries():
     found = [i.path for i in labelled_inputs(SECTION["assumed"], "assumed.")]
-    assert found == ["assumed.joint_length_m.value", "assumed.v0_m_s.value", "assumed.v1_m_s.value", "assumed.e0_m.value"]
+    assert found == ["assumed.joint_length_m.value", "assumed.v0_m_s.value", "assumed.v1_m_s.value", "assumed.impact_velocity_floor_m_s.value", "assumed.e0_m.value"]
 
 
 @pytest.fixture(scope="module")
 def small_clearance():
-    """One variant, one settling and one recorded cycle, a coarse output grid: cheap scenes, same code paths."""
+    """One variant, two starts, short records and checks, a coarse output grid: cheap scenes, same code paths."""
     cfg = copy.deepcopy(SECTION)
     cfg["variants"] = {"decoded": cfg["variants"]["decoded"]}
-    cfg["numerics"].update(settle_cycles=1, record_cycles=1, points_per_cycle=180)
-    cfg["statistics"].update(settle_max_cycles=2, record_cycles=4, tight_record_cycles=2, uncertainty_record_cycles=2, batch_cycles=2)
+    cfg["numerics"].update(record_cycles=1, points_per_cycle=360)
+    cfg["states"].update(max_cycles=12, check_cycles=2, min_cycles=10)
     cfg["uncertainty"].update(lhs_points=0)
     return cfg
 
@@ -173,52 +173,51 @@ def test_a_clearance_batch_moves_only_the_scenes_that_read_its_input():
 
     found = batch_jobs(SECTION)
     jobs = {(s["label"], j["variant"]): j["scenes"] for j in found for s in j["samples"]}
-    assert len(jobs) == 8 * len(SECTION["variants"])  # four inputs at two ends; the nominal sample reruns nothing
+    assert len(jobs) == len(found) == 10 * len(SECTION["variants"])  # five inputs at two ends, one batch each; nominal points rerun nothing
     for variant in SECTION["variants"]:
         assert jobs[("assumed.e0_m.value low", variant)] == ["lubricated_1", "lubricated_2", "lubricated_both"]
-        # v1 enters every scene that names friction: the dry ones and the lubricated ones (their dry contact)
+        # v1 and the impact-velocity floor enter every scene with contact: the dry ones and the lubricated ones (their dry contact)
         friction = [n for n, spec in SECTION["scenes"].items() if "friction" in spec["effects"]]
         assert jobs[("assumed.v1_m_s.value high", variant)] == friction == ["dry_1", "dry_2", "dry_both", "lubricated_1", "lubricated_2", "lubricated_both"]
-    # one batch per variant and set of moved scenes: joint length and e0 share the lubricated one, v0 and v1 the one of all six
-    assert [(j["variant"], len(j["samples"])) for j in found] == [(v, 4) for v in SECTION["variants"] for _ in range(2)]
+        assert jobs[("assumed.impact_velocity_floor_m_s.value low", variant)] == friction
+    assert not any("off-centre" in label for label, _ in jobs)  # the other start is a scenario at the nominal inputs
 
 
-def test_a_clearance_sample_takes_its_moved_scenes_from_a_direct_rerun_and_the_others_from_the_nominal_runs(small_clearance):
-    """Two routes to a sample's deviations: the batch (narrow config, only the moved scenes) gathered with the
-    nominal claims, against each scene rerun directly at the moved value.  A moved scene's mean is the direct
-    rerun's mean over the same recorded cycles; a scene the input does not enter keeps the nominal mean; the
-    nominal sample reproduces the nominal claims."""
+def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_scenario(small_clearance):
+    """Two routes to a sample: the batch (narrow config, only the moved scenes, continued from the nominal state)
+    gathered with the nominal claims, against the scene rerun directly at the moved value from the same state.  A
+    moved scene's measure is the direct rerun's; a scene the input does not enter keeps the nominal measure; the
+    nominal sample reproduces the nominal claims; the second start's scenario takes the nominal runs' second start."""
     from linkwork.configformat import pick
     from linkwork.papers.clearance import uncertainty
     from linkwork.papers.clearance.adapter import scene_keys
-    from linkwork.papers.clearance.studies import COMPARED, claims, recorded, scene
+    from linkwork.papers.clearance.studies import COMPARED, claims, scene
 
     cfg = small_clearance
-    nominal_runs = [scene(cfg, "decoded", n) for n in ["ideal", *COMPARED]]
-    nominal = claims(cfg, nominal_runs, [scene(cfg, "decoded", n, "tight") for n in COMPARED])
+    nominal_runs = {n: scene(cfg, "decoded", n) for n in ["ideal", *COMPARED]}
+    nominal = claims(cfg, list(nominal_runs.values()))
     label = "assumed.e0_m.value high"
     job = next(j for j in uncertainty.batch_jobs(cfg) if label in [s["label"] for s in j["samples"]])
-    values = next(s["values"] for s in job["samples"] if s["label"] == label)
-    keys = sorted({k for s in job["scenes"] for k in scene_keys(cfg, "decoded", s)} - {"statistics.record_cycles"}) + ["statistics.uncertainty_record_cycles"]
-    part = uncertainty.batch(pick(cfg, keys), job["samples"], job["variant"])  # the batch's config as the rule passes it
-    moved = part.cycle_deviation.sel(sample=label).isel(variant=0)
+    keys = sorted({k for s in job["scenes"] for k in scene_keys(cfg, "decoded", s) if not k.startswith("check_integrators.")})
+    part = uncertainty.batch(pick(cfg, keys), job["samples"], job["variant"], nominal=[nominal_runs[s] for s in job["scenes"]])
+    moved = part.judged.sel(sample=label, statistic="judged_mean").isel(variant=0)
     lubricated, dry = ["lubricated_1", "lubricated_2", "lubricated_both"], ["dry_1", "dry_2", "dry_both"]
     assert np.isfinite(moved.sel(scene=lubricated)).all()
     assert np.isnan(moved.sel(scene=dry)).all()  # e0 does not enter a dry scene
     gathered = uncertainty.gather(cfg, [part], nominal, PUBLISHED)
     means = gathered.sample_mean_deviation.sel(sample=label, variant="decoded")
-
-    at = apply(cfg, values)
-    cycles = cfg["statistics"]["uncertainty_record_cycles"]
+    at = apply(cfg, job["samples"][0]["values"])
     for k, name in enumerate(COMPARED):
-        if name in lubricated:  # the direct route: the scene rerun at the moved film cap
-            direct = recorded(scene(at, "decoded", name, "pipeline", record=cycles))[..., -cycles:].mean(axis=-1)
-            np.testing.assert_allclose(means.isel(scene=k).values, direct, rtol=1e-12)
+        if name in lubricated:  # the direct route: the scene rerun at the moved film cap, from the nominal state
+            direct = scene(at, "decoded", name, first_start_only=True, check=False, memory=nominal_runs[name].window_memory.values[0])
+            np.testing.assert_allclose(means.isel(scene=k).values, direct.judged_mean.values[0], rtol=1e-12)
         else:
-            np.testing.assert_array_equal(means.isel(scene=k).values, nominal.mean_deviation.sel(variant="decoded", scene=name).values)
+            np.testing.assert_array_equal(means.isel(scene=k).values, nominal.mean_deviation.sel(variant="decoded", scene=name).isel(start=0).values)
     for claim in nominal.claim.values:
-        base = float(gathered.value.sel(sample="nominal", quantity=f"decoded|{claim}"))
-        assert base == float(nominal.holds.sel(variant="decoded", claim=claim))
+        assert float(gathered.value.sel(sample="nominal", quantity=f"decoded|{claim}")) == float(nominal.holds.sel(variant="decoded", claim=claim))
+        other = f"start {nominal.start.values[1]} | nominal"
+        assert float(gathered.value.sel(sample=other, quantity=f"decoded|{claim}")) == float(nominal.holds_by_start.sel(variant="decoded", claim=claim).isel(start=1))
+    assert list(gathered.scenario.values) == [f"start {s}" for s in nominal.start.values]
 
 
 def test_a_transplanter_sample_optimised_from_the_nominal_optimum_reaches_the_cold_start_optimum():

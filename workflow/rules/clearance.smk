@@ -5,12 +5,11 @@ from linkwork.papers.clearance import adapter as clearance_adapter
 CLEARANCE = config["clearance"]
 CLEARANCE_VARIANTS = list(CLEARANCE["variants"])
 CLEARANCE_SCENES = list(CLEARANCE["scenes"])
-CLEARANCE_DYNAMIC = [s for s in CLEARANCE_SCENES if CLEARANCE["scenes"][s]["clearance_joints"]]
 
 
-def scene_cfg(tolerance):
-    """A scene's params: exactly the keys its effects, its variant and its integrator read."""
-    return lambda wildcards: section("clearance", *clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, tolerance))
+def scene_cfg(wildcards):
+    """A scene's params: exactly the keys its effects, its variant, its settling rule and its integrators read."""
+    return section("clearance", *clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene))
 
 
 wildcard_constraints:
@@ -26,22 +25,8 @@ rule clearance_scene:
         "results/clearance/{variant}/{scene}.nc",
     params:
         study="linkwork.papers.clearance.studies:scene",
-        cfg=scene_cfg("pipeline"),
-        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene, "tolerance": "pipeline"},
-    script:
-        STUDY
-
-
-rule clearance_scene_tight:
-    priority: CHAIN_HEAD_PRIORITY
-    input:
-        code=code("linkwork.papers.clearance.studies"),
-    output:
-        "results/clearance/{variant}/tight/{scene}.nc",
-    params:
-        study="linkwork.papers.clearance.studies:scene",
-        cfg=scene_cfg("tight"),
-        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene, "tolerance": "tight"},
+        cfg=scene_cfg,
+        args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene},
     script:
         STUDY
 
@@ -49,13 +34,12 @@ rule clearance_scene_tight:
 rule clearance_claims:
     input:
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
-        tight=expand("results/clearance/{variant}/tight/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_DYNAMIC),
         code=code("linkwork.papers.clearance.studies"),
     output:
         "results/clearance/claims.nc",
     params:
         study="linkwork.papers.clearance.studies:claims",
-        cfg=section("clearance", "statistics.batch_cycles", "statistics.confidence", "statistics.stationarity_tolerance", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
+        cfg=section("clearance", "statistics.batch_cycles", "statistics.confidence", "claims", *(f"variants.{v}" for v in CLEARANCE_VARIANTS)),
     script:
         STUDY
 
@@ -130,8 +114,7 @@ rule clearance_crosscheck_dry:
         scene="|".join(CROSSCHECK_DRY),
     params:
         study="linkwork.papers.clearance.crosscheck:dry",
-        cfg=lambda wildcards: section("clearance", *sorted(set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "pipeline"))
-                                                          | set(clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene, "tight"))),
+        cfg=lambda wildcards: section("clearance", *clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene),
                                       "numerics.settle_cycles", "scenes.ideal", "crosscheck"),
         args=lambda wildcards: {"variant": wildcards.variant, "scene": wildcards.scene},
     script:

@@ -18,8 +18,8 @@ def uncertainty_cfg(paper, index):
     if paper == "transplanter":
         return section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "initial_diameters_m", "fe.angle_step_deg", "optimization.slsqp_ftol", "uncertainty", design=True)
     job = CLEARANCE_UNCERTAINTY[index]
-    keys = {k for s in job["scenes"] for k in clearance_adapter.scene_keys(CLEARANCE, job["variant"], s)} - {"statistics.record_cycles"}
-    return section("clearance", *sorted(keys), "statistics.uncertainty_record_cycles")
+    keys = {k for s in job["scenes"] for k in clearance_adapter.scene_keys(CLEARANCE, job["variant"], s) if not k.startswith("check_integrators.")}
+    return section("clearance", *sorted(keys))  # a sample's runs make no check reruns: they take the nominal error bar
 
 
 def uncertainty_args(paper, index):
@@ -32,7 +32,7 @@ def uncertainty_args(paper, index):
 def uncertainty_gather_cfg(paper):
     """The gather step reads the ranges; the clearance paper also judges its claims there (threshold, variants)."""
     if paper == "clearance":
-        return section("clearance", "claims", "assumed", "uncertainty", "statistics.batch_cycles", "statistics.confidence", *(f"variants.{v}" for v in CLEARANCE_VARIANTS), design=True)
+        return section("clearance", "claims", "assumed", "uncertainty", "states.starts", "statistics.confidence", *(f"variants.{v}" for v in CLEARANCE_VARIANTS), design=True)
     return uncertainty_cfg(paper, 0)
 
 
@@ -47,8 +47,9 @@ def uncertainty_batch_count(paper):
 
 def uncertainty_inputs(wildcards):
     code_ = code(f"linkwork.papers.{wildcards.paper}.uncertainty")
-    if wildcards.paper == "clearance":  # a sample reruns only the scenes its input enters (each computes its own ideal curve)
-        return {"code": code_}
+    if wildcards.paper == "clearance":  # a sample reruns only the scenes its input enters, continuing from their nominal states
+        job = CLEARANCE_UNCERTAINTY[int(wildcards.index)]
+        return {"nominal": [f"results/clearance/{job['variant']}/{s}.nc" for s in job["scenes"]], "code": code_}
     extra = {"optim": "results/transplanter/optim.nc"} if wildcards.paper == "transplanter" else {}  # its samples start from our optimum
     return {"published": f"config/published/{wildcards.paper}.yaml", **extra, "code": code_}
 

@@ -59,3 +59,84 @@ def judged_window(cycles: int, period: int, transient: int, min_cycles: int) -> 
     if length < max(min_cycles, period):
         return cycles, cycles
     return cycles - length, cycles
+
+
+def thirds_agree(values, confidence: float) -> tuple[bool, float]:
+    """(stationary?, the largest relative change) of per-cycle records ``values`` (rows x cycles, or cycles): the
+    mean of the last third against the mean of the middle third, for every row.  A row agrees where the difference
+    lies within its Welch t-interval (the thirds' own cycle-to-cycle scatter): a transient that drifts by more than
+    the scatter cannot pass, however small the drift is relative to the mean.  Fewer than 6 cycles: not stationary."""
+    from scipy.special import stdtrit
+
+    x = np.atleast_2d(np.asarray(values, dtype=float))
+    n = x.shape[-1] // 3
+    if n < 2:
+        return False, float("inf")
+    ok, worst = True, 0.0
+    for row in x:
+        a, b = row[-2 * n : -n], row[-n:]
+        diff = abs(float(b.mean() - a.mean()))
+        va, vb = a.var(ddof=1) / n, b.var(ddof=1) / n
+        total = va + vb
+        if total > 0:
+            dof = total**2 / (va**2 / (n - 1) + vb**2 / (n - 1)) if va > 0 and vb > 0 else n - 1
+            half = float(stdtrit(dof, 0.5 + confidence / 2)) * np.sqrt(total)
+        else:
+            half = 0.0
+        scale = abs(float(row[-2 * n :].mean())) or 1.0
+        worst = max(worst, diff / scale)
+        ok = ok and diff <= half
+    return ok, worst
+
+
+def truncation_point(values) -> int:
+    """The transient to cut from per-cycle records ``values`` (rows x cycles, or cycles) by the MSER rule (White,
+    1997: the truncation d <= n / 2 that minimises the squared standard error of the remaining mean,
+    sum (x_i - mean)^2 / (n - d)^2), the largest over the rows."""
+    x = np.atleast_2d(np.asarray(values, dtype=float))
+    n = x.shape[-1]
+    best = 0
+    for row in x:
+        stats = [np.sum((row[d:] - row[d:].mean()) ** 2) / (n - d) ** 2 for d in range(n // 2 + 1)]
+        best = max(best, int(np.argmin(stats)))
+    return best
+
+
+#: How a settled record ends: a periodic orbit found, statistics stationary over enough cycles, or the cycle cap.
+PERIODIC, STATIONARY, CAP = "periodic", "stationary", "cycle cap reached"
+
+
+def settle(step, chunk: int, max_cycles: int, max_period: int, section_tol: float, periods: int, min_cycles: int,
+           confidence: float) -> dict:
+    """Run a driven system chunk by chunk until its state is found.
+
+    ``step(n)`` runs n more drive cycles and returns (section points (n, components) at each cycle's start,
+    per-cycle measures (n, rows)).  After each chunk: if the section repeats with a period k <= ``max_period`` to
+    ``section_tol`` (absolute, per component) over ``periods`` whole periods (``section_period``), the state is
+    periodic and judged on the whole periods after the transient; otherwise the transient is cut by the MSER rule
+    (``truncation_point``) and, once the cut is at most a third of the record and at least ``min_cycles`` cycles
+    remain, the state is stationary if the remaining
+    measures' last third agrees with their middle third (``thirds_agree``); it is judged on the cycles after the cut.
+    ``max_cycles`` is a size guard: a record that reaches it ends with status CAP (its last two thirds shown as
+    window, with no interval).
+
+    Returns {status, period, transient, window (first, stop), points, measures, change}."""
+    points, measures = [], []
+    while True:
+        done = sum(len(p) for p in points)
+        pts, meas = step(min(chunk, max_cycles - done))
+        points.append(np.atleast_2d(pts))
+        measures.append(np.atleast_2d(meas))
+        x, m = np.concatenate(points), np.concatenate(measures)
+        n = x.shape[0]
+        period, transient = section_period(x, max_period, 0.0, section_tol, periods)
+        if period != NOT_PERIODIC:
+            first, stop = judged_window(n, period, transient, period)
+            return {"status": PERIODIC, "period": period, "transient": transient, "window": (first, stop), "points": x, "measures": m, "change": 0.0}
+        cut = truncation_point(m.T)
+        # a cut beyond a third of the record says the transient may still leave a bias in the window: not yet
+        ok, change = thirds_agree(m[cut:].T, confidence) if n - cut >= min_cycles and cut <= n // 3 else (False, float("inf"))
+        if ok or n >= max_cycles:
+            cut = cut if ok else n // 3
+            return {"status": STATIONARY if ok else CAP, "period": NOT_PERIODIC, "transient": cut, "window": (cut, n), "points": x, "measures": m,
+                    "change": thirds_agree(m[cut:].T, confidence)[1]}

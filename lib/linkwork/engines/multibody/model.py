@@ -248,13 +248,13 @@ def _latch(diag, latched, was_in_contact):
 
 
 @njit(cache=True)
-def _start(y0, t0, n_out, p, latched, counts):
-    """Output buffers, work arrays and the first right-hand side (latching its contact state)."""
+def _start(y0, t0, n_out, p, latched, counts, was):
+    """Output buffers, work arrays and the first right-hand side (latching its contact state; ``was`` holds
+    which joints were in contact before t0, so that a continued run latches no impact that is not one)."""
     ys = np.empty((n_out, y0.size))
     diags = np.empty((n_out, N_DIAG))
     diag = np.zeros(N_DIAG)
     scratch = np.zeros(N_DIAG)
-    was = np.zeros(max(len(JOINTS), 1), dtype=np.bool_)
     y = y0.copy()
     k1 = rhs(t0, y, p, latched, counts, diag)
     _latch(diag, latched, was)
@@ -279,10 +279,10 @@ def jacobian(t, y, p, latched, counts, scratch):
 
 
 @njit(cache=True)
-def rk4(y0, t0, h, t_out, p, latched, counts):
+def rk4(y0, t0, h, t_out, p, latched, counts, was):
     """Fixed-step RK4; steps are shortened only to land on the output times."""
     n_out = t_out.size
-    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts, was)
     t = t0
     steps = 0
     for i in range(n_out):
@@ -298,11 +298,11 @@ def rk4(y0, t0, h, t_out, p, latched, counts):
             steps += 1
         ys[i] = y
         diags[i] = diag
-    return ys, diags, steps, 0
+    return ys, diags, steps, 0, h
 
 
 @njit(cache=True)
-def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max):
+def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
     """Adaptive Dormand-Prince 5(4) with FSAL; steps land on the output times; latching at accepted steps."""
     c2, c3, c4, c5 = 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9
     a21 = 1.0 / 5
@@ -313,7 +313,7 @@ def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max):
     b1, b3, b4, b5, b6 = 35.0 / 384, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84
     e1, e3, e4, e5, e6, e7 = 71.0 / 57600, -71.0 / 16695, 71.0 / 1920, -17253.0 / 339200, 22.0 / 525, -1.0 / 40
     n_out = t_out.size
-    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts)
+    ys, diags, diag, scratch, was, y, k1 = _start(y0, t0, n_out, p, latched, counts, was)
     t = t0
     h = h0
     accepted = 0
@@ -348,7 +348,187 @@ def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max):
                     raise RuntimeError("dopri5: step size underflow")
         ys[i] = y
         diags[i] = diag
-    return ys, diags, accepted, rejected
+    return ys, diags, accepted, rejected, h
+
+
+@njit(cache=True)
+def _rms(x):
+    return np.sqrt(np.mean(x * x))
+
+
+@njit(cache=True)
+def _ndf_R(order, factor):
+    """The matrix that re-expresses the differences array for a step size changed by ``factor``."""
+    m = np.zeros((order + 1, order + 1))
+    m[0, :] = 1.0
+    for i in range(1, order + 1):
+        for j in range(1, order + 1):
+            m[i, j] = (i - 1 - factor * j) / i
+    for i in range(1, order + 1):
+        for j in range(order + 1):
+            m[i, j] *= m[i - 1, j]
+    return m
+
+
+@njit(cache=True)
+def _ndf_change(D, order, factor):
+    ru = _ndf_R(order, factor) @ _ndf_R(order, 1.0)
+    D[: order + 1] = ru.T @ D[: order + 1].copy()
+
+
+@njit(cache=True)
+def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
+    """Variable-order (1-5) implicit NDF/BDF, compiled: the algorithm of scipy.integrate.BDF (quasi-constant step,
+    numerical differentiation formulas, Newton with a reused Jacobian), with the compiled finite-difference
+    Jacobian; outputs at t_out by the method's own interpolating polynomial; latching at accepted steps."""
+    n_out = t_out.size
+    ys, diags, diag, scratch, was, y, f = _start(y0, t0, n_out, p, latched, counts, was)
+    n = y.size
+    kappa = np.array([0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0])
+    gamma = np.zeros(6)
+    for k in range(1, 6):
+        gamma[k] = gamma[k - 1] + 1.0 / k
+    alpha = (1.0 - kappa) * gamma
+    error_const = kappa * gamma + 1.0 / np.arange(1, 7)
+    newton_tol = max(10.0 * 2.220446049250313e-16 / rtol, min(0.03, rtol ** 0.5))
+    D = np.zeros((8, n))
+    D[0] = y
+    D[1] = f * h0
+    order = 1
+    n_equal = 0
+    h_abs = h0
+    J = jacobian(t0, y, p, latched, counts, scratch)
+    current_jac = True
+    eye = np.eye(n)
+    minv = np.empty((n, n))
+    inv_ok = False
+    t = t0
+    i = 0
+    while i < n_out and t_out[i] <= t + 1e-15:
+        ys[i] = y
+        diags[i] = diag
+        i += 1
+    accepted = 0
+    rejected = 0
+    t_bound = t_out[-1]
+    while i < n_out:
+        if h_abs > h_max:
+            _ndf_change(D, order, h_max / h_abs)
+            h_abs = h_max
+            n_equal = 0
+            inv_ok = False
+        min_step = 10.0 * 2.220446049250313e-16 * abs(t)  # as scipy: ten units in the last place of t
+        while True:
+            if h_abs < min_step:
+                raise RuntimeError("ndf: step size underflow")
+            t_new = t + h_abs
+            if t_new > t_bound:
+                t_new = t_bound
+                _ndf_change(D, order, (t_new - t) / h_abs)
+                n_equal = 0
+                inv_ok = False
+            h = t_new - t
+            h_abs = h
+            y_predict = np.zeros(n)
+            for k in range(order + 1):
+                y_predict += D[k]
+            scale = atol + rtol * np.abs(y_predict)
+            psi = np.zeros(n)
+            for k in range(1, order + 1):
+                psi += D[k] * gamma[k]
+            psi /= alpha[order]
+            c = h / alpha[order]
+            converged = False
+            n_iter = 0
+            y_new = y_predict.copy()
+            d = np.zeros(n)
+            while True:
+                if not inv_ok:
+                    minv = np.ascontiguousarray(np.linalg.inv(eye - c * J))
+                    inv_ok = True
+                # Newton iterations on the BDF system
+                y_new = y_predict.copy()
+                d = np.zeros(n)
+                converged = False
+                dy_norm_old = -1.0
+                for k in range(4):
+                    n_iter = k + 1
+                    fk = rhs(t_new, y_new, p, latched, counts, scratch)
+                    if not np.all(np.isfinite(fk)):
+                        break
+                    dy = minv @ (c * fk - psi - d)
+                    dy_norm = _rms(dy / scale)
+                    rate = -1.0 if dy_norm_old < 0 else dy_norm / dy_norm_old
+                    if rate >= 0 and (rate >= 1 or rate ** (4 - k) / (1 - rate) * dy_norm > newton_tol):
+                        break
+                    y_new += dy
+                    d += dy
+                    if dy_norm == 0 or (rate >= 0 and rate / (1 - rate) * dy_norm < newton_tol):
+                        converged = True
+                        break
+                    dy_norm_old = dy_norm
+                if converged or current_jac:
+                    break
+                J = jacobian(t_new, y_predict, p, latched, counts, scratch)
+                current_jac = True
+                inv_ok = False
+            if not converged:
+                h_abs *= 0.5
+                _ndf_change(D, order, 0.5)
+                n_equal = 0
+                inv_ok = False
+                rejected += 1
+                continue
+            safety = 0.9 * 9.0 / (8.0 + n_iter)
+            scale = atol + rtol * np.abs(y_new)
+            error_norm = _rms(error_const[order] * d / scale)
+            if error_norm > 1.0:
+                factor = max(0.2, safety * error_norm ** (-1.0 / (order + 1)))
+                h_abs *= factor
+                _ndf_change(D, order, factor)
+                n_equal = 0
+                inv_ok = False
+                rejected += 1
+                continue
+            break
+        accepted += 1
+        n_equal += 1
+        t = t_new
+        y = y_new
+        current_jac = False
+        D[order + 2] = d - D[order + 1]
+        D[order + 1] = d
+        for k in range(order, -1, -1):
+            D[k] += D[k + 1]
+        rhs(t, y, p, latched, counts, diag)
+        _latch(diag, latched, was)
+        while i < n_out and t_out[i] <= t + 1e-15:  # the step's interpolating polynomial
+            yi = D[0].copy()
+            prod = 1.0
+            for k in range(1, order + 1):
+                prod *= (t_out[i] - (t - h * (k - 1))) / (h * k)
+                yi += D[k] * prod
+            ys[i] = yi
+            rhs(t_out[i], yi, p, latched, counts, scratch)
+            diags[i] = scratch
+            i += 1
+        if n_equal < order + 1:
+            continue
+        em = _rms(error_const[order - 1] * D[order] / scale) if order > 1 else np.inf
+        ep = _rms(error_const[order + 1] * D[order + 2] / scale) if order < 5 else np.inf
+        norms = np.array([em, error_norm, ep])
+        best, delta = -1.0, 0
+        for k in range(3):
+            fac = np.inf if norms[k] == 0 else norms[k] ** (-1.0 / (order + k))
+            if fac > best:
+                best, delta = fac, k - 1
+        order += delta
+        factor = min(10.0, safety * best)
+        h_abs *= factor
+        _ndf_change(D, order, factor)
+        n_equal = 0
+        inv_ok = False
+    return ys, diags, accepted, rejected, h_abs
 '''
 
 
@@ -466,3 +646,80 @@ def initial_state(p: FourBarParameters, offset: tuple[float, float] = (0.0, 0.0)
         y0[3] += offset[0]
         y0[4] += offset[1]
     return y0, phi0
+
+
+def _point(q: np.ndarray, body: int, local) -> np.ndarray:
+    """World position (m) of a body's local point (m), q of shape (..., 9)."""
+    phi = q[..., 3 * body + 2]
+    c, s = np.cos(phi), np.sin(phi)
+    return np.stack([q[..., 3 * body] + c * local[0] - s * local[1], q[..., 3 * body + 1] + s * local[0] + c * local[1]], axis=-1)
+
+
+def _point_velocity(q: np.ndarray, qd: np.ndarray, body: int, local) -> np.ndarray:
+    """World velocity (m/s) of a body's local point."""
+    phi, w = q[..., 3 * body + 2], qd[..., 3 * body + 2]
+    c, s = np.cos(phi), np.sin(phi)
+    rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
+    return np.stack([qd[..., 3 * body] - w * ry, qd[..., 3 * body + 1] + w * rx], axis=-1)
+
+
+def journal_offsets(p: FourBarParameters, clearance_joints, states: np.ndarray) -> np.ndarray:
+    """Eccentricity e = journal centre - bearing centre (m) and its rate (m/s) of each clearance joint in the states
+    (..., >= 18): shape (..., joint, 4) as (e_x, e_y, e_x', e_y') in the fixed frame."""
+    q, qd = states[..., :9], states[..., 9:18]
+    pts = joint_points(p.lengths)
+    out = []
+    for j in clearance_joints:
+        bj, sj, bb, sb = pts[j]
+        e = _point(q, bj, sj) - _point(q, bb, sb)
+        v = _point_velocity(q, qd, bj, sj) - _point_velocity(q, qd, bb, sb)
+        out.append(np.concatenate([e, v], axis=-1))
+    return np.stack(out, axis=-2)
+
+
+def _position_residual(p: FourBarParameters, q: np.ndarray, phi0: float, clearance_joints, eccentricity) -> np.ndarray:
+    """The nine position equations of a start: crank pinned to the ground at O2 and at angle phi0, rocker pinned at
+    O4, each ideal joint closed, each clearance joint at its eccentricity (m)."""
+    l2, l3, l4 = p.lengths
+    pts = joint_points(p.lengths)
+    res = [_point(q, 0, (-l2 / 2, 0.0)), [q[2] - phi0], _point(q, 2, (-l4 / 2, 0.0)) - np.array([p.ground, 0.0])]
+    for j in (1, 2):
+        bj, sj, bb, sb = pts[j]
+        gap = _point(q, bj, sj) - _point(q, bb, sb)
+        res.append(gap - (np.asarray(eccentricity, dtype=float) if j in clearance_joints else 0.0))
+    return np.concatenate([np.ravel(r) for r in res])
+
+
+def offset_start(p: FourBarParameters, clearance_joints, eccentricity, rate, tol: float = 1e-15) -> np.ndarray:
+    """A start at the dead point with every clearance joint's journal at ``eccentricity`` (m, (x, y)) and moving
+    at ``rate`` (m/s) relative to its bearing, the ground pins, the drive and the ideal joints exact: positions by
+    Newton's method on the nine position equations, velocities from the same equations'
+    rate form (crank at the drive speed), both with the complex-step Jacobian.  Returns y0 (N_STATE,)."""
+    phi0 = start_angle(p)
+    q = kinematic_state(p, np.array([phi0]))[0][0].copy()
+    for _ in range(20):
+        r = _position_residual(p, q, phi0, clearance_joints, eccentricity)
+        jac = _residual_jacobian(p, q, phi0, clearance_joints, eccentricity)
+        dq = np.linalg.solve(jac, -r)
+        q += dq
+        if np.max(np.abs(dq)) < tol * max(1.0, np.max(np.abs(q))):
+            break
+    jac = _residual_jacobian(p, q, phi0, clearance_joints, eccentricity)
+    rhs = np.zeros(9)
+    rhs[2] = p.crank_speed
+    rows = {1: slice(5, 7), 2: slice(7, 9)}
+    for j in clearance_joints:
+        rhs[rows[j]] = rate
+    y0 = np.zeros(N_STATE)
+    y0[:9], y0[9:18] = q, np.linalg.solve(jac, rhs)
+    return y0
+
+
+def _residual_jacobian(p: FourBarParameters, q: np.ndarray, phi0: float, clearance_joints, eccentricity) -> np.ndarray:
+    """d(position equations)/dq by the complex step (exact to rounding: Im f(q + i h e_k) / h, h = 1e-30)."""
+    jac = np.empty((9, 9))
+    for k in range(9):
+        dq = np.zeros(9, dtype=complex)
+        dq[k] = 1e-30j
+        jac[:, k] = _position_residual(p, q + dq, phi0, clearance_joints, eccentricity).imag / 1e-30
+    return jac

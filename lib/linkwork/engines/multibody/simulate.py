@@ -1,5 +1,5 @@
-"""Time integration of a compiled scene: explicit RK4 / Dormand-Prince (compiled, in the scene
-module) or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853) stepped from
+"""Time integration of a compiled scene: explicit RK4 / Dormand-Prince and the implicit variable-order NDF (a
+compiled port of scipy's BDF; all in the scene module) or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853) stepped from
 Python around the compiled right-hand side.
 
 An integrator setting is a mapping ``{method, step_s}`` (rk4) or ``{method, rtol, atol, first_step_s,
@@ -13,40 +13,78 @@ from typing import Any
 
 import numpy as np
 
-from .model import FourBarParameters, compile_scene, initial_state, pack
+from .model import N_STATE, FourBarParameters, compile_scene, initial_state, pack
 
 SCIPY = ("bdf", "radau", "lsoda", "rk45", "dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
-METHODS = ("rk4", "dopri5", *SCIPY)
+METHODS = ("rk4", "dopri5", "ndf", *SCIPY)
+
+
+class Run:
+    """A scene's run that can be continued: the state y, the time t (s), the contact memory (the impact velocity
+    latched at each clearance joint's last impact, m/s, and whether it is in contact) and the integrator's next
+    step (s).  ``advance(t_out)`` integrates from t to t_out[-1] and samples at t_out (t_out[0] == t), so that a
+    run cut into pieces is the run in one piece, up to the step size chosen at each cut.
+
+    ``memory()`` is the run's whole state as one vector (t, y, latched, in contact): a run restarted from it
+    (``Run(..., memory=...)``) continues the same motion; a Poincaré section point that holds it can be restarted."""
+
+    def __init__(self, p: FourBarParameters, joints, effects, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None):
+        self.module = compile_scene(tuple(joints), tuple(effects), p.contact_law)
+        self.integrator = dict(integrator)
+        self.phi0 = initial_state(p)[1]
+        self.params, _ = pack(p, self.phi0)
+        n = max(len(joints), 1)
+        if memory is not None:
+            memory = np.asarray(memory, dtype=float)
+            t0, y = float(memory[0]), memory[1:]
+            self.y, self.latched, self.was = y[:N_STATE].copy(), y[N_STATE : N_STATE + n].copy(), y[N_STATE + n :] > 0.5
+        else:
+            self.y = initial_state(p)[0] if y0 is None else np.asarray(y0, dtype=float).copy()
+            self.latched, self.was = np.zeros(n), np.zeros(n, dtype=bool)
+        self.t = float(t0)
+        self.h = integrator.get("first_step_s", integrator.get("step_s", 0.0))
+        self.counts = np.zeros(4, dtype=np.int64)
+        self.steps = self.rejected = 0
+
+    def memory(self) -> np.ndarray:
+        """(t (s), y, latched impact velocity per joint (m/s), 1 where in contact per joint): the run's whole state."""
+        return np.concatenate([[self.t], self.y, self.latched, self.was.astype(float)])
+
+    def advance(self, t_out: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Integrate to t_out[-1] (s), sampling states and diagnostics at t_out; returns (states, diagnostics)."""
+        t_out = np.asarray(t_out, dtype=float)
+        if abs(t_out[0] - self.t) > 1e-12 * max(1.0, abs(self.t)):
+            raise ValueError(f"a run at t = {self.t} s cannot sample from t = {t_out[0]} s")
+        integ, method = self.integrator, self.integrator["method"]
+        if method == "rk4":
+            ys, diags, steps, rejected, _ = self.module.rk4(self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was)
+        elif method == "dopri5":
+            ys, diags, steps, rejected, self.h = self.module.dopri5(
+                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
+        elif method == "ndf":
+            ys, diags, steps, rejected, self.h = self.module.ndf(
+                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
+        elif method in SCIPY:
+            ys, diags, steps, rejected = _scipy(self.module, self.y, t_out, self.params, self.latched, self.counts, integ, self.was)
+        else:
+            raise ValueError(f"unknown integrator {method!r}; known: {', '.join(METHODS)}")
+        self.y, self.t = ys[-1].copy(), float(t_out[-1])
+        self.steps += int(steps)
+        self.rejected += int(rejected)
+        return ys, diags
 
 
 def integrate(p: FourBarParameters, joints, effects, t_out, integrator: Mapping[str, Any], y0=None):
-    """Run a scene from its consistent initial state (or ``y0``) and sample it at ``t_out`` (s).
+    """Run a scene from its consistent initial state (or ``y0``) and sample it at ``t_out`` (s, from 0).
 
     Returns (states, diagnostics, accepted steps, rejected steps, effect evaluation counts, phi0).
     """
-    module = compile_scene(tuple(joints), tuple(effects), p.contact_law)
-    if y0 is None:
-        y0, phi0 = initial_state(p)
-    else:
-        phi0 = initial_state(p)[1]
-    params, _ = pack(p, phi0)
-    latched = np.zeros(max(len(joints), 1))
-    counts = np.zeros(4, dtype=np.int64)
-    method = integrator["method"]
-    if method == "rk4":
-        ys, diags, steps, rejected = module.rk4(y0, 0.0, integrator["step_s"], t_out, params, latched, counts)
-    elif method == "dopri5":
-        ys, diags, steps, rejected = module.dopri5(
-            y0, 0.0, t_out, params, latched, counts, integrator["rtol"], integrator["atol"], integrator["first_step_s"], integrator["max_step_s"]
-        )
-    elif method in SCIPY:
-        ys, diags, steps, rejected = _scipy(module, y0, t_out, params, latched, counts, integrator)
-    else:
-        raise ValueError(f"unknown integrator {method!r}; known: {', '.join(METHODS)}")
-    return ys, diags, int(steps), int(rejected), counts, phi0
+    run = Run(p, joints, effects, integrator, y0=y0)
+    ys, diags = run.advance(t_out)
+    return ys, diags, run.steps, run.rejected, run.counts, run.phi0
 
 
-def _scipy(module, y0, t_out, params, latched, counts, integrator):
+def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
     """A scipy integrator stepped from Python around the compiled right-hand side (the implicit ones with its
     compiled finite-difference Jacobian), with the impact velocity latched at accepted steps and dense output
     at t_out."""
@@ -54,7 +92,6 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator):
 
     diag = np.zeros(module.N_DIAG)
     scratch = np.zeros(module.N_DIAG)
-    was = np.zeros(max(len(module.JOINTS), 1), dtype=bool)
     solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "dop853": si.DOP853}[integrator["method"]]
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
     jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
@@ -76,10 +113,9 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator):
             module.rhs(solver.t, solver.y, params, latched, counts, diag)
             module._latch(diag, latched, was)
             if i < t_out.size and t_out[i] <= solver.t:
-                dense = solver.dense_output()
-                while i < t_out.size and t_out[i] <= solver.t + 1e-15:
-                    y_i = dense(t_out[i])
-                    module.rhs(t_out[i], y_i, params, latched, counts, scratch)
-                    ys[i], diags[i] = y_i, scratch.copy()
-                    i += 1
+                stop = int(np.searchsorted(t_out, solver.t + 1e-15, side="right"))
+                ys[i:stop] = solver.dense_output()(t_out[i:stop]).T
+                for k in range(i, stop):
+                    module.rhs(t_out[k], ys[k], params, latched, counts, diags[k])
+                i = stop
     return ys, diags, steps, 0

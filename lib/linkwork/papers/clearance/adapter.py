@@ -21,7 +21,7 @@ EFFECT_KEYS: dict[str, tuple[str, ...]] = {
         "joints.poisson",
         "joints.restitution",
         "joints.contact_law",
-        "numerics.impact_velocity_floor_m_s",
+        "assumed.impact_velocity_floor_m_s",
     ),
     "friction": ("joints.friction", "assumed.v0_m_s", "assumed.v1_m_s"),
     "lubrication": ("joints.viscosity_Pa_s", "assumed.joint_length_m", "assumed.e0_m"),
@@ -30,12 +30,10 @@ EFFECT_KEYS: dict[str, tuple[str, ...]] = {
 #: What every scene reads: the linkage, the drive and the recorded window.
 LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
 WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
-#: What a scene with clearance joints reads to settle (the recorded length depends on the tolerance set).
-SETTLE_KEYS = ("statistics.settle_max_cycles", "statistics.settle_window_cycles", "statistics.settle_tolerance")
-RECORD_KEYS = {"pipeline": "statistics.record_cycles", "tight": "statistics.tight_record_cycles"}
+#: What a scene with clearance joints reads to find its states and judge the claims' measures on them.
+SETTLE_KEYS = ("states", "statistics.batch_cycles", "statistics.confidence")
 #: What a scene with clearance joints reads besides its effects.
 DYNAMIC_KEYS = ("joints.journal_radius_m", "joints.bearing_radius_m", "numerics.baumgarte")
-TOLERANCE_SETS = {"pipeline": "integrators", "tight": "tight_integrators"}
 
 
 def integrator_kind(scene: Mapping[str, Any]) -> str:
@@ -56,12 +54,14 @@ def model_keys(section: Mapping[str, Any], variant: str, scene: str) -> list[str
     return list(dict.fromkeys(keys))
 
 
-def scene_keys(section: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pipeline") -> list[str]:
-    """Keys a scene run reads: its model, the recorded window and (with clearance joints) its integrator."""
+def scene_keys(section: Mapping[str, Any], variant: str, scene: str) -> list[str]:
+    """Keys a scene run reads: its model, the recorded window and (with clearance joints) the settling rule, its
+    integrator and the check integrators of its error bar."""
     keys = model_keys(section, variant, scene) + list(WINDOW_KEYS)
     spec = section["scenes"][scene]
     if spec["clearance_joints"]:
-        keys += [*SETTLE_KEYS, RECORD_KEYS[tolerance], f"{TOLERANCE_SETS[tolerance]}.{integrator_kind(spec)}"]
+        kind = integrator_kind(spec)
+        keys += [*SETTLE_KEYS, f"integrators.{kind}", f"check_integrators.{kind}"]
     return keys
 
 
@@ -95,7 +95,7 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
     if "contact" in effects:
         j = cfg["joints"]
         values.update(youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
-                      impact_velocity_floor=cfg["numerics"]["impact_velocity_floor_m_s"], contact_law=j["contact_law"])
+                      impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"])
     if "friction" in effects:
         a = cfg["assumed"]
         values.update(friction=cfg["joints"]["friction"], v0=a["v0_m_s"]["value"], v1=a["v1_m_s"]["value"])

@@ -32,12 +32,16 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r}: friction needs contact")
         if (effects and not scene["clearance_joints"]) and set(effects) - {"gravity"}:
             raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r} names joint effects but no clearance joint")
-    for group in ("integrators", "tight_integrators"):
-        for kind, integ in section[group].items():
-            needed = ("step_s",) if integ["method"] == "rk4" else ("rtol", "atol", "first_step_s", "max_step_s")
-            missing = [n for n in needed if n not in integ]
-            if missing:
-                raise ConfigError(f"config key {key}.{group}.{kind}: method {integ['method']!r} needs {', '.join(missing)}")
+    settings = [(f"integrators.{kind}", integ) for kind, integ in section["integrators"].items()]
+    settings += [(f"check_integrators.{kind}[{i}]", integ) for kind, group in section["check_integrators"].items() for i, integ in enumerate(group)]
+    for where, integ in settings:
+        needed = ("step_s",) if integ["method"] == "rk4" else ("rtol", "atol", "first_step_s", "max_step_s")
+        missing = [n for n in needed if n not in integ]
+        if missing:
+            raise ConfigError(f"config key {key}.{where}: method {integ['method']!r} needs {', '.join(missing)}")
+    labels = [s["label"] for s in section["states"]["starts"]]
+    if len(set(labels)) != len(labels):
+        raise ConfigError(f"config key {key}.states.starts: labels {labels!r} repeat")
     wp = section["work_precision"]
     if wp["variant"] not in section["variants"]:
         raise ConfigError(f"config key {key}.work_precision.variant: value {wp['variant']!r} is not a variant of {key}.variants")

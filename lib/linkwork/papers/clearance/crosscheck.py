@@ -104,9 +104,8 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
     import copy
 
     from ...engines.multibody.exudyn_route import run as exudyn_run
-    from .adapter import TOLERANCE_SETS, integrator_kind, scene_effects
-    from .studies import output_times
-    from .studies import scene as linkwork_scene
+    from .adapter import integrator_kind, scene_effects
+    from .studies import fixed_record, output_times
 
     check = cfg["crosscheck"]
     local = copy.deepcopy(dict(cfg))
@@ -120,12 +119,10 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
     measures = np.empty((2 + steps.size, len(QUANTITIES), cycles))
     wall = np.full(2 + steps.size, np.nan)
     settings = []
-    # our scene run with a fixed settle (tolerance 0: the settling criterion never stops it early)
-    local["statistics"] = {**cfg["statistics"], "settle_max_cycles": settle, "settle_tolerance": 0.0}
-    for k, tolerance in enumerate(("pipeline", "tight")):
-        ours = linkwork_scene(local, variant, scene, tolerance, record=cycles)
-        measures[k] = ours.cycle_deviation.sel(measure="rms").values[:, settle : settle + cycles]
-        integ = cfg[TOLERANCE_SETS[tolerance]][integrator_kind(cfg["scenes"][scene])]
+    # our run over the same fixed cycles (no settling rule) at the pipeline setting and the first check setting
+    kind = integrator_kind(cfg["scenes"][scene])
+    for k, integ in enumerate((cfg["integrators"][kind], cfg["check_integrators"][kind][0])):
+        measures[k] = fixed_record(local, variant, scene, integ, settle, cycles)
         settings.append(f"linkwork {integ['method']} rtol {integ['rtol']:.0e}")
     for k, step in enumerate(steps):
         run = exudyn_run(p, float(t[-1]), float(step), check["newton_tolerance"], float(t[1] - t[0]), joints)

@@ -12,20 +12,34 @@ import xarray as xr
 from ...engines.multibody.model import inverse_dynamics, start_angle
 from ...engines.multibody.simulate import integrate
 from . import validity
-from .adapter import TOLERANCE_SETS, integrator_kind, parameters, scene_effects
+from .adapter import integrator_kind, parameters, scene_effects
 
 JOINT_IDS = (1, 2)
 DRY = ("dry_1", "dry_2", "dry_both")
 LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
 COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = ("rocker_acceleration", "crank_torque")
-#: A scene whose recorded per-cycle RMS deviation spreads by less than this fraction of its mean is reported as
-#: periodic to within it (a description of the result; no decision uses it).
-PERIODIC_SPREAD = 0.01
 
 
 #: Attributes of a per-joint variable: NaN where the scene gives the joint no clearance.
 NO_CLEARANCE = {"nan_meaning": "the joint has no clearance in this scene"}
+
+
+#: Attributes of an interval that a record cut short by the cycle cap does not have (stored NaN, read as inf).
+NO_INTERVAL = {"nan_meaning": "no interval: the record reached the cycle cap (its mean may drift)"}
+
+
+def stored(stats: np.ndarray) -> np.ndarray:
+    """Statistics (..., [mean, half-width, standard error, dof, cycles]) as written: inf (no interval; a periodic
+    orbit's degrees of freedom) as NaN, since a result file holds no inf."""
+    return np.where(np.isinf(stats), np.nan, stats)
+
+
+def read(stats: np.ndarray) -> np.ndarray:
+    """Statistics as ``stored`` wrote them, back to inf where an interval or degrees of freedom is missing."""
+    out = np.array(stats, dtype=float)
+    out[..., 1:4] = np.where(np.isnan(out[..., 1:4]) & np.isfinite(out[..., :1]), np.inf, out[..., 1:4])
+    return out
 
 
 #: Attributes of an ideal-joint reaction: NaN in scenes with clearance joints.
@@ -38,7 +52,8 @@ def cycle(p) -> float:
 
 
 def output_times(numerics: Mapping[str, Any], p) -> tuple[np.ndarray, np.ndarray]:
-    """(all output times (s), mask of the recorded cycles): settle cycles, then the recorded ones."""
+    """(all output times (s), mask of the recorded cycles): settle cycles, then the recorded ones (a fixed record:
+    the Exudyn cross-check's)."""
     per = numerics["points_per_cycle"]
     total = numerics["settle_cycles"] + numerics["record_cycles"]
     t = np.arange(total * per + 1) * cycle(p) / per
@@ -52,12 +67,6 @@ def periodic_ideal(p, per: int, n_cycles: int, gravity: bool) -> dict[str, np.nd
     return {k: np.r_[np.tile(v[:-1], n_cycles), v[-1:]] for k, v in one.items()}
 
 
-def record_count(cfg: Mapping[str, Any], tolerance: str) -> int:
-    """Cycles a scene run records after settling: the long statistics at the pipeline tolerance, a short
-    record at the tight one (its numerical-error estimate compares the same cycles)."""
-    return cfg["statistics"]["record_cycles" if tolerance == "pipeline" else "tight_record_cycles"]
-
-
 def cycle_deviations(values: Mapping[str, np.ndarray], ideal: Mapping[str, np.ndarray], per: int) -> np.ndarray:
     """Per cycle, the RMS and the peak of (scene - ideal) of each of QUANTITIES: (measure [rms, peak], quantity, cycle);
     ``values``/``ideal`` sampled at ``per`` points a cycle plus the end point."""
@@ -69,119 +78,215 @@ def cycle_deviations(values: Mapping[str, np.ndarray], ideal: Mapping[str, np.nd
     return np.moveaxis(np.array(out), 1, 0)
 
 
-def scene(cfg: Mapping[str, Any], variant: str, scene: str, tolerance: str = "pipeline", record: int | None = None) -> xr.Dataset:
-    """One scene of one parameter variant: settle until the running mean of the claims' measure is steady
-    (``statistics``), record ``record`` cycles (default: by tolerance), keep every cycle's RMS and peak deviation
-    from the ideal curve, the recorded extremes, and the time series of the first ``numerics.record_cycles``
-    recorded cycles (the paper's figures).  The ideal scene is inverse dynamics over those cycles."""
-    from .statistics import running_change, settle_point
+def contact_frequency(p, penetration: float, joints) -> float:
+    """Linearised contact frequency (Hz) of the dry contact at a penetration (m): sqrt(k / m) / 2 pi with the
+    contact stiffness k = 1.5 K delta^0.5 (eq. 9 differentiated) and m the lightest body a clearance joint
+    connects (the highest frequency the joint can ring at); NaN without penetration."""
+    if not np.isfinite(penetration) or penetration <= 0:
+        return float("nan")
+    bodies = {1: (0, 1), 2: (1, 2)}
+    mass = min(p.masses[b] for j in joints for b in bodies[j])
+    return float(np.sqrt(1.5 * p.hertz_stiffness * np.sqrt(penetration) / mass) / (2 * np.pi))
 
+
+def scene(cfg: Mapping[str, Any], variant: str, scene: str, first_start_only: bool = False, check: bool = True, memory=None) -> xr.Dataset:
+    """One scene of one parameter variant.  The ideal scene is inverse dynamics over ``numerics.record_cycles``
+    cycles.  A scene with clearance joints runs from each start of ``states.starts`` until its state is found
+    (``settling``), keeps per start the Poincaré section and the per-cycle RMS and peak deviation from the ideal
+    curve of every cycle from the start, the state (period or 'not periodic', transient, judged window), the
+    claims' measures on the state with their interval and the numerical error bar from the check integrators, and
+    the time series of the first start's last ``numerics.record_cycles`` cycles (the paper's figures).
+    ``first_start_only``: the first start alone; ``check`` False: no check reruns (numerical error NaN): an
+    input-uncertainty sample's run, which takes the nominal run's error bar; ``memory``: start the first start from
+    this run state instead (a nominal state's ``window_memory``: a sample continues from the nominal state)."""
     p = parameters(cfg, variant, scene)
     joints, effects = scene_effects(cfg, scene)
     numerics = cfg["numerics"]
     per, shown = numerics["points_per_cycle"], numerics["record_cycles"]
-    stat = cfg["statistics"] if joints else {"settle_window_cycles": 1, "settle_tolerance": 0.0, "settle_max_cycles": 0}
-    record = (record_count(cfg, tolerance) if record is None else record) if joints else shown
-    n_cycles = stat["settle_max_cycles"] + record
-    t = np.arange(n_cycles * per + 1) * cycle(p) / per
-    ideal = periodic_ideal(p, per, n_cycles, "gravity" in effects)
-    integ: Mapping[str, Any] = {}
-    if not joints:  # kinematics and inverse dynamics, no integration
-        diags = None
-        meta = {"integrator": "none (inverse dynamics)", "steps": 0, "rejected": 0, "counts": [0, 0, 0, 0]}
-        deviations = np.zeros((2, len(QUANTITIES), n_cycles))
-        settled, ok, change = 0, True, np.zeros(n_cycles - 1)
-    else:
-        integ = cfg[TOLERANCE_SETS[tolerance]][integrator_kind(cfg["scenes"][scene])]
-        _, diags, steps, rejected, counts, _ = integrate(p, joints, effects, t, integ)
-        meta = {"integrator": integ["method"], "steps": steps, "rejected": rejected, "counts": counts.tolist()}
-        deviations = cycle_deviations({"rocker_acceleration": diags[:, 0], "crank_torque": diags[:, 1]}, ideal, per)
-        settled, ok = settle_point(deviations[0], stat["settle_window_cycles"], stat["settle_tolerance"], stat["settle_max_cycles"])
-        whole = diags[:-1, 0].reshape(-1, per)
-        change = np.sqrt(np.mean((whole[1:] - whole[:-1]) ** 2, axis=1)) / np.sqrt(np.mean(whole[-1] ** 2))
-    start = settled * per
-    window = slice(start, start + shown * per + 1)
-    t_fig = t[window]
-    if diags is None:
-        per_joint = np.full((2, 6, t_fig.size), np.nan)
-        series = {"acc": ideal["rocker_acceleration"][window], "torque": ideal["crank_torque"][window], "energy": ideal["energy"][window],
-                  "drift": np.zeros(t_fig.size), "force_A": ideal["force_A"][window], "force_B": ideal["force_B"][window]}
-        extremes = np.full((5, 2), np.nan)
-        max_torque = float(np.abs(ideal["crank_torque"]).max())
-    else:
-        d = diags[window]
-        rec = diags[start:]
-        per_joint = np.full((2, 6, t_fig.size), np.nan)
-        extremes = np.full((5, 2), np.nan)  # penetration, eccentricity, contact force, |film radial|, |film tangential| (recorded cycles)
-        for k, j in enumerate(joints):
-            per_joint[j - 1] = d[:, 4 + 6 * k : 10 + 6 * k].T
-            r = rec[:, 4 + 6 * k : 10 + 6 * k]
-            extremes[:, j - 1] = [np.nanmax(r[:, 1]), np.nanmax(r[:, 0]), np.nanmax(r[:, 3]), np.nanmax(np.abs(r[:, 4])), np.nanmax(np.abs(r[:, 5]))]
-        nan = np.full(t_fig.size, np.nan)
-        series = {"acc": d[:, 0], "torque": d[:, 1], "energy": d[:, 2], "drift": d[:, 3], "force_A": nan, "force_B": nan}
-        max_torque = float(np.abs(rec[:, 1]).max())
-    theta = np.degrees(start_angle(p) + p.crank_speed * t_fig)
-    dims, jd = ("time",), ("joint", "time")
-    pj = per_joint
-    rc = running_change(deviations[0], stat["settle_window_cycles"])
+    if not joints:
+        return _ideal_scene(p, variant, scene, effects, per, shown)
+    return _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_start_only, check, memory)
+
+
+def _ideal_scene(p, variant: str, scene: str, effects, per: int, shown: int) -> xr.Dataset:
+    """The ideal scene: kinematics and inverse dynamics over ``shown`` cycles, no integration."""
+    t = np.arange(shown * per + 1) * cycle(p) / per
+    ideal = periodic_ideal(p, per, shown, "gravity" in effects)
+    theta = np.degrees(start_angle(p) + p.crank_speed * t)
+    dims = ("time",)
     ds = xr.Dataset(
         {
             "crank_angle": (dims, theta, {"units": "deg", "long_name": "crank angle (unwrapped)"}),
-            "rocker_acceleration": (dims, series["acc"], {"units": "rad s-2", "long_name": "rocker angular acceleration"}),
-            "crank_torque": (dims, series["torque"], {"units": "N m", "long_name": "crank driving torque"}),
-            "ideal_rocker_acceleration": (dims, ideal["rocker_acceleration"][window], {"units": "rad s-2", "long_name": "rocker angular acceleration of the ideal linkage at the same instants"}),
-            "ideal_crank_torque": (dims, ideal["crank_torque"][window], {"units": "N m", "long_name": "crank driving torque of the ideal linkage at the same instants"}),
-            "energy": (dims, series["energy"], {"units": "J", "long_name": "mechanical energy (kinetic + gravity + contact)"}),
-            "constraint_drift": (dims, series["drift"], {"units": "m", "long_name": "|Phi| of the ideal constraints"}),
-            "eccentricity": (jd, pj[:, 0], {"units": "m", "long_name": "journal eccentricity |e|", **NO_CLEARANCE}),
-            "penetration": (jd, pj[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)", **NO_CLEARANCE}),
-            "contact_force": (jd, pj[:, 3], {"units": "N", "long_name": "dry normal contact force", **NO_CLEARANCE}),
-            "film_radial_force": (jd, pj[:, 4], {"units": "N", "long_name": "film force along e (on the journal)", **NO_CLEARANCE}),
-            "film_tangential_force": (jd, pj[:, 5], {"units": "N", "long_name": "film force across e (on the journal)", **NO_CLEARANCE}),
-            "ideal_joint_force_A": (dims, series["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A), ideal scene only", **NOT_IDEAL}),
-            "ideal_joint_force_B": (dims, series["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B), ideal scene only", **NOT_IDEAL}),
-            "recorded_max_penetration": (("joint",), extremes[0], {"units": "m", "long_name": "largest |e| - c over the recorded cycles", **NO_CLEARANCE}),
-            "recorded_max_eccentricity": (("joint",), extremes[1], {"units": "m", "long_name": "largest |e| over the recorded cycles", **NO_CLEARANCE}),
-            "recorded_max_contact_force": (("joint",), extremes[2], {"units": "N", "long_name": "largest dry contact force over the recorded cycles", **NO_CLEARANCE}),
-            "recorded_max_film_force": (("joint",), extremes[3], {"units": "N", "long_name": "largest |film force along e| over the recorded cycles", **NO_CLEARANCE}),
-            "recorded_max_abs_torque": ((), max_torque, {"units": "N m", "long_name": "largest |crank driving torque| over the recorded cycles"}),
-            "cycle_deviation": (("measure", "quantity", "run_cycle"), deviations, {"units": "SI of the quantity", "long_name": "RMS and peak of (scene - ideal) over each cycle from the start"}),
-            "running_change": (("quantity", "run_cycle"), rc, {"units": "1", "long_name": "settling criterion: change of the running mean of the RMS deviation over the window", "nan_meaning": "fewer than two windows of cycles so far"}),
-            "cycle_change": ("cycle_pair", change, {"units": "1", "long_name": "RMS change of the rocker acceleration from one cycle to the next / RMS of the last cycle"}),
+            "rocker_acceleration": (dims, ideal["rocker_acceleration"], {"units": "rad s-2", "long_name": "rocker angular acceleration"}),
+            "crank_torque": (dims, ideal["crank_torque"], {"units": "N m", "long_name": "crank driving torque"}),
+            "energy": (dims, ideal["energy"], {"units": "J", "long_name": "mechanical energy (kinetic + gravity)"}),
+            "ideal_joint_force_A": (dims, ideal["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A)"}),
+            "ideal_joint_force_B": (dims, ideal["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B)"}),
+            "recorded_max_abs_torque": ((), float(np.abs(ideal["crank_torque"]).max()), {"units": "N m", "long_name": "largest |crank driving torque|"}),
         },
-        coords={
-            "cycle_pair": ("cycle_pair", np.arange(1, change.size + 1), {"units": "1", "long_name": "cycle k vs cycle k + 1 (from the start)"}),
-            "run_cycle": ("run_cycle", np.arange(1, deviations.shape[-1] + 1), {"units": "1", "long_name": "cycle from the start"}),
-            "measure": ("measure", np.array(["rms", "peak"], dtype=object), {"units": "1", "long_name": "deviation measure"}),
-            "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
-            "time": ("time", t_fig - t_fig[0], {"units": "s", "long_name": "time from the start of the recorded cycles"}),
-            "joint": ("joint", np.array(JOINT_IDS), {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
-        },
+        coords={"time": ("time", t, {"units": "s", "long_name": "time from the dead point"})},
     )
-    cap = 1.0 - p.e0 / p.clearance if "lubrication" in effects else None
-    ds.attrs.update(
-        title=f"Four-bar with clearance joints: {variant}, {scene}", scene=scene, variant=variant, tolerance_set=tolerance,
-        effects=",".join(effects), clearance_joints=",".join(map(str, joints)),
-        integrator=meta["integrator"], steps=meta["steps"], rejected_steps=meta["rejected"],
-        evaluations_contact=meta["counts"][0], evaluations_friction=meta["counts"][1],
-        evaluations_lubrication=meta["counts"][2], evaluations_gravity=meta["counts"][3],
-        crank_mass_kg=p.masses[0], settle_cycles=int(settled), settled=int(ok), record_cycles=int(n_cycles - settled) if joints else 0, shown_cycles=shown,
-        settle_criterion="none (inverse dynamics)" if not joints else (f"running mean of the per-cycle RMS deviation (both quantities) over {stat['settle_window_cycles']} cycles changes by at most "
-                          f"{stat['settle_tolerance']:g} of the mean over the {stat['settle_window_cycles']} cycles before, by cycle {stat['settle_max_cycles']} at the latest"),
-        **({"hertz_stiffness": p.hertz_stiffness, "clearance": p.clearance} if joints else {}),
-        **({"film_eccentricity_cap": cap} if cap is not None else {}),
-        **(validity.attributes(diags[start:, [5 + 6 * k for k in range(len(joints))]].T, diags[start:, [4 + 6 * k for k in range(len(joints))]].T,
-                               p.clearance, cap) if joints else {"validity_warnings": ""}),
-        **{f"integrator_{k}": v for k, v in integ.items()},
-    )
+    ds.attrs.update(title=f"Four-bar with ideal joints: {variant}", scene=scene, variant=variant, effects=",".join(effects), clearance_joints="",
+                    integrator="none (inverse dynamics)", steps=0, crank_mass_kg=p.masses[0], shown_cycles=shown)
     return ds
 
 
-def deviation_measures(run: xr.Dataset, ideal: xr.Dataset, variable: str, cycles: int) -> dict[str, np.ndarray]:
-    """RMS and peak of (scene - ideal) per recorded cycle (SI units of the variable)."""
-    d = (run[variable] - ideal[variable]).values
-    parts = np.array_split(d[:-1], cycles)
-    return {"rms": np.array([np.sqrt(np.mean(x**2)) for x in parts]), "peak": np.array([np.abs(x).max() for x in parts])}
+def _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_start_only=False, check=True, memory=None) -> xr.Dataset:
+    from .settling import EXTREMES, CycleRunner, check_state, judged_statistics, settle_start, start_state
+
+    st, stats = cfg["states"], cfg["statistics"]
+    kind = integrator_kind(cfg["scenes"][scene])
+    integ, checks = cfg["integrators"][kind], (cfg["check_integrators"][kind] if check else [])
+    ideal_cycle = inverse_dynamics(p, np.arange(per + 1) * cycle(p) / per, "gravity" in effects)
+    starts = st["starts"][:1] if first_start_only else st["starts"]
+
+    def make_runner(integrator, memory=None, y0=None):
+        return CycleRunner(p, joints, effects, integrator, ideal_cycle, per, shown, y0=y0, memory=memory)
+
+    found, runners, checked = [], [], []
+    for k, start in enumerate(starts):
+        runner = make_runner(integ, memory=memory) if memory is not None and k == 0 else make_runner(integ, y0=start_state(p, joints, start))
+        f = settle_start(runner, st, stats["confidence"])
+        found.append(f)
+        runners.append(runner)
+        checked.append(check_state(make_runner, f, runner, checks, st))
+    return _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, EXTREMES, judged_statistics)
+
+
+def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, extremes_names, judged_statistics):
+    """The scene's result Dataset (see ``scene``)."""
+    st, stats = cfg["states"], cfg["statistics"]
+    n_max = max(f["points"].shape[0] for f in found)
+    n_comp = found[0]["points"].shape[1]
+    ns = len(starts)
+    section = np.full((ns, n_max, n_comp), np.nan)
+    per_cycle = np.full((ns, 2, len(QUANTITIES), n_max), np.nan)
+    judged = np.full((ns, 2, len(QUANTITIES), 5), np.nan)
+    window_ext = np.full((ns, len(extremes_names), 2), np.nan)
+    delta = np.full((ns, len(checks), 2, len(QUANTITIES)), np.nan)
+    kept, check_period = np.full((ns, len(checks)), np.nan), np.zeros((ns, len(checks)), dtype=int)
+    for i, (f, r, c) in enumerate(zip(found, runners, checked, strict=True)):
+        n = f["points"].shape[0]
+        section[i, :n] = f["points"]
+        per_cycle[i, ..., :n] = f["measures"].T.reshape(2, len(QUANTITIES), n)
+        judged[i] = stored(judged_statistics(f["measures"], f, stats["batch_cycles"], stats["confidence"])).reshape(2, len(QUANTITIES), 5)
+        first, stop = f["window"]
+        ext = np.array(r.extremes)[first:stop]  # cycle, joint, extreme
+        for k, j in enumerate(joints):
+            window_ext[i, :, j - 1] = np.nanmax(ext[:, k, :], axis=0)
+        delta[i] = c["delta"].reshape(len(checks), 2, len(QUANTITIES))
+        kept[i], check_period[i] = c["kept"], c["period"]
+    numerical = np.full(delta.shape[:1] + delta.shape[2:], np.nan)  # no check ran (or every one failed): no error bar
+    if len(checks):
+        largest = np.max(np.where(np.isfinite(delta), np.abs(delta), -np.inf), axis=1)
+        numerical = np.where(np.isfinite(largest), largest, np.nan)
+    # the first start's last cycles: the figures' time series
+    t = np.concatenate([runners[0].last[0][0]] + [x[0][1:] for x in runners[0].last[1:]])
+    d = np.concatenate([runners[0].last[0][1]] + [x[1][1:] for x in runners[0].last[1:]])
+    ideal = {k: np.r_[np.tile(v[:-1], len(runners[0].last)), v[-1:]] for k, v in ideal_cycle.items()}
+    per_joint = np.full((2, 6, t.size), np.nan)
+    for k, j in enumerate(joints):
+        per_joint[j - 1] = d[:, 4 + 6 * k : 10 + 6 * k].T
+    fc = np.array([contact_frequency(p, window_ext[0, 0, j - 1], joints) if j in joints else np.nan for j in JOINT_IDS])
+    cap = 1.0 - p.e0 / p.clearance if "lubrication" in effects else None
+    labels = [s["label"] for s in starts]
+    comps = [f"joint {j} {name}" for j in joints for name in ("e_x / c", "e_y / c", "e_x' / (c omega)", "e_y' / (c omega)")]
+    status = np.array([f["status"] for f in found], dtype=object)
+    dims, jd, sd = ("time",), ("joint", "time"), ("start", "measure", "quantity")
+    ds = xr.Dataset(
+        {
+            "crank_angle": (dims, np.degrees(start_angle(p) + p.crank_speed * t), {"units": "deg", "long_name": "crank angle (unwrapped)"}),
+            "rocker_acceleration": (dims, d[:, 0], {"units": "rad s-2", "long_name": "rocker angular acceleration"}),
+            "crank_torque": (dims, d[:, 1], {"units": "N m", "long_name": "crank driving torque"}),
+            "ideal_rocker_acceleration": (dims, ideal["rocker_acceleration"], {"units": "rad s-2", "long_name": "rocker angular acceleration of the ideal linkage at the same instants"}),
+            "ideal_crank_torque": (dims, ideal["crank_torque"], {"units": "N m", "long_name": "crank driving torque of the ideal linkage at the same instants"}),
+            "energy": (dims, d[:, 2], {"units": "J", "long_name": "mechanical energy (kinetic + gravity + contact)"}),
+            "constraint_drift": (dims, d[:, 3], {"units": "m", "long_name": "|Phi| of the ideal constraints"}),
+            "eccentricity": (jd, per_joint[:, 0], {"units": "m", "long_name": "journal eccentricity |e|", **NO_CLEARANCE}),
+            "penetration": (jd, per_joint[:, 1], {"units": "m", "long_name": "penetration |e| - c (> 0 in contact)", **NO_CLEARANCE}),
+            "contact_force": (jd, per_joint[:, 3], {"units": "N", "long_name": "dry normal contact force", **NO_CLEARANCE}),
+            "film_radial_force": (jd, per_joint[:, 4], {"units": "N", "long_name": "film force along e (on the journal)", **NO_CLEARANCE}),
+            "film_tangential_force": (jd, per_joint[:, 5], {"units": "N", "long_name": "film force across e (on the journal)", **NO_CLEARANCE}),
+            "recorded_max_abs_torque": ((), float(np.abs(d[:, 1]).max()), {"units": "N m", "long_name": "largest |crank driving torque| over the cycles shown (first start)"}),
+            "section": (("start", "run_cycle", "component"), section, {"units": "1", "long_name": "Poincaré section at the dead point, once per crank turn", "nan_meaning": "the start's record is shorter"}),
+            "cycle_deviation": (("start", "measure", "quantity", "run_cycle"), per_cycle, {"units": "SI of the quantity", "long_name": "RMS and peak of (scene - ideal) over each cycle from the start",
+                                                                                      "nan_meaning": "the start's record is shorter"}),
+            "state_status": ("start", status, {"units": "1", "long_name": "how the state was found: periodic, stationary, or cycle cap reached"}),
+            "state_period": ("start", np.array([f["period"] for f in found]), {"units": "1", "long_name": "period of the settled state in crank turns (0: not periodic)"}),
+            "state_transient": ("start", np.array([f["transient"] for f in found]), {"units": "1", "long_name": "cycles before the state (the transient, never judged)"}),
+            "window_first": ("start", np.array([f["window"][0] for f in found]), {"units": "1", "long_name": "first judged cycle (0-based, from the start)"}),
+            "window_stop": ("start", np.array([f["window"][1] for f in found]), {"units": "1", "long_name": "end of the judged cycles (exclusive)"}),
+            "record_cycles": ("start", np.array([f["points"].shape[0] for f in found]), {"units": "1", "long_name": "cycles run from the start"}),
+            "state_change": ("start", np.array([f["change"] for f in found]), {"units": "1", "long_name": "largest relative change of a measure between the record's middle and last third (not periodic)"}),
+            "judged_mean": (sd, judged[..., 0], {"units": "SI of the quantity", "long_name": "claims' measure on the state: mean over one period, or over the judged window"}),
+            "judged_half_width": (sd, judged[..., 1], {"units": "SI of the quantity", "long_name": f"{stats['confidence']:.0%} half-width of the mean (0 on a periodic orbit)", **NO_INTERVAL}),
+            "judged_standard_error": (sd, judged[..., 2], {"units": "SI of the quantity", "long_name": "standard error of the mean (batch means; 0 on a periodic orbit)", **NO_INTERVAL}),
+            "judged_dof": (sd, judged[..., 3], {"units": "1", "long_name": "degrees of freedom of the interval", "nan_meaning": "a periodic orbit (exact: infinitely many) or no interval"}),
+            "judged_cycles": (sd, judged[..., 4], {"units": "1", "long_name": "cycles the measure is taken over"}),
+            "check_delta": (("start", "check", "measure", "quantity"), delta, {"units": "SI of the quantity", "long_name": "measure at the check integrator - measure at the pipeline's, on the same state",
+                                                                  "nan_meaning": "the check integrator failed (gave up on a step)"}),
+            "check_kept_state": (("start", "check"), kept, {"units": "1", "long_name": "1 if the check run stays on the pipeline's periodic orbit (its period, within the state tolerance)",
+                                                          "nan_meaning": "the state is not periodic: not testable"}),
+            "check_period": (("start", "check"), check_period, {"units": "1", "long_name": "period found in the check run (0: none)"}),
+            "window_memory": (("start", "memory"), np.array([r.memories[f["window"][0]] for f, r in zip(found, runners, strict=True)]),
+                              {"units": "SI (t in s, then the state y, latched impact velocities, contact flags)", "long_name": "the run's whole state at the start of the judged window (restartable)"}),
+            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators",
+                                                "nan_meaning": "no check ran (an input-uncertainty sample's run) or every check failed"}),
+            "window_max_penetration": (("start", "joint"), window_ext[:, 0], {"units": "m", "long_name": "largest |e| - c over the judged cycles", **NO_CLEARANCE}),
+            "window_max_eccentricity": (("start", "joint"), window_ext[:, 1], {"units": "m", "long_name": "largest |e| over the judged cycles", **NO_CLEARANCE}),
+            "window_max_contact_force": (("start", "joint"), window_ext[:, 2], {"units": "N", "long_name": "largest dry contact force over the judged cycles", **NO_CLEARANCE}),
+            "window_max_film_force": (("start", "joint"), window_ext[:, 3], {"units": "N", "long_name": "largest |film force along e| over the judged cycles", **NO_CLEARANCE}),
+            "contact_frequency": ("joint", fc, {"units": "Hz", "long_name": "linearised contact frequency at the first start's deepest penetration (lightest connected body)",
+                                                "nan_meaning": "no clearance or no contact at this joint"}),
+            "start_eccentricity": (("start", "axis"), np.array([s["eccentricity"] for s in starts], dtype=float), {"units": "1", "long_name": "initial eccentricity / c"}),
+            "start_rate": (("start", "axis"), np.array([s["rate"] for s in starts], dtype=float), {"units": "1", "long_name": "initial eccentricity rate / (c omega)"}),
+        },
+        coords={
+            "start": ("start", np.array(labels, dtype=object), {"units": "1", "long_name": "initial state of the journals"}),
+            "check": ("check", np.array([f"rtol {c['rtol']:g}" for c in checks], dtype=object), {"units": "1", "long_name": "check integrator setting"}),
+            "component": ("component", np.array(comps, dtype=object), {"units": "1", "long_name": "section component"}),
+            "axis": ("axis", np.array(["x", "y"], dtype=object), {"units": "1", "long_name": "fixed-frame axis"}),
+            "run_cycle": ("run_cycle", np.arange(n_max), {"units": "1", "long_name": "cycle from the start (0-based)"}),
+            "measure": ("measure", np.array(["rms", "peak"], dtype=object), {"units": "1", "long_name": "deviation measure"}),
+            "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
+            "time": ("time", t - t[0], {"units": "s", "long_name": "time from the start of the cycles shown"}),
+            "joint": ("joint", np.array(JOINT_IDS), {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
+        },
+    )
+    steps = sum(r.run.steps for r in runners)
+    counts = sum(r.run.counts for r in runners)
+    sampling = per / cycle(p)
+    ds.attrs.update(
+        title=f"Four-bar with clearance joints: {variant}, {scene}", scene=scene, variant=variant,
+        effects=",".join(effects), clearance_joints=",".join(map(str, joints)),
+        integrator=integ["method"], steps=int(steps), rejected_steps=int(sum(r.run.rejected for r in runners)),
+        evaluations_contact=int(counts[0]), evaluations_friction=int(counts[1]), evaluations_lubrication=int(counts[2]), evaluations_gravity=int(counts[3]),
+        crank_mass_kg=p.masses[0], shown_cycles=shown, hertz_stiffness=p.hertz_stiffness, clearance=p.clearance,
+        sampling_rate_hz=sampling, sampling_over_contact_frequency=float(sampling / np.nanmax(fc)) if np.isfinite(fc).any() else float("nan"),
+        settle_rule=(f"chunks of {cfg['states']['chunk_cycles']} cycles until the section repeats with a period up to {st['max_period']} to {st['section_tolerance']:g} "
+                     f"(in c and c omega) over {st['periods']} periods, or the per-cycle measures' last third agrees with their middle third "
+                     f"({stats['confidence']:.0%} Welch interval) with at least {st['min_cycles']} cycles in the last two thirds; at most {st['max_cycles']} cycles"),
+        **({"film_eccentricity_cap": cap} if cap is not None else {}),
+        **validity.attributes(window_ext[0, 0][np.array(joints) - 1][:, None], window_ext[0, 1][np.array(joints) - 1][:, None], p.clearance, cap),
+        **{f"integrator_{k}": v for k, v in integ.items()},
+    )
+    if cap is not None:  # the time beyond the cap over the shown cycles of the first start
+        ds.attrs["validity_beyond_film_cap_fraction"] = validity.beyond_cap_fraction(per_joint[np.array(joints) - 1, 0], p.clearance, cap)
+    return ds
+
+
+def fixed_record(cfg: Mapping[str, Any], variant: str, scene: str, integrator: Mapping[str, Any], settle: int, record: int) -> np.ndarray:
+    """The per-cycle RMS deviation (quantity, cycle) of ``record`` cycles after ``settle`` discarded ones from the
+    centred start (a fixed record, no settling rule: the Exudyn cross-check compares the same cycles)."""
+    p = parameters(cfg, variant, scene)
+    joints, effects = scene_effects(cfg, scene)
+    per = cfg["numerics"]["points_per_cycle"]
+    n = settle + record
+    t = np.arange(n * per + 1) * cycle(p) / per
+    _, diags, *_ = integrate(p, joints, effects, t, integrator)
+    ideal = periodic_ideal(p, per, n, "gravity" in effects)
+    dev = cycle_deviations({"rocker_acceleration": diags[:, 0], "crank_torque": diags[:, 1]}, ideal, per)
+    return dev[0][:, settle:]
 
 
 def _by_key(runs: Sequence[xr.Dataset]) -> dict[tuple[str, str], xr.Dataset]:
@@ -251,25 +356,11 @@ def claim_reason(reasons: Sequence[str]) -> str:
     return "; ".join(dict.fromkeys(r for r in reasons if r))
 
 
-def recorded(run: xr.Dataset) -> np.ndarray:
-    """The per-cycle deviations of a scene's recorded cycles (after settling): (measure, quantity, cycle)."""
-    return run.cycle_deviation.values[..., int(run.attrs["settle_cycles"]):]
-
-
-def numerical_error(run: xr.Dataset, tight: xr.Dataset) -> np.ndarray:
-    """|mean over the common recorded cycles of (tight - pipeline)| per measure and quantity: the same cycles
-    (from the pipeline run's settle point) at the two tolerances; in a scene that never repeats it also holds
-    the divergence of the impact sequence, so it errs on the large side."""
-    k = int(run.attrs["settle_cycles"])
-    n = min(run.cycle_deviation.shape[-1], tight.cycle_deviation.shape[-1])
-    return np.abs(np.mean(tight.cycle_deviation.values[..., k:n] - run.cycle_deviation.values[..., k:n], axis=-1))
-
-
 def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[str], scenes: list[str]) -> dict[str, Any]:
     """Per variant and scene: cost, settling, drift, effect counters and joint extremes (what the report tabulates)."""
     shape, jshape = (len(variants), len(scenes)), (len(variants), len(scenes), len(JOINT_IDS))
-    out = {k: np.full(shape, np.nan) for k in ("steps", "first_change", "last_change", "max_drift", "n_contact", "n_friction", "n_lubrication", "ideal_force_A", "ideal_force_B", "film_cap", "hertz_stiffness",
-                                             "settle_cycles", "settled", "recorded_cycles", "max_abs_torque", "beyond_film_cap_fraction")}
+    out = {k: np.full(shape, np.nan) for k in ("steps", "max_drift", "n_contact", "n_friction", "n_lubrication", "ideal_force_A", "ideal_force_B", "film_cap", "hertz_stiffness",
+                                             "max_abs_torque", "beyond_film_cap_fraction", "sampling_over_contact_frequency")}
     out["integrator"] = np.full(shape, "", dtype=object)
     out["contact_label"] = np.full(jshape, "", dtype=object)
     out.update({k: np.full(jshape, np.nan) for k in ("max_penetration_ratio", "max_eccentricity_ratio", "max_contact_force", "max_film_force", "contact_value")})
@@ -288,33 +379,27 @@ def _scene_summary(runs: Mapping[tuple[str, str], xr.Dataset], variants: list[st
             out["beyond_film_cap_fraction"][v, s] = ds.attrs.get("validity_beyond_film_cap_fraction", np.nan)
             out["hertz_stiffness"][v, s] = ds.attrs["hertz_stiffness"]
             out["steps"][v, s] = ds.attrs["steps"]
-            out["first_change"][v, s], out["last_change"][v, s] = float(ds.cycle_change[0]), float(ds.cycle_change[-1])
             out["max_drift"][v, s] = float(ds.constraint_drift.max())
+            out["sampling_over_contact_frequency"][v, s] = ds.attrs["sampling_over_contact_frequency"]
             for key, attr in (("n_contact", "contact"), ("n_friction", "friction"), ("n_lubrication", "lubrication")):
                 out[key][v, s] = ds.attrs[f"evaluations_{attr}"]
-            out["settle_cycles"][v, s], out["settled"][v, s] = ds.attrs["settle_cycles"], ds.attrs["settled"]
-            out["recorded_cycles"][v, s] = ds.attrs["record_cycles"]
             c = ds.attrs["clearance"]
             for j, jid in enumerate(JOINT_IDS):
-                pen = float(ds.recorded_max_penetration.sel(joint=jid))
+                pen = float(ds.window_max_penetration.sel(joint=jid)[0])
                 if np.isfinite(pen):
                     out["max_penetration_ratio"][v, s, j] = pen / c
                     out["contact_label"][v, s, j], out["contact_value"][v, s, j] = validity.contact_extent(pen / c)
-                    out["max_eccentricity_ratio"][v, s, j] = float(ds.recorded_max_eccentricity.sel(joint=jid)) / c
-                    out["max_contact_force"][v, s, j] = float(ds.recorded_max_contact_force.sel(joint=jid))
-                    out["max_film_force"][v, s, j] = float(ds.recorded_max_film_force.sel(joint=jid))
+                    out["max_eccentricity_ratio"][v, s, j] = float(ds.window_max_eccentricity.sel(joint=jid)[0]) / c
+                    out["max_contact_force"][v, s, j] = float(ds.window_max_contact_force.sel(joint=jid)[0])
+                    out["max_film_force"][v, s, j] = float(ds.window_max_film_force.sel(joint=jid)[0])
     return out
 
 
 SUMMARY_ATTRS = {
     "steps": ("1", "accepted integrator steps"),
-    "first_change": ("1", "cycle-to-cycle change of the rocker acceleration, first cycle pair"),
-    "last_change": ("1", "cycle-to-cycle change of the rocker acceleration, last cycle pair"),
-    "max_drift": ("m", "largest constraint drift |Phi| over the cycles shown"),
-    "settle_cycles": ("1", "cycles discarded before recording (the settling criterion, see the scene's settle_criterion)"),
-    "settled": ("1", "1 if the settling criterion held by the latest allowed cycle"),
-    "recorded_cycles": ("1", "cycles recorded after settling"),
-    "max_abs_torque": ("N m", "largest |crank driving torque| over the recorded cycles"),
+    "max_drift": ("m", "largest constraint drift |Phi| over the cycles shown (first start)"),
+    "sampling_over_contact_frequency": ("1", "output sampling rate / linearised contact frequency (peaks need at least 4)"),
+    "max_abs_torque": ("N m", "largest |crank driving torque| over the cycles shown (first start)"),
     "n_contact": ("1", "contact-force evaluations"),
     "n_friction": ("1", "friction evaluations"),
     "n_lubrication": ("1", "film-force evaluations"),
@@ -333,30 +418,6 @@ SUMMARY_ATTRS = {
 }
 
 
-def scene_stationarity(run: xr.Dataset, tolerance: float, confidence: float) -> tuple[bool, np.ndarray]:
-    """(stationary?, relative change between the record's halves per quantity) of the RMS deviation of a scene's
-    recorded cycles (the measure the settling criterion uses); see ``statistics.stationary``."""
-    from .statistics import stationary
-
-    return stationary(recorded(run)[0], tolerance, confidence)
-
-
-def scene_statistics(run: xr.Dataset, batch: int, confidence: float, steady: bool = True) -> np.ndarray:
-    """(measure, quantity, [mean, half-width, standard error, degrees of freedom, lag-1 autocorrelation, cycles])
-    of a scene's recorded per-cycle deviations; an unsettled scene, or one whose record is not stationary
-    (``steady`` False), gets an infinite half-width (its mean drifts)."""
-    from .statistics import lag1_autocorrelation, mean_ci
-
-    values = recorded(run)
-    out = np.empty(values.shape[:2] + (6,))
-    for idx in np.ndindex(values.shape[:2]):
-        mean, half, se, dof = mean_ci(values[idx], batch, confidence)
-        if not run.attrs["settled"] or not steady:
-            half, se = float("inf"), float("inf")
-        out[idx] = (mean, half, se, dof, lag1_autocorrelation(values[idx]), values.shape[-1])
-    return out
-
-
 def stats_for_judging(stats: np.ndarray, num: np.ndarray) -> dict[tuple[str, str, str], tuple[float, float, float, float]]:
     """(measure, quantity, scene) -> (mean, standard error, degrees of freedom, numerical error) from arrays
     (measure, quantity, scene, statistic) and (measure, quantity, scene)."""
@@ -364,98 +425,134 @@ def stats_for_judging(stats: np.ndarray, num: np.ndarray) -> dict[tuple[str, str
             for i, m in enumerate(("rms", "peak")) for j, q in enumerate(QUANTITIES) for k, s in enumerate(COMPARED)}
 
 
-STATISTICS = ("mean", "half_width", "standard_error", "dof", "lag1_autocorrelation", "cycles")
+def start_statistics(run: xr.Dataset, k: int) -> tuple[np.ndarray, np.ndarray, list[str]]:
+    """Start ``k`` of a scene run: ((measure, quantity, [mean, half-width, standard error, dof, cycles]), the numerical
+    error (measure, quantity), why its interval is missing or its state in doubt ('' if neither))."""
+    stats = read(np.stack([run[v].values[k] for v in ("judged_mean", "judged_half_width", "judged_standard_error", "judged_dof", "judged_cycles")], axis=-1))
+    num = run.numerical_error.values[k]
+    status = str(run.state_status.values[k])
+    doubt = []
+    if status not in ("periodic", "stationary"):
+        doubt.append("not settled by the cycle cap")
+    kept = run.check_kept_state.values[k]
+    if np.any(kept == 0):
+        doubt.append("the state changes with the tolerance")
+    if doubt:
+        stats = stats.copy()
+        stats[..., 1:3] = np.inf
+    return stats, num, doubt
 
 
-def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset], tight: Sequence[xr.Dataset]) -> xr.Dataset:
-    """The three claims per variant, judged on the mean over the recorded cycles of the RMS and peak deviation
-    from the ideal curve, with a confidence interval and the numerical error (pipeline against tight tolerance);
-    plus each scene's cost, settling, drift and joint extremes."""
-    from .statistics import CI_METHOD, DECISION_RULE
+def judge_start(runs: Mapping[str, xr.Dataset], k: int, ratio: float, confidence: float) -> tuple[dict[str, Any], np.ndarray, np.ndarray]:
+    """The claims on start ``k`` of every compared scene (``runs``: scene -> run): ``judge``'s verdict, with the
+    reason of an undetermined ordering naming a scene whose state is in doubt; and the stacked statistics
+    (measure, quantity, scene, statistic) and numerical errors (measure, quantity, scene)."""
+    stats = np.full((2, len(QUANTITIES), len(COMPARED), 5), np.nan)
+    num = np.full((2, len(QUANTITIES), len(COMPARED)), np.nan)
+    doubts = {}
+    for s, name in enumerate(COMPARED):
+        stats[:, :, s], num[:, :, s], doubt = start_statistics(runs[name], k)
+        if doubt:
+            doubts[name] = "; ".join(doubt)
+    verdict = judge(stats_for_judging(stats, num), ratio, confidence)
+    if doubts:
+        for row in verdict["rows"]:
+            if row["reason"].startswith("statistics"):
+                row["reason"] = "state: " + ", ".join(f"{n} ({doubts[n]})" for n in doubts if n in row["label"])
+        verdict["reason"] = [claim_reason([r["reason"] for r in verdict["rows"] if r["claim"] == c]) if o == -1 else ""
+                             for c, o in zip(CLAIMS, verdict["outcome"], strict=True)]
+    return verdict, stats, num
+
+
+def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The three claims per variant and start, judged on the state each scene settles into from that start: the
+    claims' measures on the state (one period, or batch means over the judged window), their interval, and the
+    numerical error bar from the check integrators on the same state; plus each scene's cost, state and extremes.
+    The variables without a start dimension are the first start's (the nominal initial state)."""
+    from .statistics import DECISION_RULE
 
     st = cfg["statistics"]
-    batch, confidence, ratio = st["batch_cycles"], st["confidence"], cfg["claims"]["close_to_ideal_ratio"]
-    stationarity_tolerance = st["stationarity_tolerance"]
+    confidence, ratio = st["confidence"], cfg["claims"]["close_to_ideal_ratio"]
     variants = list(cfg["variants"])
-    runs, tight_runs = _by_key(scenes), _by_key(tight)
-    n_max = max(recorded(runs[(v, s)]).shape[-1] for v in variants for s in COMPARED)
-    per_cycle = np.full((len(variants), 2, len(QUANTITIES), len(COMPARED), n_max), np.nan)  # variant, measure, quantity, scene, cycle
-    stats = np.full((len(variants), 2, len(QUANTITIES), len(COMPARED), len(STATISTICS)), np.nan)
-    num = np.full((len(variants), 2, len(QUANTITIES), len(COMPARED)), np.nan)
+    runs = _by_key(scenes)
+    starts = [str(x) for x in runs[(variants[0], COMPARED[0])].start.values]
     labels = [c[1] for c in comparisons(ratio)]
-    comp = np.full((len(variants), len(labels), 4), np.nan)  # difference, statistical, numerical, outcome
-    holds, decided = np.zeros((len(variants), len(CLAIMS))), np.zeros((len(variants), len(CLAIMS)))
-    steady = np.zeros((len(variants), len(COMPARED)), dtype=int)
-    half_change = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
-    spread = np.full((len(variants), len(QUANTITIES), len(COMPARED)), np.nan)
-    comp_reason = np.full((len(variants), len(labels)), "", dtype=object)
-    claim_reasons = np.full((len(variants), len(CLAIMS)), "", dtype=object)
+    nv, nk = len(variants), len(starts)
+    stats = np.full((nv, nk, 2, len(QUANTITIES), len(COMPARED), 5), np.nan)
+    num = np.full((nv, nk, 2, len(QUANTITIES), len(COMPARED)), np.nan)
+    comp = np.full((nv, nk, len(labels), 4), np.nan)
+    comp_reason = np.full((nv, nk, len(labels)), "", dtype=object)
+    holds, decided = np.zeros((nv, nk, len(CLAIMS))), np.zeros((nv, nk, len(CLAIMS)))
+    outcome = np.zeros((nv, nk, len(CLAIMS)), dtype=int)
+    claim_reasons = np.full((nv, nk, len(CLAIMS)), "", dtype=object)
     for v, variant in enumerate(variants):
-        for s, name in enumerate(COMPARED):
-            run = runs[(variant, name)]
-            values = recorded(run)
-            per_cycle[v, :, :, s, : values.shape[-1]] = values
-            ok, half_change[v, :, s] = scene_stationarity(run, stationarity_tolerance, confidence)
-            rms = values[0]
-            spread[v, :, s] = (rms.max(axis=-1) - rms.min(axis=-1)) / np.abs(rms.mean(axis=-1))
-            steady[v, s] = int(ok)
-            stats[v, :, :, s] = scene_statistics(run, batch, confidence, steady=ok)
-            num[v, :, :, s] = numerical_error(run, tight_runs[(variant, name)])
-        verdict = judge(stats_for_judging(stats[v], num[v]), ratio, confidence)
-        comp[v] = [[r["difference"], r["statistical"], r["numerical"], r["outcome"]] for r in verdict["rows"]]
-        comp_reason[v] = [r["reason"] for r in verdict["rows"]]
-        claim_reasons[v] = verdict["reason"]
-        holds[v], decided[v] = verdict["point"], verdict["decided"]
+        scene_runs = {name: runs[(variant, name)] for name in COMPARED}
+        for k in range(nk):
+            verdict, stats[v, k], num[v, k] = judge_start(scene_runs, k, ratio, confidence)
+            comp[v, k] = [[r["difference"], r["statistical"], r["numerical"], r["outcome"]] for r in verdict["rows"]]
+            comp_reason[v, k] = [r["reason"] for r in verdict["rows"]]
+            claim_reasons[v, k] = verdict["reason"]
+            holds[v, k], decided[v, k], outcome[v, k] = verdict["point"], verdict["decided"], verdict["outcome"]
     all_scenes = sorted({name for (_, name) in runs}, key=lambda n: (n != "ideal", n))
     summary = _scene_summary(runs, variants, all_scenes)
-    sd = ("variant", "measure", "quantity", "scene")
+    sd = ("variant", "start", "measure", "quantity", "scene")
+    finite = lambda x: np.where(np.isfinite(x), x, np.nan)  # noqa: E731
     data = {
-        "cycle_deviation": (sd + ("cycle",), per_cycle, {"units": "SI of the quantity", "long_name": "RMS or peak of (scene - ideal) over each recorded cycle (after settling)",
-                                                          "nan_meaning": "the scene recorded fewer cycles"}),
-        "mean_deviation": (sd, stats[..., 0], {"units": "SI of the quantity", "long_name": "mean over the recorded cycles"}),
-        "ci_half_width": (sd, np.where(np.isfinite(stats[..., 1]), stats[..., 1], np.nan), {"units": "SI of the quantity", "long_name": f"half-width of the {confidence:.0%} confidence interval of the mean",
-                                                                                            "nan_meaning": "the scene did not settle or its record is not stationary: its mean is not a statistic (no ordering with it is decided)"}),
-        "standard_error": (sd, np.where(np.isfinite(stats[..., 2]), stats[..., 2], np.nan), {"units": "SI of the quantity", "long_name": "standard error of the mean (batch means)",
-                                                                                             "nan_meaning": "the scene did not settle or its record is not stationary"}),
-        "ci_dof": (sd, stats[..., 3], {"units": "1", "long_name": "degrees of freedom of the interval (batches - 1)"}),
-        "lag1_autocorrelation": (sd, stats[..., 4], {"units": "1", "long_name": "lag-1 autocorrelation of the per-cycle values", "nan_meaning": "the values are constant"}),
-        "recorded_cycles": (sd, stats[..., 5], {"units": "1", "long_name": "cycles recorded after settling"}),
-        "numerical_error": (sd, num, {"units": "SI of the quantity", "long_name": "|mean of (tight - pipeline)| over the common recorded cycles"}),
-        "comparison_difference": (("variant", "comparison"), comp[..., 0], {"units": "SI of the quantity", "long_name": "difference of the means the ordering is about (> 0: as claimed)"}),
-        "comparison_statistical": (("variant", "comparison"), np.where(np.isfinite(comp[..., 1]), comp[..., 1], np.nan),
-                                   {"units": "SI of the quantity", "long_name": f"{confidence:.0%} half-width of the difference", "nan_meaning": "a scene of the ordering did not settle or is not stationary (undetermined)"}),
-        "comparison_numerical": (("variant", "comparison"), comp[..., 2], {"units": "SI of the quantity", "long_name": "numerical error of the difference"}),
-        "comparison_outcome": (("variant", "comparison"), comp[..., 3].astype(int), {"units": "1", "long_name": "1 holds, 0 fails, -1 undetermined (within a margin)"}),
-        "holds": (("variant", "claim"), holds, {"units": "1", "long_name": "1 if every ordering of the claim holds on the means"}),
-        "decided": (("variant", "claim"), decided, {"units": "1", "long_name": "1 if the claim's outcome is beyond the statistical and numerical margins"}),
-        "undecided": (("variant", "claim"), 1.0 - decided, {"units": "1", "long_name": "1 if a margin decides the claim (the verdict's error bar)"}),
-        "claim_decided_by": (("variant", "claim"), claim_reasons, {"units": "1", "long_name": "which margin leaves the claim undetermined (empty: decided)"}),
-        "comparison_decided_by": (("variant", "comparison"), comp_reason, {"units": "1", "long_name": "which margin leaves the ordering undetermined (empty: decided)"}),
-        "stationary": (("variant", "scene"), steady, {"units": "1", "long_name": f"1 if the recorded RMS deviation is stationary: its halves' means differ by at most "
-                                                                                 f"{stationarity_tolerance:g} of the mean or within their {confidence:.0%} Welch interval (every quantity)"}),
-        "cycle_spread": (("variant", "quantity", "scene"), spread, {"units": "1", "long_name": "(largest - smallest) / mean of the recorded per-cycle RMS deviation"}),
-        "half_change": (("variant", "quantity", "scene"), half_change, {"units": "1", "long_name": "|mean of the second half - mean of the first half| / mean of the recorded RMS deviation"}),
+        "mean_deviation": (sd, stats[..., 0], {"units": "SI of the quantity", "long_name": "claims' measure on the state (one period, or the mean over the judged window)"}),
+        "ci_half_width": (sd, finite(stats[..., 1]), {"units": "SI of the quantity", "long_name": f"half-width of the {confidence:.0%} confidence interval of the measure (0 on a periodic orbit)",
+                                                      "nan_meaning": "the state is in doubt (not settled by the cycle cap, or it changes with the tolerance): no interval"}),
+        "standard_error": (sd, finite(stats[..., 2]), {"units": "SI of the quantity", "long_name": "standard error of the measure (batch means; 0 on a periodic orbit)", "nan_meaning": "the state is in doubt"}),
+        "ci_dof": (sd, finite(stats[..., 3]), {"units": "1", "long_name": "degrees of freedom of the interval", "nan_meaning": "a periodic orbit (exact) or no interval"}),
+        "judged_cycles": (sd, stats[..., 4], {"units": "1", "long_name": "cycles the measure is taken over"}),
+        "numerical_error": (sd, num, {"units": "SI of the quantity", "long_name": "largest |measure at a check integrator - measure at the pipeline's| on the same state"}),
+        "comparison_difference": (("variant", "start", "comparison"), comp[..., 0], {"units": "SI of the quantity", "long_name": "difference of the measures the ordering is about (> 0: as claimed)"}),
+        "comparison_statistical": (("variant", "start", "comparison"), finite(comp[..., 1]), {"units": "SI of the quantity", "long_name": f"{confidence:.0%} half-width of the difference",
+                                                                                             "nan_meaning": "a scene of the ordering has no interval (its state is in doubt)"}),
+        "comparison_numerical": (("variant", "start", "comparison"), comp[..., 2], {"units": "SI of the quantity", "long_name": "numerical error of the difference"}),
+        "comparison_outcome": (("variant", "start", "comparison"), comp[..., 3].astype(int), {"units": "1", "long_name": "1 holds, 0 fails, -1 undetermined (within a margin)"}),
+        "comparison_decided_by": (("variant", "start", "comparison"), comp_reason, {"units": "1", "long_name": "which margin leaves the ordering undetermined (empty: decided)"}),
+        "holds_by_start": (("variant", "start", "claim"), holds, {"units": "1", "long_name": "1 if every ordering of the claim holds on the measures, per start"}),
+        "outcome_by_start": (("variant", "start", "claim"), outcome, {"units": "1", "long_name": "1 holds, 0 fails decidedly, -1 undetermined, per start"}),
+        "claim_decided_by_start": (("variant", "start", "claim"), claim_reasons, {"units": "1", "long_name": "which margin leaves the claim undetermined, per start (empty: decided)"}),
+        "holds": (("variant", "claim"), holds[:, 0], {"units": "1", "long_name": "1 if every ordering of the claim holds on the measures (first start)"}),
+        "decided": (("variant", "claim"), decided[:, 0], {"units": "1", "long_name": "1 if the claim's outcome is beyond the statistical and numerical margins (first start)"}),
+        "undecided": (("variant", "claim"), 1.0 - decided[:, 0], {"units": "1", "long_name": "1 if a margin decides the claim (the verdict's error bar; first start)"}),
+        "claim_decided_by": (("variant", "claim"), claim_reasons[:, 0], {"units": "1", "long_name": "which margin leaves the claim undetermined (first start; empty: decided)"}),
     }
+    for key in ("state_status", "state_period", "state_transient", "window_first", "window_stop", "record_cycles", "state_change"):
+        arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])  # variant, scene, start
+        data[f"scene_{key}"] = (("variant", "scene", "start"), arr.astype(object) if key == "state_status" else arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
+    kept = np.array([[runs[(v, n)].check_kept_state.values for n in COMPARED] for v in variants])
+    data["scene_check_kept_state"] = (("variant", "scene", "start", "check"), kept, dict(runs[(variants[0], COMPARED[0])].check_kept_state.attrs))
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
         data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr,
                                   {"units": unit, "long_name": long_name, "nan_meaning": "does not apply to this scene or joint (the ideal scene integrates nothing; a joint without clearance has no contact)"})
     coords = {
         "variant": ("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
+        "start": ("start", np.array(starts, dtype=object), {"units": "1", "long_name": "initial state of the journals (a scenario), the nominal first"}),
+        "check": ("check", runs[(variants[0], COMPARED[0])].check.values, {"units": "1", "long_name": "check integrator setting (dry scenes)"}),
         "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
         "measure": ("measure", np.array(["rms", "peak"], dtype=object), {"units": "1", "long_name": "deviation measure"}),
         "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
-        "run": ("run", np.array(all_scenes, dtype=object), {"units": "1", "long_name": "scene run (pipeline tolerance)"}),
+        "run": ("run", np.array(all_scenes, dtype=object), {"units": "1", "long_name": "scene run"}),
         "joint": ("joint", np.array(JOINT_IDS), {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
-        "cycle": ("cycle", np.arange(1, n_max + 1), {"units": "1", "long_name": "recorded cycle (after settling)"}),
         "claim": ("claim", np.array(CLAIMS, dtype=object), {"units": "1", "long_name": "claim"}),
         "comparison": ("comparison", np.array(labels, dtype=object), {"units": "1", "long_name": "ordering a claim is made of"}),
         "comparison_claim": ("comparison", np.array([c[0] for c in comparisons(ratio)], dtype=object), {"units": "1", "long_name": "claim of the ordering"}),
     }
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(title="Claims of the clearance paper, per parameter variant", close_to_ideal_ratio=ratio, ci_method=CI_METHOD,
-                    crank_mass_kg=runs[(variants[0], "ideal")].attrs["crank_mass_kg"],
-                    decision_rule=DECISION_RULE, confidence=confidence, batch_cycles=batch, stationarity_tolerance=stationarity_tolerance, periodic_spread=PERIODIC_SPREAD,
-                    numerical_error_method="per scene: |mean over the common recorded cycles of (tight - pipeline tolerance)|; of a difference: the sum over its scenes",
-                    tight_settings="; ".join(sorted({f"{r.attrs['integrator']} rtol {r.attrs['integrator_rtol']:g}, atol {r.attrs['integrator_atol']:g}" for r in tight})))
+    first = runs[(variants[0], "dry_2")]
+    ds.attrs.update(title="Claims of the clearance paper, per parameter variant and start", close_to_ideal_ratio=ratio, ci_method=CI_METHOD_STATES,
+                    crank_mass_kg=runs[(variants[0], "ideal")].attrs["crank_mass_kg"], decision_rule=DECISION_RULE, confidence=confidence,
+                    batch_cycles=st["batch_cycles"], settle_rule=first.attrs["settle_rule"],
+                    numerical_error_method="per scene and start: the largest |measure at a check integrator - measure at the pipeline's| on the same state (reruns "
+                                           "restarted from the section point at the start of the judged window); of a difference: the sum over its scenes",
+                    tight_settings="; ".join(sorted({f"{runs[(variants[0], n)].attrs['integrator']}: " + ", ".join(str(c) for c in runs[(variants[0], n)].check.values)
+                                                     for n in COMPARED})))
     return ds
+
+
+#: How the claims' measure and its interval are taken on a state.
+CI_METHOD_STATES = ("on a periodic orbit the measure over one period (exact to the section tolerance: no interval); on a stationary state that is not "
+                    "periodic a batch-means t-interval over the judged window; a difference of two scenes by Welch-Satterthwaite")

@@ -1,0 +1,140 @@
+"""The state a clearance scene settles into, per start, and its numerical error bar.
+
+A scene is started from each of ``states.starts`` (every clearance journal at an eccentricity and moving at a rate
+relative to its bearing, as fractions of the radial clearance c and of c times the crank speed).  Each start runs
+cycle by cycle; once per crank turn (at the dead point the run starts from) its Poincaré section is recorded: every
+clearance joint's eccentricity and its rate, scaled by c and c omega.  ``linkwork.engines.states.settle`` decides
+when the state is found (a periodic orbit, or stationary statistics over enough cycles) and which cycles are judged.
+
+The numerical error bar of a state comes from three tolerances on the same state: the pipeline run and reruns at
+each setting of ``check_integrators`` restarted from the section point (with the contact memory) at the start of
+the judged window.  Where a rerun settles onto another state (its section leaves the pipeline orbit by more than
+``states.state_tolerance``), the state itself depends on the tolerance, and the claims that use it are undetermined
+for that reason.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ...engines.multibody.model import initial_state, journal_offsets, offset_start
+from ...engines.multibody.simulate import Run
+from ...engines.states import NOT_PERIODIC, PERIODIC, section_period, settle
+
+#: Per cycle: RMS and peak deviation of each compared response (rows of the per-cycle measures, in this order).
+MEASURE_ROWS = (("rms", "rocker_acceleration"), ("rms", "crank_torque"), ("peak", "rocker_acceleration"), ("peak", "crank_torque"))
+#: Per cycle and clearance joint: the extremes kept (largest penetration, eccentricity, dry force, |film radial force|).
+EXTREMES = ("penetration", "eccentricity", "contact_force", "film_force")
+
+
+def start_state(p, joints, start: Mapping[str, Any]) -> np.ndarray:
+    """The initial state of one start (``start``: eccentricity and rate as fractions of c and c omega)."""
+    ecc, rate = np.asarray(start["eccentricity"], dtype=float), np.asarray(start["rate"], dtype=float)
+    if not ecc.any() and not rate.any():
+        return initial_state(p)[0]
+    c, w = p.clearance, p.crank_speed
+    return offset_start(p, joints, ecc * c, rate * c * w)
+
+
+def section_point(p, joints, states: np.ndarray) -> np.ndarray:
+    """Poincaré section components (dimensionless) of states (..., >= 18): per clearance joint e_x / c, e_y / c,
+    e_x' / (c omega), e_y' / (c omega), joints in order."""
+    scale = np.array([1.0, 1.0, p.crank_speed, p.crank_speed]) * p.clearance
+    return (journal_offsets(p, joints, states) / scale).reshape(states.shape[:-1] + (-1,))
+
+
+class CycleRunner:
+    """Runs a scene cycle by cycle and keeps what the claims and the report read: per cycle the section point, the
+    run's whole state (restartable), the measures (MEASURE_ROWS) and the joint extremes; the last ``shown`` cycles'
+    diagnostics for the figures."""
+
+    def __init__(self, p, joints, effects, integrator, ideal_cycle: Mapping[str, np.ndarray], per: int, shown: int, y0=None, memory=None):
+        self.p, self.joints, self.per, self.shown = p, tuple(joints), per, shown
+        self.run = Run(p, joints, effects, integrator, y0=y0, memory=memory)
+        self.ideal = np.stack([ideal_cycle["rocker_acceleration"][:-1], ideal_cycle["crank_torque"][:-1]])
+        self.memories, self.extremes, self.last = [], [], []
+
+    def step(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``n`` more cycles: (section points (n, components), measures (n, MEASURE_ROWS))."""
+        T = 2 * np.pi / self.p.crank_speed
+        points, measures = [], []
+        for _ in range(n):
+            self.memories.append(self.run.memory())
+            points.append(section_point(self.p, self.joints, self.run.y))
+            t = self.run.t + np.arange(self.per + 1) * T / self.per
+            _, diags = self.run.advance(t)
+            d = diags[:-1, :2].T - self.ideal
+            measures.append(np.r_[np.sqrt(np.mean(d**2, axis=1)), np.abs(d).max(axis=1)])
+            cols = [[4 + 6 * k + 1, 4 + 6 * k, 4 + 6 * k + 3, 4 + 6 * k + 4] for k in range(len(self.joints))]
+            self.extremes.append(np.array([[np.nanmax(diags[:, c[0]]), np.nanmax(diags[:, c[1]]), np.nanmax(diags[:, c[2]]), np.nanmax(np.abs(diags[:, c[3]]))] for c in cols]))
+            self.last = (self.last + [(t, diags)])[-self.shown:]
+        return np.array(points), np.array(measures)
+
+
+def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) -> dict[str, Any]:
+    """Settle one start (``st``: the ``states`` settings) and return ``engines.states.settle``'s record."""
+    return settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
+                  st["min_cycles"], confidence)
+
+
+def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int, confidence: float) -> np.ndarray:
+    """Per measure row: (mean, confidence half-width, standard error, degrees of freedom, cycles judged) over the
+    judged window.  A periodic state: the mean over one period, exact (half-width 0: the orbit repeats to the
+    section tolerance).  A stationary one: batch means over the window.  A record that reached the cap: its mean
+    drifts, no interval (infinite half-width)."""
+    from .statistics import mean_ci
+
+    first, stop = found["window"]
+    x = measures[first:stop]
+    out = np.empty((measures.shape[1], 5))
+    for r in range(measures.shape[1]):
+        if found["status"] == PERIODIC:
+            out[r] = (x[: found["period"], r].mean(), 0.0, 0.0, float("inf"), found["period"])
+        else:
+            mean, half, se, dof = mean_ci(x[:, r], batch, confidence)
+            if found["status"] != "stationary":
+                half, se = float("inf"), float("inf")
+            out[r] = (mean, half, se, dof, x.shape[0])
+    return out
+
+
+def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, checks, st: Mapping[str, Any]) -> dict[str, np.ndarray]:
+    """The same state at each check integrator: restarted from the section point (with the contact memory) at the
+    start of the judged window, run ``check_cycles`` cycles (at least two periods).  Per check: the mean of each
+    measure row over its last period (periodic state) or over all its cycles (else), against the pipeline's mean
+    over the same cycles of the window; whether the rerun keeps the state (its last section point within
+    ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the state is not periodic: not testable); the
+    period its section shows over the rerun (0 where the rerun is too short to show one: a report, not a test; -1
+    where the check integrator failed, its delta then NaN).
+
+    ``make_runner(integrator, memory)`` builds a CycleRunner at a check integrator from a run state."""
+    first, stop = found["window"]
+    period = found["period"]
+    n = max(st["check_cycles"], 2 * period) if period != NOT_PERIODIC else st["check_cycles"]
+    measures = found["measures"]
+    deltas = np.full((len(checks), measures.shape[1]), np.nan)
+    kept, periods = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int)
+    orbit = found["points"][first : first + period] if period != NOT_PERIODIC else None
+    for i, integ in enumerate(checks):
+        rerun = make_runner(integ, runner.memories[first])
+        try:
+            pts, meas = rerun.step(n)
+        except RuntimeError:  # the check integrator gave up (a step size underflow): this check has no value
+            periods[i] = -1
+            continue
+        if period != NOT_PERIODIC:
+            ours = meas[-period:].mean(axis=0)
+            base = measures[first : first + period].mean(axis=0)
+            k, _ = section_period(pts, st["max_period"], 0.0, st["section_tolerance"], 2)
+            periods[i] = k
+            scale = np.maximum(1.0, np.abs(orbit))
+            distance = np.min(np.max(np.abs(pts[-1][None] - orbit) / scale, axis=1))
+            kept[i] = float(distance <= st["state_tolerance"])
+        else:
+            ours = meas.mean(axis=0)
+            base = measures[first : min(first + n, stop)].mean(axis=0)
+        deltas[i] = ours - base
+    return {"delta": deltas, "kept": kept, "period": periods}

@@ -1,0 +1,132 @@
+"""The states of the clearance scenes: runs continued in pieces and from a saved state, starts off-centre, the compiled
+NDF integrator against scipy's BDF, peaks against the sampling, and one scene's state with its three-tolerance error bar."""
+
+import copy
+
+import numpy as np
+import pytest
+
+from conftest import load_yaml
+from linkwork.engines.multibody.model import initial_state, inverse_dynamics, journal_offsets, offset_start
+from linkwork.engines.multibody.simulate import Run, integrate
+from linkwork.papers.clearance.adapter import parameters, scene_effects
+
+SECTION = load_yaml("config/config.yaml")["clearance"]
+DRY = {"method": "dopri5", "rtol": 1e-9, "atol": 1e-12, "first_step_s": 1e-7, "max_step_s": 1e-3}
+
+
+def _scene(variant, name):
+    p = parameters(SECTION, variant, name)
+    joints, effects = scene_effects(SECTION, name)
+    return p, joints, effects
+
+
+def _cycle_times(p, k, per):
+    T = 2 * np.pi / p.crank_speed
+    return k * T + np.arange(per + 1) * T / per
+
+
+def test_a_run_in_pieces_is_the_run_in_one_piece():
+    """Dormand-Prince carries its step and the contact memory across a cut: four one-cycle pieces of the same output
+    times give the four-cycle run bit for bit (a dry scene in permanent contact, where the latched impact velocity matters)."""
+    p, joints, effects = _scene("slender", "dry_2")
+    per = 360
+    T = 2 * np.pi / p.crank_speed
+    t = np.arange(4 * per + 1) * T / per
+    whole = integrate(p, joints, effects, t, DRY)[1]
+    run = Run(p, joints, effects, DRY)
+    pieces = [run.advance(t[k * per : (k + 1) * per + 1])[1] for k in range(4)]
+    joined = np.concatenate([pieces[0]] + [x[1:] for x in pieces[1:]])
+    assert np.array_equal(joined, whole)
+    assert run.was.all() and run.latched[0] > 0  # in contact, with an impact velocity latched
+
+
+def test_a_run_restarted_from_its_saved_state_continues_the_same_motion():
+    """``memory()`` holds time, state and contact memory: a new run from it follows the original over the next cycle
+    to the integrator's tolerance (only the first step size differs)."""
+    p, joints, effects = _scene("decoded", "dry_1")
+    per = 360
+    run = Run(p, joints, effects, DRY)
+    run.advance(_cycle_times(p, 0, per))
+    saved = run.memory()
+    _, going_on = run.advance(_cycle_times(p, 1, per))
+    _, restarted = Run(p, joints, effects, DRY, memory=saved).advance(_cycle_times(p, 1, per))
+    scale = np.abs(going_on[:, 0]).max()
+    assert np.abs(restarted[:, 0] - going_on[:, 0]).max() < 1e-5 * scale
+
+
+@pytest.mark.parametrize("name", ["dry_1", "dry_2", "dry_both"])
+def test_an_off_centre_start_puts_every_journal_where_asked_and_keeps_the_ideal_joints_closed(name):
+    """``offset_start``: each clearance journal at the asked eccentricity and rate (to 1e-9 of c and of c omega, a
+    second route: the offsets read back from the state by ``journal_offsets``), while the ground pins, the drive
+    and every ideal joint hold (the first right-hand side reports no constraint drift)."""
+    p, joints, effects = _scene("slender", name)
+    c, w = p.clearance, p.crank_speed
+    ecc, rate = np.array([0.6, -0.6]) * c, np.array([0.5, 0.5]) * c * w
+    y0 = offset_start(p, joints, ecc, rate)
+    got = journal_offsets(p, joints, y0)
+    assert np.abs(got[:, :2] - ecc).max() < 1e-9 * c
+    assert np.abs(got[:, 2:] - rate).max() < 1e-9 * c * w
+    _, diags, *_ = integrate(p, joints, effects, np.array([0.0]), DRY, y0=y0)
+    assert diags[0, 3] < 1e-12  # |Phi| of the ideal constraints at the start
+    assert np.allclose(offset_start(p, joints, (0.0, 0.0), (0.0, 0.0))[:9], initial_state(p)[0][:9], atol=1e-12)
+
+
+def test_the_compiled_ndf_agrees_with_scipys_bdf_and_with_inverse_dynamics():
+    """Second routes for the compiled variable-order NDF: on the ideal linkage it equals inverse dynamics; on a
+    lubricated scene (stiff film) over one cycle it agrees with scipy's BDF at the same tolerance to well below
+    the claims' margins (the two take different step sequences)."""
+    p, _, _ = _scene("slender", "lubricated_2")
+    ndf = {"method": "ndf", "rtol": 1e-9, "atol": 1e-12, "first_step_s": 1e-7, "max_step_s": 1e-3}
+    t = _cycle_times(p, 0, 360)
+    _, ideal_run, *_ = integrate(p, (), ("gravity",), t, ndf)
+    ideal = inverse_dynamics(p, t, gravity=True)
+    assert np.abs(ideal_run[:, 0] - ideal["rocker_acceleration"]).max() < 1e-6 * np.abs(ideal["rocker_acceleration"]).max()
+    p, joints, effects = _scene("decoded", "lubricated_2")
+    a = integrate(p, joints, effects, t, ndf)[1]
+    b = integrate(p, joints, effects, t, {**ndf, "method": "bdf"})[1]
+    scale = np.abs(b[:, 0]).max()
+    assert np.abs(a[:, 0] - b[:, 0]).max() < 1e-4 * scale
+    assert np.abs(a[:, 4] - b[:, 4]).max() < 1e-4 * p.clearance  # the journal's eccentricity
+
+
+def test_the_peak_deviation_converges_as_the_sampling_grows():
+    """The peak of (scene - ideal) over one cycle of a dry scene with impacts (slender links, joint 2), sampled at
+    900 ... 28800 points a cycle: a coarse grid misses the impact spike (up to 3600 points a cycle the peak is more
+    than 10 % low, whatever the grid), the pipeline's sampling catches it, within 0.1 % of twice the sampling."""
+    p, joints, effects = _scene("slender", "dry_2")
+    run = Run(p, joints, effects, DRY)
+    run.advance(_cycle_times(p, 0, 100))
+    saved = run.memory()
+    pipeline = SECTION["numerics"]["points_per_cycle"]
+    samplings = (900, 1800, 3600, pipeline, 2 * pipeline)
+    peaks = {}
+    for per in samplings:
+        t = _cycle_times(p, 1, per)
+        _, d = Run(p, joints, effects, DRY, memory=saved).advance(t)
+        peaks[per] = np.abs(d[:, 0] - inverse_dynamics(p, t, gravity=True)["rocker_acceleration"]).max()
+    finest = peaks[2 * pipeline]
+    assert peaks[3600] < 0.9 * finest  # the old grid's peak
+    assert abs(peaks[pipeline] - finest) < 1e-3 * finest
+    assert abs(peaks[pipeline] - finest) < 1e-3 * abs(peaks[3600] - finest)  # the spike is resolved only from the pipeline sampling on
+
+
+def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar():
+    """A real scene (link inertias as printed, joint 1 dry, one start): its state is a periodic orbit found before
+    the cap; the judged window starts after the transient and holds whole periods; the measure is the mean over one
+    period; the two check integrators, restarted from the section point, stay on the orbit and move the measure by
+    far less than the margins the claims are decided by (1e-4 of it)."""
+    from linkwork.papers.clearance.studies import scene
+
+    cfg = copy.deepcopy(SECTION)
+    cfg["states"]["starts"] = cfg["states"]["starts"][:1]
+    ds = scene(cfg, "decoded", "dry_1")
+    assert str(ds.state_status.values[0]) == "periodic" and int(ds.state_period.values[0]) >= 1
+    first, stop, transient = int(ds.window_first[0]), int(ds.window_stop[0]), int(ds.state_transient[0])
+    assert first >= transient and (stop - first) % int(ds.state_period[0]) == 0 and stop <= int(ds.record_cycles[0]) < cfg["states"]["max_cycles"]
+    rms = ds.cycle_deviation.sel(measure="rms", quantity="rocker_acceleration").values[0]
+    assert np.isclose(float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0]), rms[first : first + int(ds.state_period[0])].mean())
+    assert (ds.check_kept_state.values == 1).all() and ds.sizes["check"] == 2
+    measure = float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0])
+    assert float(ds.numerical_error.sel(measure="rms", quantity="rocker_acceleration")[0]) < 1e-4 * measure
+    assert ds.attrs["sampling_over_contact_frequency"] >= 4.0
