@@ -45,6 +45,7 @@ class Run:
         self.h = integrator.get("first_step_s", integrator.get("step_s", 0.0))
         self.counts = np.zeros(4, dtype=np.int64)
         self.steps = self.rejected = 0
+        self.fallbacks = 0  # stretches the compiled NDF gave up on and scipy's BDF integrated instead
 
     def memory(self) -> np.ndarray:
         """(t (s), y, latched impact velocity per joint (m/s), 1 where in contact per joint): the run's whole state."""
@@ -62,8 +63,14 @@ class Run:
             ys, diags, steps, rejected, self.h = self.module.dopri5(
                 self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
         elif method == "ndf":
-            ys, diags, steps, rejected, self.h = self.module.ndf(
-                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
+            saved = self.latched.copy(), self.was.copy(), self.counts.copy()
+            try:
+                ys, diags, steps, rejected, self.h = self.module.ndf(
+                    self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
+            except RuntimeError:  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
+                self.latched[:], self.was[:], self.counts[:] = saved
+                ys, diags, steps, rejected = _scipy(self.module, self.y, t_out, self.params, self.latched, self.counts, {**integ, "method": "bdf"}, self.was)
+                self.fallbacks += 1
         elif method in SCIPY:
             ys, diags, steps, rejected = _scipy(self.module, self.y, t_out, self.params, self.latched, self.counts, integ, self.was)
         else:

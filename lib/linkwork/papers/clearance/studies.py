@@ -260,6 +260,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
         title=f"Four-bar with clearance joints: {variant}, {scene}", scene=scene, variant=variant,
         effects=",".join(effects), clearance_joints=",".join(map(str, joints)),
         integrator=integ["method"], steps=int(steps), rejected_steps=int(sum(r.run.rejected for r in runners)),
+        ndf_fallbacks=int(sum(r.run.fallbacks for r in runners)),
         evaluations_contact=int(counts[0]), evaluations_friction=int(counts[1]), evaluations_lubrication=int(counts[2]), evaluations_gravity=int(counts[3]),
         crank_mass_kg=p.masses[0], shown_cycles=shown, hertz_stiffness=p.hertz_stiffness, clearance=p.clearance,
         sampling_rate_hz=sampling, sampling_over_contact_frequency=float(sampling / np.nanmax(fc)) if np.isfinite(fc).any() else float("nan"),
