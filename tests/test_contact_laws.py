@@ -4,6 +4,7 @@ the config keys and the laws' ranges."""
 
 import copy
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -97,6 +98,8 @@ def test_pereira_exponent_branches_meet_only_with_the_clearance_in_mm():
     assert 1.0 < pereira_exponent(5e-5) < 1.5  # between the line-contact and the sphere exponents
     with pytest.raises(ValueError):
         pereira_exponent(1e-6)
+    with pytest.raises(ValueError):
+        replace(parameters(SECTION, "slender", "dry_2"), elastic_law="hertz").elastic_stiffness
 
 
 @pytest.mark.parametrize("law", sorted(ELASTIC_LAWS))

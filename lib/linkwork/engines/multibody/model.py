@@ -98,14 +98,18 @@ class FourBarParameters:
         """Exponent n (-) of the elastic law F = K delta^n: 1.5 for the sphere law, Pereira's n(c) for the conformal."""
         if self.elastic_law == "hertz-sphere":
             return 1.5
-        return pereira_exponent(self.clearance)
+        if self.elastic_law == "pereira":
+            return pereira_exponent(self.clearance)
+        raise _unknown_elastic_law(self.elastic_law)
 
     @property
     def elastic_stiffness(self) -> float:
         """K of the elastic law F = K delta^n, N/m^n: eq. (9)'s K, or Pereira's K(c, L, E*)."""
         if self.elastic_law == "hertz-sphere":
             return self.hertz_stiffness
-        return pereira_stiffness(self.clearance, self.joint_length, self.effective_modulus)
+        if self.elastic_law == "pereira":
+            return pereira_stiffness(self.clearance, self.joint_length, self.effective_modulus)
+        raise _unknown_elastic_law(self.elastic_law)
 
     @property
     def film_coefficient(self) -> float:
@@ -122,14 +126,18 @@ class FourBarParameters:
 # force models", Nonlinear Dynamics 63 (2011) 681-697: for a journal in a bushing (internal contact) of radial
 # clearance dR and length L, F = (a dR + b) L E* / dR * delta^n with n = Y dR^-0.005, a and b and Y fitted to
 # finite-element results, everything in mm, N and N/mm^2 (MPa).  Coefficients as implemented in the public
-# DyS code (github.com/ladisk/DyS, MBD_system/contact_model/contact_model_cylinder.py, 2018); the two branches
+# DyS code (github.com/ladisk/DyS @ 5e6a54d, MBD_system/contact_model/contact_model_cylinder.py); the two branches
 # of Y meet at the break clearance only with dR in mm in both (our check, tests/test_contact_laws.py).
 PEREIRA_A = 0.965  # -, internal contact
 PEREIRA_B = 0.0965  # mm, internal contact
 PEREIRA_Y_BREAK_MM = 0.34954  # mm: Y's logarithmic branch below, linear branch above
-PEREIRA_CLEARANCE_RANGE_M = (0.005e-3, 10.0e-3)  # radial clearances over which Y is given (fitted), m
+PEREIRA_CLEARANCE_RANGE_M = (0.005e-3, 10.0e-3)  # radial clearances over which Y is given (the fit's range), m
 _MM_PER_M = 1e3
 _MPA_PER_PA = 1e-6
+
+
+def _unknown_elastic_law(law: str) -> ValueError:
+    return ValueError(f"unknown elastic law {law!r}; known: {sorted(ELASTIC_LAWS)}")
 
 
 def pereira_exponent(clearance: float) -> float:
