@@ -113,6 +113,20 @@ def clearance_state(q, qd, bj_journal, jx, jy, bb_bearing, bx, by, clearance, r_
 
 
 @njit(cache=True)
+def elastic_contact(law, stiffness, exponent, delta):
+    """Elastic normal force (N) and its potential energy int_0^delta F (J) at the penetration delta > 0 (m).
+
+    law 0, sphere (Hertz, the paper's eq. 9): K delta^1.5 and K delta^2.5 / 2.5 (``exponent`` unused);
+    law 1, conformal cylinder (Pereira et al. 2011): K delta^n and K delta^(n+1) / (n+1) with n = ``exponent``.
+    ``stiffness`` K in N/m^n.
+    """
+    if law == 0:
+        return stiffness * delta ** 1.5, stiffness * delta ** 2.5 / 2.5
+    m = exponent + 1.0
+    return stiffness * delta ** exponent, stiffness * delta ** m / m
+
+
+@njit(cache=True)
 def hertz_damping_factor(law, restitution, delta_dot, impact_velocity):
     """1 + (damping coefficient) * delta_dot / delta_dot(-) for the three continuous contact laws.
 

@@ -12,6 +12,10 @@ as source code containing exactly those effects (no branch, no call for an effec
 compiled by numba and cached on disk by the hash of its source.  Each effect increments its own
 evaluation counter, so a test can prove that an effect left out is never evaluated.
 
+The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law)
+is chosen apart from its hysteresis damping (CONTACT_LAWS); it is data in the packed parameters, not
+generated code, so one compiled scene serves every elastic law.
+
 Sign conventions resolved here (the printed model differs):
 * eccentricity e = journal centre - bearing centre, n = e/|e|; the dry contact force on the
   journal is -F_N n, i.e. it pushes the journal back into the bearing (eqs. 4/17 as printed push
@@ -37,6 +41,9 @@ from ...units import STANDARD_GRAVITY
 from ..kinematics import FourBar, four_bar, toggle_positions
 
 CONTACT_LAWS = {"lankarani-nikravesh": 0, "hunt-crossley": 1, "flores": 2}
+#: Elastic (force-penetration) laws of the dry contact, orthogonal to the hysteresis damping of CONTACT_LAWS:
+#: the sphere law of eq. (9) and the conformal cylindrical law of Pereira, Ramalho and Ambrosio (2011).
+ELASTIC_LAWS = {"hertz-sphere": 0, "pereira": 1}
 EFFECTS = ("contact", "friction", "lubrication", "gravity")
 N_STATE = 19  # q (9), q' (9), driver work (1)
 DIAG_FIXED = 4  # rocker angular acceleration, crank torque, energy, constraint drift
@@ -69,6 +76,7 @@ class FourBarParameters:
     gravity: float = STANDARD_GRAVITY
     contact_law: str = "lankarani-nikravesh"
     branch: int = 1
+    elastic_law: str = "hertz-sphere"  # a key of ELASTIC_LAWS; "pereira" reads joint_length
 
     @property
     def clearance(self) -> float:
@@ -81,6 +89,29 @@ class FourBarParameters:
         return 4.0 / (3.0 * sig) * np.sqrt(self.journal_radius * self.bearing_radius / self.clearance)
 
     @property
+    def effective_modulus(self) -> float:
+        """E* = 1 / sum((1 - nu^2) / E) of the journal and bearing materials, Pa."""
+        return 1.0 / sum((1 - nu**2) / e for nu, e in zip(self.poisson, self.youngs_modulus, strict=True))
+
+    @property
+    def elastic_exponent(self) -> float:
+        """Exponent n (-) of the elastic law F = K delta^n: 1.5 for the sphere law, Pereira's n(c) for the conformal."""
+        if self.elastic_law == "hertz-sphere":
+            return 1.5
+        if self.elastic_law == "pereira":
+            return pereira_exponent(self.clearance)
+        raise _unknown_elastic_law(self.elastic_law)
+
+    @property
+    def elastic_stiffness(self) -> float:
+        """K of the elastic law F = K delta^n, N/m^n: eq. (9)'s K, or Pereira's K(c, L, E*)."""
+        if self.elastic_law == "hertz-sphere":
+            return self.hertz_stiffness
+        if self.elastic_law == "pereira":
+            return pereira_stiffness(self.clearance, self.joint_length, self.effective_modulus)
+        raise _unknown_elastic_law(self.elastic_law)
+
+    @property
     def film_coefficient(self) -> float:
         """12 pi mu L R^3 / c^2 (N s/m per unit eccentricity-ratio rate... times 1/s)."""
         return 12 * np.pi * self.viscosity * self.joint_length * self.journal_radius**3 / self.clearance**2
@@ -88,6 +119,51 @@ class FourBarParameters:
     def linkage(self) -> FourBar:
         l2, l3, l4 = self.lengths
         return FourBar(crank=l2, coupler=l3, rocker=l4, ground=self.ground, branch=self.branch)
+
+
+# --- the conformal cylindrical law of Pereira, Ramalho and Ambrosio (2011) ---------------------------
+# C. M. Pereira, A. L. Ramalho, J. A. Ambrosio, "A critical overview of internal and external cylinder contact
+# force models", Nonlinear Dynamics 63 (2011) 681-697: for a journal in a bushing (internal contact) of radial
+# clearance dR and length L, F = (a dR + b) L E* / dR * delta^n with n = Y dR^-0.005, a and b and Y fitted to
+# finite-element results, everything in mm, N and N/mm^2 (MPa).  Coefficients as implemented in the public
+# DyS code (github.com/ladisk/DyS @ 5e6a54d, MBD_system/contact_model/contact_model_cylinder.py); the two branches
+# of Y meet at the break clearance only with dR in mm in both (our check, tests/test_contact_laws.py).
+PEREIRA_A = 0.965  # -, internal contact
+PEREIRA_B = 0.0965  # mm, internal contact
+PEREIRA_Y_BREAK_MM = 0.34954  # mm: Y's logarithmic branch below, linear branch above
+PEREIRA_CLEARANCE_RANGE_M = (0.005e-3, 10.0e-3)  # radial clearances over which Y is given (the fit's range), m
+_MM_PER_M = 1e3
+_MPA_PER_PA = 1e-6
+
+
+def _unknown_elastic_law(law: str) -> ValueError:
+    return ValueError(f"unknown elastic law {law!r}; known: {sorted(ELASTIC_LAWS)}")
+
+
+def pereira_exponent(clearance: float) -> float:
+    """Pereira's exponent n = Y dR^-0.005 (-) of the radial clearance ``clearance`` (m; dR in mm in the fit).
+
+    Y = 1.51 [ln(1000 dR)]^-0.151 up to the break clearance (the logarithm of dR in micrometres), Y = 0.0151 dR + 1.151
+    above it.  Outside the fitted range the nearer branch is extrapolated (see papers.clearance.validity); below
+    1 um the logarithm is not positive and the law is undefined (ValueError).
+    """
+    dr = clearance * _MM_PER_M
+    if dr <= 1e-3:
+        raise ValueError(f"Pereira's exponent is undefined at a radial clearance of {clearance:g} m (ln(1000 dR) <= 0)")
+    y = 1.51 * np.log(1000.0 * dr) ** -0.151 if dr <= PEREIRA_Y_BREAK_MM else 0.0151 * dr + 1.151
+    return float(y * dr**-0.005)
+
+
+def pereira_stiffness(clearance: float, length: float, effective_modulus: float) -> float:
+    """K of Pereira's internal-contact law F = K delta^n in SI, N/m^n.
+
+    clearance: radial clearance dR (m); length: joint length L (m); effective_modulus: E* (Pa).  The fit gives
+    (a dR + b) L E* / dR in N/mm^n with dR, L in mm and E* in N/mm^2; delta in m is 1000 delta in mm, so
+    K_SI = K_mm * 1000^n.
+    """
+    dr, n = clearance * _MM_PER_M, pereira_exponent(clearance)
+    k_mm = (PEREIRA_A * dr + PEREIRA_B) * (length * _MM_PER_M) * (effective_modulus * _MPA_PER_PA) / dr
+    return float(k_mm * _MM_PER_M**n)
 
 
 # joint geometry: (journal body, journal point, bearing body, bearing point) as functions of the lengths
@@ -123,6 +199,10 @@ def pack(p: FourBarParameters, phi0: float) -> tuple[np.ndarray, dict[str, int]]
         "film": [p.film_coefficient],
         "eps_limit": [1.0 - p.e0 / p.clearance],
         "floor": [p.impact_velocity_floor],
+        # appended last so that every earlier index (and so the generated source) keeps its place
+        "elastic_law": [float(ELASTIC_LAWS[p.elastic_law])],
+        "elastic_stiffness": [p.elastic_stiffness],
+        "elastic_exponent": [p.elastic_exponent],
     }
     index, flat = {}, []
     for key, vals in values.items():
@@ -153,7 +233,7 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("import numpy as np")
     a("from numba import njit")
     a("from linkwork.engines.multibody.kernels import (revolute, driver, apply_force, clearance_state, hertz_damping_factor,")
-    a("    friction_coefficient, film_forces, solve_constrained, point)")
+    a("    friction_coefficient, film_forces, solve_constrained, point, elastic_contact)")
     a(f"NC = {nc}")
     a(f"N_DIAG = {n_diag}")
     a(f"JOINTS = {tuple(clearance_joints)}")
@@ -185,8 +265,10 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
             a("    if delta > 0.0:")
             a("        counts[0] += 1")
             a(f"        vimp = latched[{k}] if latched[{k}] > {P('floor')} else {P('floor')}")
-            a(f"        fn = {P('hertz')} * delta ** 1.5 * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)")
-            a(f"        potential += {P('hertz')} * delta ** 2.5 / 2.5")
+            law_k_n = f"int({P('elastic_law')}), {P('elastic_stiffness')}, {P('elastic_exponent')}"
+            a(f"        fe, ue = elastic_contact({law_k_n}, delta)")
+            a(f"        fn = fe * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)")
+            a("        potential += ue")
             if "friction" in effects:
                 a("        counts[1] += 1")
                 a(f"        ft = friction_coefficient(vt, {P('friction')}, {P('v0')}, {P('v1')}) * fn")
@@ -543,7 +625,11 @@ def cache_dir() -> Path:
 
 
 def compile_scene(clearance_joints: tuple[int, ...], effects: tuple[str, ...], contact_law: str = "lankarani-nikravesh"):
-    """The compiled module of a scene (rhs, rk4, dopri5), cached on disk by the hash of its source."""
+    """The compiled module of a scene (rhs, rk4, dopri5), cached on disk by the hash of its source.
+
+    The elastic law is data, not code: ``pack`` gives its code, K and n, and the one compiled module serves every
+    elastic law (the dispatch is in ``kernels.elastic_contact``), so it needs no place in the key.
+    """
     source = generate_source(tuple(clearance_joints), tuple(effects), contact_law, (1.0, 1.0, 1.0))
     digest = hashlib.sha256(source.encode()).hexdigest()[:16]
     name = f"linkwork_scene_{digest}"

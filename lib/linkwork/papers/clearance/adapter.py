@@ -21,12 +21,15 @@ EFFECT_KEYS: dict[str, tuple[str, ...]] = {
         "joints.poisson",
         "joints.restitution",
         "joints.contact_law",
+        "joints.elastic_law",
         "assumed.impact_velocity_floor_m_s",
     ),
     "friction": ("joints.friction", "assumed.v0_m_s", "assumed.v1_m_s"),
     "lubrication": ("joints.viscosity_Pa_s", "assumed.joint_length_m", "assumed.e0_m"),
     "gravity": (),
 }
+#: Config keys the contact reads besides EFFECT_KEYS['contact'], by its elastic law (joints.elastic_law).
+ELASTIC_LAW_KEYS: dict[str, tuple[str, ...]] = {"hertz-sphere": (), "pereira": ("assumed.joint_length_m",)}
 #: What every scene reads: the linkage, the drive and the recorded window.
 LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
 WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
@@ -51,6 +54,8 @@ def model_keys(section: Mapping[str, Any], variant: str, scene: str) -> list[str
         keys += DYNAMIC_KEYS
         for effect in spec["effects"]:
             keys += EFFECT_KEYS[effect]
+        if "contact" in spec["effects"]:
+            keys += ELASTIC_LAW_KEYS[section["joints"]["elastic_law"]]
     return list(dict.fromkeys(keys))
 
 
@@ -69,7 +74,8 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
     """FourBarParameters of a scene from the keys ``model_keys`` names (SI units).
 
     Inertias are the decoded ones as printed, or J = m L^2 / 12 for the 'slender' variant.
-    Parameters of effects the scene does not name are NaN.
+    Parameters of effects the scene does not name are NaN; the joint length is read by the lubrication and by
+    a contact whose elastic law needs it (ELASTIC_LAW_KEYS).
     """
     from ...engines.multibody.model import FourBarParameters
 
@@ -95,7 +101,10 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
     if "contact" in effects:
         j = cfg["joints"]
         values.update(youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
-                      impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"])
+                      impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"],
+                      elastic_law=j["elastic_law"])
+        if "assumed.joint_length_m" in ELASTIC_LAW_KEYS[j["elastic_law"]]:
+            values.update(joint_length=cfg["assumed"]["joint_length_m"]["value"])
     if "friction" in effects:
         a = cfg["assumed"]
         values.update(friction=cfg["joints"]["friction"], v0=a["v0_m_s"]["value"], v1=a["v1_m_s"]["value"])

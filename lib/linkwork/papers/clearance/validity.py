@@ -7,11 +7,20 @@ Two limits, both dimensionless:
   indentation) is far outside it, and the forces it gives are no longer contact physics;
 * the short-bearing film is capped at the eccentricity ratio 1 - e0/c (the film/dry transition): a scene
   that spends time beyond the cap is carried by the dry contact there, not by the film it names.
+
+Each elastic law of the dry contact has its own range (``elastic_law_validity``): the sphere law holds while the
+contact arc is short enough for its parabolic profiles, the conformal law of Pereira et al. over the radial
+clearances for which its coefficients are given.
 """
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
+
+from ...engines.multibody.model import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
+from ...units import DEG_PER_RAD
 
 #: A dry penetration deeper than this fraction of the radial clearance puts the Hertz law far outside its range.
 PENETRATION_LIMIT = 1.0
@@ -60,3 +69,75 @@ def contact_extent(penetration_over_c: float) -> tuple[str, float]:
     if np.isfinite(penetration_over_c) and penetration_over_c < 0:
         return "min gap / c", float(-penetration_over_c)
     return "max penetration / c", float(penetration_over_c)
+
+
+# --- the elastic laws' ranges ---------------------------------------------------------------------------
+
+#: The sphere law (Hertz) takes both profiles as parabolas.  Over a contact half-angle theta the parabola
+#: theta^2 / 2 overstates the circle's 1 - cos(theta) by theta^2 / 12 (relative, leading order); the law is taken
+#: to hold while that error stays below this tolerance (our criterion, not a published one).
+PARABOLIC_PROFILE_TOLERANCE = 0.01
+
+
+class LawValidity(NamedTuple):
+    """An elastic law's range: ``condition`` in words (built from the numbers), ``limits`` in numbers.
+
+    limits: max_half_angle_rad (contact half-angle, rad), max_penetration_m (m), max_penetration_over_clearance (-),
+    min_clearance_m, max_clearance_m (radial clearance, m), clearance_in_range (1.0 or 0.0); NaN where the law's
+    source sets no such bound.
+    """
+
+    condition: str
+    limits: dict[str, float]
+
+
+def contact_half_angle(penetration: float, r_journal: float, r_bearing: float) -> float:
+    """Half-angle (rad) of the arc over which the undeformed journal overlaps its bushing, seen from the bushing's
+    centre, when the centres are c + ``penetration`` apart (c = r_bearing - r_journal; all lengths m); 0 when the
+    journal does not reach the bushing.  From r_journal^2 = r_bearing^2 + e^2 - 2 r_bearing e cos(theta)."""
+    c = r_bearing - r_journal
+    e = c + max(penetration, 0.0)
+    cos_theta = (c * (2.0 * r_bearing - c) + e * e) / (2.0 * r_bearing * e)
+    return float(np.arccos(np.clip(cos_theta, -1.0, 1.0)))
+
+
+def penetration_at_half_angle(half_angle: float, r_journal: float, r_bearing: float) -> float:
+    """Penetration (m) at which ``contact_half_angle`` reaches ``half_angle`` (rad, below pi/2): the smaller root of
+    e^2 - 2 r_bearing cos(theta) e + c (2 r_bearing - c) = 0, minus c (lengths m)."""
+    c = r_bearing - r_journal
+    rc = r_bearing * np.cos(half_angle)
+    return float(rc - np.sqrt(rc * rc - c * (2.0 * r_bearing - c)) - c)
+
+
+def parabolic_half_angle_limit(tolerance: float = PARABOLIC_PROFILE_TOLERANCE) -> float:
+    """Largest contact half-angle (rad) at which a parabola errs from the circle by ``tolerance`` (relative, -):
+    sqrt(12 tolerance), the leading order of theta^2 / 12 = tolerance."""
+    return float(np.sqrt(12.0 * tolerance))
+
+
+def elastic_law_validity(law: str, r_journal: float, r_bearing: float,
+                         tolerance: float = PARABOLIC_PROFILE_TOLERANCE) -> LawValidity:
+    """The range of the elastic law ``law`` (a key of ELASTIC_LAWS) for a journal of radius r_journal in a bushing of
+    radius r_bearing (m).
+
+    hertz-sphere: contact half-angle up to ``parabolic_half_angle_limit(tolerance)``, i.e. a penetration small against
+    the clearance; no bound on the clearance.  pereira: radial clearance within PEREIRA_CLEARANCE_RANGE_M (where its
+    coefficient Y is given); no bound on the penetration or the load from its source.
+    """
+    if law not in ELASTIC_LAWS:
+        raise ValueError(f"unknown elastic law {law!r}; known: {sorted(ELASTIC_LAWS)}")
+    c = r_bearing - r_journal
+    nan = float("nan")
+    if law == "hertz-sphere":
+        theta = parabolic_half_angle_limit(tolerance)
+        pen = penetration_at_half_angle(theta, r_journal, r_bearing)
+        limits = {"max_half_angle_rad": theta, "max_penetration_m": pen, "max_penetration_over_clearance": pen / c,
+                  "min_clearance_m": nan, "max_clearance_m": nan, "clearance_in_range": 1.0}
+        condition = (f"contact half-angle below {theta * DEG_PER_RAD:.3g} deg (parabolic profiles within "
+                     f"{100 * tolerance:.3g} %): penetration below {pen / c:.3g} times the radial clearance")
+        return LawValidity(condition, limits)
+    low, high = PEREIRA_CLEARANCE_RANGE_M
+    limits = {"max_half_angle_rad": nan, "max_penetration_m": nan, "max_penetration_over_clearance": nan,
+              "min_clearance_m": low, "max_clearance_m": high, "clearance_in_range": float(low <= c <= high)}
+    condition = f"radial clearance between {low:.3g} and {high:.3g} m (here {c:.3g} m)"
+    return LawValidity(condition, limits)
