@@ -372,7 +372,7 @@ md(
 # %%
 window = float(wp.attrs["dry_error_window_cycles"])
 ylabel = {True: f"max |e − e_ref| / c over the first {window:g} cycle", False: "relative error of the RMS deviation from ideal"}
-dry_scene = {str(s_): "lubricat" not in str(s_) for s_ in wp.scene.values}
+dry_scene = {str(s_): wp.error_measure.sel(scene=s_).item() == wp.attrs["dry_error_measure"] for s_ in wp.scene.values}
 fig, axes = plt.subplots(1, len(wp.scene), figsize=(13, 4.5), constrained_layout=True)
 for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
     for method in np.unique(wp.method.values):
@@ -410,7 +410,8 @@ for scene in wp.scene.values:
                  f"{float(wp.attrs['start_perturbation_m']) * 1e9:g} nm reads {float(wp.start_sensitivity.sel(scene=scene)):.1e}.")
 dry = [str(s_) for s_ in wp.scene.values if dry_scene[str(s_)]]
 md(
-    f"Reference: {in_words(wp.attrs['reference'])}; its own error from a second run at {in_words(wp.attrs['reference_check'])}. "
+    f"References: {in_words(wp.attrs['reference'])}. The own error of each is its difference from a second run, at "
+    f"{in_words(wp.attrs['reference_check'])}. "
     f"The pipeline settings are {in_words(wp.attrs['pipeline_settings'])}.\n\n" + "\n".join(lines) + "\n\n"
     + "".join(
         f"**Why the dry scene's error is not the claims' measure.** In {SCENE_WORDS[s_]} the RMS deviation over the "

@@ -94,7 +94,7 @@ def test_the_study_records_its_measure_and_the_summary_shows_both_pipeline_setti
     cfg = small_config(explicit=3e-7)  # not in the list: the study adds the pipeline's setting
     ds, timings = work_precision(cfg)
     assert ds.attrs["dry_error_window_cycles"] == WP["dry_error_window_cycles"]
-    assert "|e - e_ref| / c" in ds.error_measure.sel(scene=DRY).item() and "RMS" in ds.error_measure.sel(scene=LUBRICATED).item()
+    assert "|e - e of the reference| / c" in ds.error_measure.sel(scene=DRY).item() and "RMS" in ds.error_measure.sel(scene=LUBRICATED).item()
     assert float(ds.reference_error.sel(scene=DRY)) == pytest.approx(
         contact_error(states(REF["method"], REF["check_rtol"]), states(REF["method"], REF["rtol"]), T, WINDOW_S, P, JOINTS), rel=1e-9)
     assert f"{DRY}: {float(ds.reference_error.sel(scene=DRY)):.2e}" in ds.attrs["reference_error"]

@@ -39,9 +39,10 @@ from .studies import cycle
 #: Attributes of a per-setting variable: NaN where the setting is not run for the scene.
 NOT_RUN = {"nan_meaning": "the setting is not run for this scene"}
 #: The measures, in words (``error_measure`` of each scene; {window}: the window in cycles).
-DRY_MEASURE = ("max over the first {window:g} cycle (recorded samples) of |e - e_ref| / c: e the journal eccentricity vector "
-               "(journal centre minus bearing centre) of each clearance joint, c the radial clearance")
-RMS_MEASURE = "|RMS(a - a_ideal) - RMS_ref| / RMS_ref over the horizon: a the rocker acceleration (the claims' measure)"
+DRY_MEASURE = ("max over the recorded samples of the first {window:g} cycle of |e - e of the reference| / c: e the journal "
+               "eccentricity (the vector from the bearing centre to the journal centre) of each clearance joint, c the radial clearance")
+RMS_MEASURE = ("|R - R of the reference| / R of the reference: R the RMS deviation of the rocker acceleration from the ideal curve "
+               "over the horizon (the claims' measure)")
 #: The method name of the accuracy summary, per scene (one pipeline setting each).
 SUMMARY_METHOD = "clearance integrators, {scene}"
 
