@@ -78,6 +78,9 @@ CASES = [
     # cross-references
     ("wp-unknown-scene", "      dry_2: {rk4:", "      dry_9: {rk4:", ["clearance.work_precision", "dry_9"]),
     ("wp-ideal-scene", "      dry_2: {rk4:", "      ideal: {rk4:", ["clearance.work_precision", "ideal"]),
+    ("wp-no-reference", "      lubricated_2: {method: radau, rtol: 1.0e-12, check_rtol: 1.0e-11}\n", "", ["clearance.work_precision.reference", "lubricated_2"]),
+    ("wp-check-is-reference", "check_rtol: 1.0e-13}", "check_rtol: 1.0e-14}", ["clearance.work_precision.reference.dry_2.check_rtol", "1e-14"]),
+    ("wp-window-past-horizon", "dry_error_window_cycles: 0.02", "dry_error_window_cycles: 0.8", ["clearance.work_precision.dry_error_window_cycles", "0.8"]),
     ("wp-unknown-variant", "    variant: slender\n    cycles: 0.5", "    variant: stiffest\n    cycles: 0.5", ["clearance.work_precision.variant", "stiffest"]),
     ("sweep-unknown-scene", "    scene: dry_both", "    scene: dry_all", ["sweeps.clearance.scene", "dry_all"]),
     ("unknown-material", "    name: LF6", "    name: LF7", ["transplanter.material.name", "LF7"]),

@@ -18,16 +18,21 @@ import xarray as xr
 DIM = "wp_point"
 
 
-def summary_variables(method: str, settings: Sequence[str], errors: Sequence[float], pipeline: str | Sequence[str]) -> dict[str, Any]:
-    """Data variables of the standard accuracy summary for one method (dimension ``wp_point``).
+def summary_variables(method: str | Sequence[str], settings: Sequence[str], errors: Sequence[float], pipeline: str | Sequence[str]) -> dict[str, Any]:
+    """Data variables of the standard accuracy summary for one method, or one method per point (dimension ``wp_point``).
 
-    ``pipeline``: the setting(s) the pipeline uses.  Errors are relative; an exact method is entered
-    at the rounding level (1e-16) so that it shows on a log axis.
+    ``pipeline``: the setting(s) the pipeline uses; ``highlights`` shows one pipeline setting per method, so a study
+    whose pipeline uses several settings (the clearance integrators: one per kind of scene) names one method per
+    setting.  Errors are relative; an exact method is entered at the rounding level (1e-16) so that it shows on a
+    log axis.
     """
     chosen = {pipeline} if isinstance(pipeline, str) else set(pipeline)
     n = len(settings)
+    methods = [method] * n if isinstance(method, str) else list(method)
+    if len(methods) != n:
+        raise ValueError(f"summary_variables: {len(methods)} methods for {n} settings")
     return {
-        "wp_method": (DIM, np.array([method] * n, dtype=object), {"units": "1", "long_name": "numerical method"}),
+        "wp_method": (DIM, np.array(methods, dtype=object), {"units": "1", "long_name": "numerical method"}),
         "wp_setting": (DIM, np.array(list(settings), dtype=object), {"units": "1", "long_name": "setting of that point"}),
         "wp_error": (DIM, np.asarray(errors, dtype=float), {"units": "1", "long_name": "relative error against the method's reference"}),
         "wp_pipeline": (DIM, np.array([int(s in chosen) for s in settings]), {"units": "1", "long_name": "1 for the setting the pipeline uses"}),

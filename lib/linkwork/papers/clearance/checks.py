@@ -50,6 +50,14 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             raise ConfigError(f"config key {key}.work_precision.scenes: scene {name!r} is not a scene of {key}.scenes")
         if not section["scenes"][name]["clearance_joints"]:
             raise ConfigError(f"config key {key}.work_precision.scenes: scene {name!r} has no clearance joint (nothing to integrate)")
+    for name in wp["scenes"]:
+        if name not in wp["reference"]:
+            raise ConfigError(f"config key {key}.work_precision.reference: scene {name!r} of work_precision.scenes has no reference")
+    for name, ref in wp["reference"].items():
+        if ref["check_rtol"] == ref["rtol"]:
+            raise ConfigError(f"config key {key}.work_precision.reference.{name}.check_rtol: value {ref['check_rtol']!r} equals rtol (the two runs would agree trivially)")
+    if wp["dry_error_window_cycles"] > wp["cycles"]:
+        raise ConfigError(f"config key {key}.work_precision.dry_error_window_cycles: value {wp['dry_error_window_cycles']!r} is longer than work_precision.cycles ({wp['cycles']!r})")
     b = section["bodies"]
     lw = FourBar(b["crank"]["length_m"], b["coupler"]["length_m"], b["rocker"]["length_m"], section["ground_m"])
     try:
