@@ -22,7 +22,7 @@ DRY = next(s for s in WP["scenes"] if is_dry(SECTION["scenes"][s]["effects"]))
 LUBRICATED = next(s for s in WP["scenes"] if not is_dry(SECTION["scenes"][s]["effects"]))
 P = parameters(SECTION, WP["variant"], DRY)
 JOINTS, EFFECTS = scene_effects(SECTION, DRY)
-T = np.linspace(0.0, WP["cycles"] * cycle(P), int(WP["cycles"] * SECTION["numerics"]["points_per_cycle"]) + 1)
+T = np.linspace(0.0, WP["cycles"] * cycle(P), int(WP["cycles"] * WP["points_per_cycle"]) + 1)
 WINDOW_S = WP["dry_error_window_cycles"] * cycle(P)
 REF = WP["reference"][DRY]
 

@@ -53,7 +53,7 @@ rule clearance_work_precision:
         timings="results/clearance/accuracy_timings.json",
     params:
         study="linkwork.papers.clearance.accuracy:work_precision",
-        cfg=section("clearance", "work_precision", "numerics.points_per_cycle",
+        cfg=section("clearance", "work_precision",
                     # the pipeline's setting of each kind of scene studied (explicit: dry, stiff: lubricated), shown in the accuracy summary
                     *sorted({f"integrators.{clearance_adapter.integrator_kind(CLEARANCE['scenes'][s])}" for s in CLEARANCE["work_precision"]["scenes"]}),
                     *(k for s in CLEARANCE["work_precision"]["scenes"] for k in clearance_adapter.model_keys(CLEARANCE, CLEARANCE["work_precision"]["variant"], s))),

@@ -128,7 +128,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
         p = parameters(cfg, variant, name)
         joints, effects = scene_effects(cfg, name)
         dry = is_dry(effects)
-        t = np.linspace(0.0, wp["cycles"] * cycle(p), int(wp["cycles"] * cfg["numerics"]["points_per_cycle"]) + 1)
+        t = np.linspace(0.0, wp["cycles"] * cycle(p), int(wp["cycles"] * wp["points_per_cycle"]) + 1)
         window_s = wp["dry_error_window_cycles"] * cycle(p)
         ideal = inverse_dynamics(p, t, True)["rocker_acceleration"]
         ref_spec = wp["reference"][name]
@@ -204,7 +204,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
                "dry_error_window_cycles": wp["dry_error_window_cycles"],
                "lubricated_error_measure": RMS_MEASURE,
                "start_perturbation_m": wp["start_perturbation_m"],
-               "horizon_cycles": wp["cycles"], "points_per_cycle": cfg["numerics"]["points_per_cycle"], "variant": variant,
+               "horizon_cycles": wp["cycles"], "points_per_cycle": wp["points_per_cycle"], "variant": variant,
                "atol_over_rtol": wp["atol_over_rtol"], "first_step_s": wp["first_step_s"], "max_step_s": wp["max_step_s"],
                "pipeline_settings": "; ".join(f"{k}: {setting_label(v)}" for k, v in cfg["integrators"].items()),
                "pipeline_settings_json": json.dumps(cfg["integrators"], sort_keys=True)},

@@ -183,7 +183,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     scene, variant = xc["scene"], wp["variant"]
     p = parameters(cfg, variant, scene)
     joints, effects = scene_effects(cfg, scene)
-    t = np.linspace(0.0, wp["cycles"] * cycle(p), int(wp["cycles"] * cfg["numerics"]["points_per_cycle"]) + 1)
+    t = np.linspace(0.0, wp["cycles"] * cycle(p), int(wp["cycles"] * wp["points_per_cycle"]) + 1)
     ideal_acc = inverse_dynamics(p, t, True)["rocker_acceleration"]
     from ...engines.multibody.simulate import integrate
 
