@@ -147,7 +147,7 @@ cl_valid = ["penetration_over_clearance", "peak_joint_force", "peak_force_over_i
 heat_row(cl, cl_valid, "crank_speed_rad_s", "clearance_m", width=17)
 caption(
     f"Validity map of the clearance model: {esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}, "
-    f"over {cl.attrs['record_cycles']} recorded cycles after {cl.attrs['settle_cycles']} settling ones. Left: the deepest penetration over "
+    "over the judged turns of the state each point settles into (the clearance scenes' rule, first start). Left: the deepest penetration over "
     "the radial clearance, with the Hertz validity limit (penetration = clearance, dashed). Middle: the peak contact force. Right: the "
     "peak contact force over the largest reaction the same joints carry with ideal (no-clearance) joints. Outlined: the paper's "
     "clearance and speed. Colour: log scale centred on the threshold (left) or the reference value, symmetric, at least ×/÷ "
@@ -177,8 +177,8 @@ plt.show()
 caption(
     f"The claims' measure on the same grid ({esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}): RMS "
     "deviation from the ideal joints over the RMS of the ideal response, per recorded cycle, for the rocker acceleration (left, claim "
-    f"1) and the crank torque (right, claim 2). Top: mean over the {cl.attrs['record_cycles']} recorded cycles. Bottom: the spread "
-    "of the same cycles (largest − smallest) over their mean; 0 where the response has settled into a periodic one; linear grey scale "
+    "1) and the crank torque (right, claim 2). Top: mean over the judged turns of each point's settled state. Bottom: the spread "
+    "of the same turns (largest − smallest) over their mean; 0 where the state is a periodic orbit of one turn; linear grey scale "
     "from 0. Outlined: "
     "the paper's clearance and speed."
 )
@@ -207,9 +207,8 @@ md(
     "What this map can show: how far the scene with both joints in clearance departs from the ideal joints, and whether that "
     "departure changes with clearance or speed by more than the response's own cycle-to-cycle scatter. What it cannot show: the "
     "paper's orderings (joint 2 > joint 1 for the acceleration, the reverse for the torque) need the single-joint scenes, which this "
-    f"sweep does not run (the clearance report judges them over many cycles); and with {cl.attrs['record_cycles']} recorded cycles "
-    "per point the spread is a lower bound on the scatter, so a change counts as a trend below only where it exceeds the sum of the "
-    "spreads of the two cells it compares (their cycle ranges are then apart).\n\n"
+    "sweep does not run (the clearance report judges them from two starts); and a change counts as a trend below only where it "
+    "exceeds the sum of the spreads of the two cells it compares (their cycle ranges are then apart).\n\n"
     + "\n\n".join(resolved_sentence(cl, var, dims) for var in cl_dev)
 )
 

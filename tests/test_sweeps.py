@@ -107,29 +107,31 @@ def test_heald_sweep_point_moves_the_reaction_ratio_only_in_E(config):
     assert thresholds(load_yaml("config/published/heald.yaml"))["ratio_EF_min"]["value"] == 3.0
 
 
-def test_clearance_relative_deviation():
-    from linkwork.papers.clearance.sweep import relative_rms_deviation
+def test_a_clearance_sweep_point_is_the_scene_settled_from_the_first_start():
+    """Second route for a sweep point: at the reference clearance and speed, its state and its measure (relative RMS
+    deviation of the rocker acceleration) are those of the scene study run from the first start without checks
+    (the same settling rule), the measure over the RMS of the ideal response; its section points are the state's."""
+    import copy
 
-    t = np.linspace(0.0, 2 * np.pi, 721)
-    ideal = np.sin(t)
-    assert relative_rms_deviation(ideal, ideal) == 0.0
-    assert relative_rms_deviation(1.1 * ideal, ideal) == pytest.approx(0.1, rel=1e-12)
-    assert relative_rms_deviation(ideal + 0.5 * np.cos(t), ideal) == pytest.approx(0.5, rel=1e-3)  # orthogonal over a cycle
+    from linkwork.engines.multibody.model import inverse_dynamics
+    from linkwork.papers.clearance.adapter import parameters
+    from linkwork.papers.clearance.studies import cycle, scene
+    from linkwork.papers.clearance.sweep import SECTION_POINTS, sweep_point
 
-
-def test_clearance_per_cycle_deviation_and_its_spread():
-    """Per cycle, the measure is the single-cycle measure of that cycle: a response 10 % too large in cycle 1 and
-    30 % in cycle 2 gives 0.1 and 0.3 (spread 0.2); a periodic response gives a spread of exactly 0."""
-    from linkwork.papers.clearance.sweep import per_cycle_deviation
-
-    n = 360
-    t = np.linspace(0.0, 2 * np.pi, n + 1)
-    ideal = np.sin(t) + 0.2
-    run = np.concatenate([1.1 * ideal[:-1], 1.3 * ideal])
-    assert per_cycle_deviation(run, ideal) == pytest.approx([0.1, 0.3], rel=1e-12)
-    periodic = np.concatenate([1.2 * ideal[:-1]] * 3 + [1.2 * ideal[-1:]])
-    d = per_cycle_deviation(periodic, ideal)
-    assert d.size == 3 and np.ptp(d) < 1e-15
+    cfg = copy.deepcopy(load_yaml("config/config.yaml")["clearance"])
+    cfg["numerics"]["points_per_cycle"] = 1800  # coarser than the pipeline's, the same for both routes
+    c = cfg["joints"]["bearing_radius_m"] - cfg["joints"]["journal_radius_m"]
+    out = sweep_point(cfg, {"clearance_m": c, "crank_speed_rad_s": cfg["crank_speed_rad_s"]}, {"scene": "dry_2", "variant": "decoded"})
+    ds = scene(cfg, "decoded", "dry_2", first_start_only=True, check=False)
+    p = parameters(cfg, "decoded", "dry_2")
+    per = cfg["numerics"]["points_per_cycle"]
+    ideal = inverse_dynamics(p, np.arange(per + 1) * cycle(p) / per, True)["rocker_acceleration"][:-1]
+    assert out["state_period"] == int(ds.state_period[0]) and out["state_transient"] == int(ds.state_transient[0])
+    measure = float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0]) / np.sqrt(np.mean(ideal**2))
+    assert out["rocker_acceleration_deviation"] == pytest.approx(measure, rel=1e-12)
+    first, stop = int(ds.window_first[0]), int(ds.window_stop[0])
+    kept = ds.section.values[0, first:stop, 0][-SECTION_POINTS:]
+    assert [out[f"section_{k}"] for k in range(kept.size)] == pytest.approx(kept.tolist(), rel=1e-12)
 
 
 def test_resolved_trend_counts_only_changes_beyond_the_cycle_spread():

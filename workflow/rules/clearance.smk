@@ -7,6 +7,12 @@ CLEARANCE_VARIANTS = list(CLEARANCE["variants"])
 CLEARANCE_SCENES = list(CLEARANCE["scenes"])
 
 
+def clearance_studies_compared():
+    """The scenes the claims compare (lib's list)."""
+    from linkwork.papers.clearance.studies import COMPARED
+    return list(COMPARED)
+
+
 def scene_cfg(wildcards):
     """A scene's params: exactly the keys its effects, its variant, its settling rule and its integrators read."""
     return section("clearance", *clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, wildcards.scene))
@@ -61,18 +67,38 @@ rule clearance_work_precision:
         STUDY
 
 
+CLEARANCE_CONTACT = [s for s in clearance_studies_compared() if "contact" in CLEARANCE["scenes"][s]["effects"]]
+
+
+rule clearance_contact_law:
+    input:
+        nominal=expand("results/clearance/{{variant}}/{scene}.nc", scene=CLEARANCE_CONTACT),
+        code=code("linkwork.papers.clearance.uncertainty"),
+    output:
+        "results/clearance/contact_law/{variant}.nc",
+    params:
+        study="linkwork.papers.clearance.uncertainty:contact_law",
+        cfg=lambda wildcards: section("clearance", *sorted({k for s in CLEARANCE_CONTACT for k in clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, s)
+                                                             if not k.startswith("check_integrators.")} | {"assumed.joint_length_m"})),
+        args=lambda wildcards: {"variant": wildcards.variant, "law": CLEARANCE["sensitivity"]["elastic_law"]},
+    script:
+        STUDY
+
+
 rule clearance_compare:
     input:
         published="config/published/clearance.yaml",
         claims="results/clearance/claims.nc",
         uncertainty="results/clearance/uncertainty.nc",
+        laws=expand("results/clearance/contact_law/{variant}.nc", variant=CLEARANCE_VARIANTS),
         code=code("linkwork.papers.clearance.findings"),
     output:
         "results/clearance/comparison.csv",
         "results/clearance/findings.nc",
     params:
         study="linkwork.papers.clearance.findings:compare",
-        cfg=section("clearance", *(f"scenes.{s}.effects" for s in CLEARANCE_SCENES), "assumed.e0_m", "assumed.e0_m.range"),  # the named effects: the stray-evaluation check
+        cfg=section("clearance", *(f"scenes.{s}.effects" for s in CLEARANCE_SCENES), "assumed.e0_m", "assumed.e0_m.range",  # the named effects: the stray-evaluation check
+                    "joints", "claims.close_to_ideal_ratio", "statistics.confidence", "sensitivity"),  # the law sensitivity and the laws' validity
     script:
         STUDY
 

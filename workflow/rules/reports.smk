@@ -40,6 +40,7 @@ REPORT_INPUTS = {
     "clearance": paper_report(
         "clearance", result="results/clearance/claims.nc", accuracy="results/clearance/accuracy.nc",
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
+        sweep="results/sweeps/clearance.nc",
         **(CROSSCHECK_RESULTS if config["crosscheck"] else {}),
     ),
     "accuracy": {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json", **(CROSSCHECK_WP if config["crosscheck"] else {})},

@@ -116,7 +116,7 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     n = max(st["check_cycles"], 2 * period) if period != NOT_PERIODIC else st["check_cycles"]
     measures = found["measures"]
     deltas = np.full((len(checks), measures.shape[1]), np.nan)
-    kept, periods = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int)
+    kept, periods, distances = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int), np.full(len(checks), np.nan)
     orbit = found["points"][first : first + period] if period != NOT_PERIODIC else None
     for i, integ in enumerate(checks):
         rerun = make_runner(integ, runner.memories[first])
@@ -131,10 +131,10 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
             k, _ = section_period(pts, st["max_period"], 0.0, st["section_tolerance"], 2)
             periods[i] = k
             scale = np.maximum(1.0, np.abs(orbit))
-            distance = np.min(np.max(np.abs(pts[-1][None] - orbit) / scale, axis=1))
-            kept[i] = float(distance <= st["state_tolerance"])
+            distances[i] = np.min(np.max(np.abs(pts[-1][None] - orbit) / scale, axis=1))
+            kept[i] = float(distances[i] <= st["state_tolerance"])
         else:
             ours = meas.mean(axis=0)
             base = measures[first : min(first + n, stop)].mean(axis=0)
         deltas[i] = ours - base
-    return {"delta": deltas, "kept": kept, "period": periods}
+    return {"delta": deltas, "kept": kept, "period": periods, "distance": distances}

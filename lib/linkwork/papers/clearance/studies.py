@@ -165,6 +165,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     window_ext = np.full((ns, len(extremes_names), 2), np.nan)
     delta = np.full((ns, len(checks), 2, len(QUANTITIES)), np.nan)
     kept, check_period = np.full((ns, len(checks)), np.nan), np.zeros((ns, len(checks)), dtype=int)
+    check_distance = np.full((ns, len(checks)), np.nan)
     for i, (f, r, c) in enumerate(zip(found, runners, checked, strict=True)):
         n = f["points"].shape[0]
         section[i, :n] = f["points"]
@@ -175,7 +176,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
         for k, j in enumerate(joints):
             window_ext[i, :, j - 1] = np.nanmax(ext[:, k, :], axis=0)
         delta[i] = c["delta"].reshape(len(checks), 2, len(QUANTITIES))
-        kept[i], check_period[i] = c["kept"], c["period"]
+        kept[i], check_period[i], check_distance[i] = c["kept"], c["period"], c["distance"]
     numerical = np.full(delta.shape[:1] + delta.shape[2:], np.nan)  # no check ran (or every one failed): no error bar
     if len(checks):
         largest = np.max(np.where(np.isfinite(delta), np.abs(delta), -np.inf), axis=1)
@@ -227,6 +228,9 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
                                                                   "nan_meaning": "the check integrator failed (gave up on a step)"}),
             "check_kept_state": (("start", "check"), kept, {"units": "1", "long_name": "1 if the check run stays on the pipeline's periodic orbit (its period, within the state tolerance)",
                                                           "nan_meaning": "the state is not periodic: not testable"}),
+            "check_distance": (("start", "check"), check_distance, {"units": "1", "long_name": "largest section component's distance of the check run's last point "
+                                                                                     "from the pipeline orbit, over max(1, |component|)",
+                                                                     "nan_meaning": "the state is not periodic, or the check failed"}),
             "check_period": (("start", "check"), check_period, {"units": "1", "long_name": "period found in the check run (0: none)"}),
             "window_memory": (("start", "memory"), np.array([r.memories[f["window"][0]] for f, r in zip(found, runners, strict=True)]),
                               {"units": "SI (t in s, then the state y, latched impact velocities, contact flags)", "long_name": "the run's whole state at the start of the judged window (restartable)"}),
@@ -523,8 +527,9 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
     for key in ("state_status", "state_period", "state_transient", "window_first", "window_stop", "record_cycles", "state_change"):
         arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])  # variant, scene, start
         data[f"scene_{key}"] = (("variant", "scene", "start"), arr.astype(object) if key == "state_status" else arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
-    kept = np.array([[runs[(v, n)].check_kept_state.values for n in COMPARED] for v in variants])
-    data["scene_check_kept_state"] = (("variant", "scene", "start", "check"), kept, dict(runs[(variants[0], COMPARED[0])].check_kept_state.attrs))
+    for key in ("check_kept_state", "check_distance"):
+        arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])
+        data[f"scene_{key}"] = (("variant", "scene", "start", "check"), arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
         data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr,

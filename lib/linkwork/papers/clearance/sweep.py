@@ -23,7 +23,6 @@ import numpy as np
 import xarray as xr
 
 from ...engines.multibody.model import inverse_dynamics
-from ...engines.multibody.simulate import integrate
 from ...pipeline.sweeps import gather, interpret, points_dataset
 from . import validity
 from .adapter import integrator_kind, parameters, scene_effects
@@ -34,36 +33,26 @@ SCENE_WORDS = {"dry_1": "joint 1 (A) with dry clearance", "dry_2": "joint 2 (B) 
                "lubricated_2": "joint 2 (B) lubricated", "lubricated_both": "both joints lubricated"}
 VARIANT_WORDS = {"slender": "slender links (J = m L^2 / 12)", "decoded": "link inertias as printed"}
 
-#: The measures recorded per cycle: (sweep output, series index in the integrated output, ideal series).
+#: The measures recorded per cycle: (sweep output, row of the per-cycle RMS measures (settling.MEASURE_ROWS), ideal series).
 PER_CYCLE = {"rocker_acceleration_deviation": (0, "rocker_acceleration"), "crank_torque_deviation": (1, "crank_torque")}
 #: Suffix of an output's cycle-to-cycle spread.
 SCATTER = "_cycle_spread"
 
 
-def _times(points_per_cycle: int, settle: int, record: int, period: float) -> tuple[np.ndarray, np.ndarray]:
-    """(output times (s), mask of the recorded cycles): ``settle`` cycles discarded, then ``record`` recorded."""
-    t = np.arange((settle + record) * points_per_cycle + 1) * period / points_per_cycle
-    return t, t >= settle * period - 1e-12
-
-
-def relative_rms_deviation(run: np.ndarray, ideal: np.ndarray) -> float:
-    """RMS of (run - ideal) over RMS of ideal, on the same samples (the last sample closes the cycle: left out)."""
-    d, r = (run - ideal)[:-1], ideal[:-1]
-    return float(np.sqrt(np.mean(d**2)) / np.sqrt(np.mean(r**2)))
-
-
-def per_cycle_deviation(run: np.ndarray, ideal_cycle: np.ndarray) -> np.ndarray:
-    """``relative_rms_deviation`` on each recorded cycle of ``run`` (cycles of ``ideal_cycle.size - 1`` samples, the
-    closing sample shared) against the ideal response over one cycle (periodic: the same for every cycle)."""
-    n = ideal_cycle.size - 1
-    return np.array([relative_rms_deviation(run[k * n : (k + 1) * n + 1], ideal_cycle) for k in range((run.size - 1) // n)])
+#: Section points kept per sweep point for the bifurcation diagram (the judged turns' last ones; a period-k orbit shows k).
+SECTION_POINTS = 8
 
 
 def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mapping[str, Any]) -> dict[str, float]:
-    """Validity measures, peak contact force and the claims' measures (mean and cycle spread) at one point.
+    """Validity measures, peak contact force, the claims' measures (mean and cycle spread over the judged turns) and
+    the state (period, transient, the last section points of joint 1's e_x / c) at one point, the scene settled from
+    the first start by the clearance scenes' own rule (``states``).
 
-    ``point`` holds clearance_m and crank_speed_rad_s; ``spec`` the sweep's scene, variant and cycles.
+    ``point`` holds clearance_m and crank_speed_rad_s; ``spec`` the sweep's scene and variant.
     """
+    from ...engines.states import PERIODIC
+    from .settling import CycleRunner, judged_statistics, settle_start, start_state
+
     name, variant = spec["scene"], spec["variant"]
     bearing = cfg["joints"]["bearing_radius_m"]
     local = {**cfg, "crank_speed_rad_s": point["crank_speed_rad_s"], "joints": {**cfg["joints"], "journal_radius_m": bearing - point["clearance_m"]}}
@@ -73,18 +62,26 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
         local["assumed"] = {**cfg["assumed"], "e0_m": {**cfg["assumed"]["e0_m"], "value": cfg["assumed"]["e0_m"]["value"] * point["clearance_m"] / c0}}
     p = parameters(local, variant, name)
     ppc = cfg["numerics"]["points_per_cycle"]
-    t, rec = _times(ppc, spec["settle_cycles"], spec["record_cycles"], 2 * np.pi / p.crank_speed)
-    _, d, *_ = integrate(p, joints, effects, t, cfg["integrators"][integrator_kind(cfg["scenes"][name])])
-    d = d[rec]
-    ideal = inverse_dynamics(p, t[rec][: ppc + 1], "gravity" in effects)  # one cycle: the ideal response is periodic
-    forces = np.nan_to_num(d[:, [7 + 6 * k for k in range(len(joints))]], nan=0.0)
-    penetration = d[:, [5 + 6 * k for k in range(len(joints))]]
+    period = 2 * np.pi / p.crank_speed
+    ideal = inverse_dynamics(p, np.arange(ppc + 1) * period / ppc, "gravity" in effects)  # one cycle: the ideal response is periodic
+    runner = CycleRunner(p, joints, effects, cfg["integrators"][integrator_kind(cfg["scenes"][name])], ideal, ppc, 1,
+                         y0=start_state(p, joints, cfg["states"]["starts"][0]))
+    found = settle_start(runner, cfg["states"], cfg["statistics"]["confidence"])
+    first, stop = found["window"]
+    ext = np.array(runner.extremes)[first:stop]  # cycle, joint, (penetration, eccentricity, contact force, film force)
+    scale = {"rocker_acceleration_deviation": np.sqrt(np.mean(ideal["rocker_acceleration"][:-1] ** 2)),
+             "crank_torque_deviation": np.sqrt(np.mean(ideal["crank_torque"][:-1] ** 2))}
     ideal_peak = max(float(np.max(ideal["force_A" if j == 1 else "force_B"])) for j in joints)
-    out = {"penetration_over_clearance": validity.penetration_ratio(penetration, p.clearance),
-           "peak_joint_force": float(forces.max()), "peak_force_over_ideal": float(forces.max()) / ideal_peak}
-    for key, (column, series) in PER_CYCLE.items():
-        per_cycle = per_cycle_deviation(d[:, column], ideal[series])
-        out[key], out[key + SCATTER] = float(per_cycle.mean()), float(per_cycle.max() - per_cycle.min())
+    out = {"penetration_over_clearance": float(np.nanmax(ext[:, :, 0]) / p.clearance), "peak_joint_force": float(np.nanmax(ext[:, :, 2])),
+           "peak_force_over_ideal": float(np.nanmax(ext[:, :, 2])) / ideal_peak,
+           "state_period": float(found["period"]), "state_transient": float(found["transient"]), "state_periodic": float(found["status"] == PERIODIC)}
+    judged = judged_statistics(found["measures"], found, cfg["statistics"]["batch_cycles"], cfg["statistics"]["confidence"])  # as the scenes judge
+    for key, (row, _) in PER_CYCLE.items():
+        per_cycle = found["measures"][first:stop, row] / scale[key]
+        out[key], out[key + SCATTER] = float(judged[row, 0] / scale[key]), float(per_cycle.max() - per_cycle.min())
+    last = found["points"][first:stop, 0][-SECTION_POINTS:]
+    for k in range(SECTION_POINTS):
+        out[f"section_{k}"] = float(last[k]) if k < last.size else float("nan")
     return out
 
 
@@ -97,6 +94,10 @@ SWEEP_OUTPUTS = {
     "rocker_acceleration_deviation" + SCATTER: ("1", "cycle-to-cycle spread (largest - smallest recorded cycle) of the rocker acceleration's deviation"),
     "crank_torque_deviation": ("1", "RMS deviation of the crank torque from the ideal joints / RMS of the ideal, mean over the recorded cycles"),
     "crank_torque_deviation" + SCATTER: ("1", "cycle-to-cycle spread (largest - smallest recorded cycle) of the crank torque's deviation"),
+    "state_period": ("1", "period of the settled state in crank turns (0: not periodic)"),
+    "state_transient": ("1", "crank turns before the state (never judged)"),
+    "state_periodic": ("1", "1 if the state is a periodic orbit"),
+    **{f"section_{k}": ("1", f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the bifurcation diagram)") for k in range(SECTION_POINTS)},
 }
 
 #: The threshold drawn on the map: where the Hertz contact law leaves its range (the clearance report's limit).
@@ -127,5 +128,5 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset]) -> xr.Dataset
     ds.attrs.update(title=f"clearance sweep ({cfg['grid']} grid)", scene=spec["scene"], variant=spec["variant"],
                     scene_description=SCENE_WORDS.get(spec["scene"], spec["scene"]),
                     variant_description=VARIANT_WORDS.get(spec["variant"], spec["variant"]),
-                    settle_cycles=spec["settle_cycles"], record_cycles=spec["record_cycles"])
+                    settle_rule="the clearance scenes' settling rule (states), first start")
     return ds

@@ -204,3 +204,18 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                                "judged as the nominal runs are; sample_claim_outcome adds the margins (the sample's own intervals, the nominal numerical "
                                "errors); no sample takes the nominal outcome")
     return ds
+
+
+def contact_law(cfg: Mapping[str, Any], variant: str, law: str, nominal: Sequence[Any] = ()):
+    """Rule study: the compared scenes with contact under another elastic law (``law``, e.g. the conformal one), each
+    continued from its nominal state (first start) and judged on its own state as an input-uncertainty sample is
+    (``batch`` with the law as the moved value; a scene whose nominal runs never touched is held: the law acts only
+    in contact).  The sensitivity of the verdicts to the contact law."""
+    return batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal)
+
+
+def law_judgement(nominal: Any, law_run: Any, ratio: float, confidence: float) -> dict[str, Any]:
+    """The claims of one variant under the other contact law (``law_run``: ``contact_law``'s result), the nominal
+    numerical errors kept: ``studies.judge``'s verdict."""
+    verdict, _ = sample_judgement(nominal, law_run.isel(sample=0, variant=0), ratio, confidence)
+    return verdict
