@@ -493,6 +493,31 @@ md(
 )
 
 # %% [markdown]
+# ### The contact law: do the verdicts survive it?
+#
+# Eq. (9) is the Hertz law of two spheres (force ∝ δ^1.5), a small-deformation law of a short contact arc. A journal
+# pressed into its bushing by a fraction of the clearance touches it over a wide arc, a conformal contact. So every
+# scene with contact is run again under a conformal cylindrical law (Pereira, Ramalho and Ambrósio 2011: force ∝
+# L E* δ^n with n and the stiffness fitted to finite-element results for internal cylinder contact), continued from
+# its state, and the claims are judged again.
+
+# %%
+if "law_survives" in fnd:
+    lrows = [{"variant": str(v), "claim": CLAIM_WORDS[str(c)],
+              "sphere law (eq. 9)": OUTCOME[int(fnd.law_outcome_sphere.sel(variant=v, claim=c))],
+              f"{fnd.attrs['other_law']} law": OUTCOME[int(fnd.law_outcome_other.sel(variant=v, claim=c))],
+              "survives the law": "yes" if int(fnd.law_survives.sel(variant=v, claim=c)) else "no",
+              "counted as the paper's verdict": "yes" if int(fnd.verdict_counted.sel(variant=v, claim=c)) else "no (rests on the sphere law outside its range)"}
+             for v in fnd.variant.values for c in fnd.claim.values]
+    table(pd.DataFrame(lrows), caption="Each claim (first start) under the two elastic laws, the other inputs and the numerical error bars the nominal ones")
+    md(f"**Validity of the sphere law:** {esc(fnd.attrs['sphere_law_condition'])}. The deepest dry penetration is "
+       + ", ".join(f"{float(fnd.dry_penetration_max.sel(variant=v)):.2f} c ({esc(str(v))})" for v in fnd.variant.values)
+       + (": beyond it in every variant. " if not fnd.sphere_law_valid.any() else ". ")
+       + f"**Validity of the {esc(fnd.attrs['other_law'])} law:** {esc(fnd.attrs['other_law_condition'])}"
+       + (" (inside)." if int(fnd.attrs["other_law_valid"]) else " (outside).")
+       + " A verdict counts as the paper's where the sphere law is valid or the verdict survives the change of law.")
+
+# %% [markdown]
 # ## 5. Accuracy of the integrators
 #
 # Error against accepted steps, the deterministic measure of work. A step of an implicit method (BDF, Radau) costs a

@@ -57,11 +57,13 @@ def point_dataset(point: Mapping[str, float], values: Mapping[str, float], outpu
     return xr.Dataset(data)
 
 
-def points_dataset(points: Sequence[Mapping[str, float]], values: Sequence[Mapping[str, float]], outputs: Mapping[str, tuple[str, str]]):
-    """The points of one job along a ``point`` dimension: coordinates and outputs with units."""
+def points_dataset(points: Sequence[Mapping[str, float]], values: Sequence[Mapping[str, float]], outputs: Mapping[str, tuple[str, ...]]):
+    """The points of one job along a ``point`` dimension: coordinates and outputs with units (an output's optional
+    third field says what its NaN means)."""
     import xarray as xr
 
-    data = {k: ("point", [v[k] for v in values], {"units": u, "long_name": n}) for k, (u, n) in outputs.items()}
+    data = {k: ("point", [v[k] for v in values], {"units": spec[0], "long_name": spec[1], **({"nan_meaning": spec[2]} if len(spec) > 2 else {})})
+            for k, spec in outputs.items()}
     data.update({a: ("point", [p[a] for p in points], {"units": AXES[a][0], "long_name": AXES[a][1]}) for a in points[0]})
     return xr.Dataset(data)
 

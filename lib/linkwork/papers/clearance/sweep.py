@@ -97,7 +97,8 @@ SWEEP_OUTPUTS = {
     "state_period": ("1", "period of the settled state in crank turns (0: not periodic)"),
     "state_transient": ("1", "crank turns before the state (never judged)"),
     "state_periodic": ("1", "1 if the state is a periodic orbit"),
-    **{f"section_{k}": ("1", f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the bifurcation diagram)") for k in range(SECTION_POINTS)},
+    **{f"section_{k}": ("1", f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the bifurcation diagram)",
+                        "the state was judged on fewer turns") for k in range(SECTION_POINTS)},
 }
 
 #: The threshold drawn on the map: where the Hertz contact law leaves its range (the clearance report's limit).
@@ -123,7 +124,8 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset]) -> xr.Dataset
     for k, spread in scatter.items():  # the spread relative to the mean: what a change must exceed, as a fraction
         grid_ds[k + "_relative" + SCATTER] = (grid_ds[spread] / grid_ds[k]).assign_attrs(
             units="1", long_name=f"{grid_ds[spread].attrs['long_name']} / its mean")
-    ds = interpret(grid_ds, cfg["reference"], THRESHOLDS, scatter=scatter)
+    states = [k for k in grid_ds.data_vars if k.startswith(("section_", "state_"))]  # the bifurcation diagram's: no trends of them
+    ds = interpret(grid_ds.drop_vars(states), cfg["reference"], THRESHOLDS, scatter=scatter).merge(grid_ds[states])
     spec = cfg["spec"]
     ds.attrs.update(title=f"clearance sweep ({cfg['grid']} grid)", scene=spec["scene"], variant=spec["variant"],
                     scene_description=SCENE_WORDS.get(spec["scene"], spec["scene"]),
