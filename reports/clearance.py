@@ -142,9 +142,10 @@ md(" ".join(f"In the {esc(v)} variant, {SCENE_WORDS['lubricated_2']} reaches an 
             f"above the film cap {float(fnd.film_cap_at_e0_high.sel(variant=v)):.2f} at e0 = {max(e0_spec['range']):g} m, the top of our e0 range."
             for v in variants if int(fnd.beyond_film_cap_at_e0_high.sel(variant=v))))
 for v in variants:
-    oat_table(unc, {c: f"{CLAIM_WORDS[c]}, {v} variant" for c in CLAIM_WORDS}, entries, model=v,
-              caption=f"{v} variant, first start: each assumed input moved alone over its range, the others at their assumed values; each sample's "
-                      f"scenes settled and judged on their own states ({design_text(unc)}); 1 = the claim holds on the sample's measures")
+    for n, scen in enumerate(unc.scenario.values):
+        oat_table(unc, {c: f"{CLAIM_WORDS[c]}, {v} variant" for c in CLAIM_WORDS}, entries, model=v, scenario=n,
+                  caption=f"{v} variant, {scen}: each assumed input moved alone over its range, the others at their assumed values; each sample's "
+                          f"scenes settled and judged on their own states ({design_text(unc)}); 1 = the claim holds on the sample's measures")
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
     "*slender*: J = mL²/12. Each verdict is broken down below by state, measure and tolerance."
@@ -154,28 +155,32 @@ md(
 # ### What each assumed input does to each ordering
 #
 # The claims are 0 or 1; the orderings they are made of are numbers. For each assumed input moved alone to either end
-# of its range (first start), the range of each ordering's difference (> 0: as claimed) and how many samples decide the
-# claim's outcome differently from the nominal one.
+# of its range, from each start, the range of each ordering's difference (> 0: as claimed) and which claims a sample
+# decides differently from the nominal one.
 
 # %%
 rows = []
 moved = [str(x) for x in unc.moved.values]
+of = [str(x) for x in unc.sample_scenario.values]
 for v in variants:
-    nominal_diff = unc.sample_comparison_difference.sel(variant=v).isel(sample=0).values
-    for i, name in enumerate(dict.fromkeys(m for m in moved if m)):
-        idx = [k for k, m in enumerate(moved) if m == name]
-        d = unc.sample_comparison_difference.sel(variant=v).isel(sample=idx).values
-        o = unc.sample_claim_outcome.sel(variant=v).isel(sample=idx).values
-        o0 = unc.sample_claim_outcome.sel(variant=v).isel(sample=0).values
-        flips = [CLAIM_WORDS[str(c)].split(" (")[0] for j, c in enumerate(unc.claim.values) if (o[:, j] != o0[j]).any()]
-        for j, label in enumerate(unc.comparison.values):
-            lo, hi = min(d[:, j].min(), nominal_diff[j]), max(d[:, j].max(), nominal_diff[j])
-            rows.append({"variant": v, "input (config key)": name.removesuffix(".value"), "ordering": in_words(str(label)),
-                         "difference over the range": f"{lo:.4g} … {hi:.4g}", "crosses 0": "yes" if lo < 0 < hi else "no",
-                         "claims decided otherwise": ", ".join(flips) or "none"})
+    for n, scen in enumerate(unc.scenario.values):
+        in_scen = [k for k, o in enumerate(of) if o == str(scen)]
+        base = next(k for k in in_scen if not moved[k])
+        nominal_diff = unc.sample_comparison_difference.sel(variant=v).isel(sample=base).values
+        o0 = unc.sample_claim_outcome.sel(variant=v).isel(sample=base).values
+        for name in dict.fromkeys(moved[k] for k in in_scen if moved[k]):
+            idx = [k for k in in_scen if moved[k] == name]
+            d = unc.sample_comparison_difference.sel(variant=v).isel(sample=idx).values
+            o = unc.sample_claim_outcome.sel(variant=v).isel(sample=idx).values
+            flips = [CLAIM_WORDS[str(c)].split(" (")[0] for j, c in enumerate(unc.claim.values) if (o[:, j] != o0[j]).any()]
+            for j, label in enumerate(unc.comparison.values):
+                lo, hi = min(d[:, j].min(), nominal_diff[j]), max(d[:, j].max(), nominal_diff[j])
+                rows.append({"variant": v, "start": str(scen).removeprefix("start "), "input (config key)": name.removesuffix(".value"), "ordering": in_words(str(label)),
+                             "difference over the range": f"{lo:.4g} … {hi:.4g}", "crosses 0": "yes" if lo < 0 < hi else "no",
+                             "claims decided otherwise": ", ".join(flips) or "none"})
 ordering_ranges = pd.DataFrame(rows)
 table(ordering_ranges[ordering_ranges["crosses 0"] == "yes"] if (ordering_ranges["crosses 0"] == "yes").any() else ordering_ranges.head(0),
-      caption="Orderings whose difference changes sign as one assumed input moves over its range (first start; rad/s² or N·m); "
+      caption="Orderings whose difference changes sign as one assumed input moves over its range (rad/s² or N·m); "
               "the full table of every input and ordering is in results/clearance/uncertainty.nc")
 md(f"{int((ordering_ranges['crosses 0'] == 'yes').sum())} of {len(ordering_ranges)} (input, ordering) pairs change sign over the input's range. "
    "A sample's claim is judged on its own state and its own interval, with the nominal run's numerical error bar; no sample takes the nominal outcome.")
@@ -357,7 +362,7 @@ md(
 
 Hertz stiffness of eq. (9): K = {float(first.summary_hertz_stiffness.sel(run='dry_1')):.3g} N/m^1.5. The
 ideal joint forces reach {float(first.summary_ideal_force_A.sel(run='ideal')):.3g} N at joint 1 and {float(first.summary_ideal_force_B.sel(run='ideal')):.3g} N at joint 2
-({esc(variants[0])} inertias): at such forces the Hertz penetration exceeds the clearance (section 4).
+({esc(variants[0])} inertias): at such forces the Hertz penetration is a large fraction of the clearance or more (section 4).
 """
 )
 
@@ -447,8 +452,8 @@ ideal_forces.columns = ["variant", "largest ideal reaction at joint 1 (N)", "lar
 table(ideal_forces, {c: "{:.3g}" for c in ideal_forces.columns if c != "variant"})
 md(" ".join(
     f"Variant `{v}`: the deepest dry penetration is {float(fnd.dry_penetration_max.sel(variant=v)):.2f} of the clearance, so the "
-    + ("penetration stays below the clearance (our validity limit)" if int(fnd.physically_consistent.sel(variant=v))
-       else "penetration exceeds the clearance (our validity limit): the Hertz law is used far outside its range")
+    + ("penetration stays inside the sphere law's range" if int(fnd.physically_consistent.sel(variant=v))
+       else f"penetration is beyond the sphere law's range ({float(fnd.attrs.get('sphere_law_limit_over_clearance', np.nan)):.3g} c): eq. (9) is used outside it")
     + "; its lubricated journals "
     + (f"never touch (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c)." if float(fnd.lubricated_eccentricity_max.sel(variant=v)) < 1
        else f"reach the bushing (largest eccentricity {float(fnd.lubricated_eccentricity_max.sel(variant=v)):.2f} c).")
@@ -459,8 +464,9 @@ md(" ".join(
 # ### Where a scene leaves its models
 #
 # Each scene records how deep its dry contact penetrates (over the radial clearance) and, when lubricated, how long its
-# journals run beyond the film cap. A penetration beyond the stated limit puts the Hertz law outside its range; time
-# beyond the cap means the dry contact, not the film, carries the journal there.
+# journals run beyond the film cap. A penetration beyond the stated limit puts the sphere law of eq. (9) outside its range; time
+# beyond the cap means the capped film force, set by the assumed e0, carries the journal there (the dry contact only
+# takes over at e = c).
 
 # %%
 validity = pd.DataFrame([
@@ -469,7 +475,8 @@ validity = pd.DataFrame([
      "warning": ds.attrs["validity_warnings"] or "inside both models"}
     for (v, s), ds in sorted(scenes.items()) if s != "ideal"])
 table(worded(validity), {"value": "{:.3g}", "time beyond the film cap (%)": "{:.3g}"},
-      caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:g} c, our reading of where Hertz contact ends)")
+      caption=f"validity of each scene (penetration limit {scenes[(variants[0], 'dry_both')].attrs['validity_penetration_limit']:.3g} c: the sphere law's, "
+              "where the rigid overlap's contact half-angle reaches the angle at which parabolic profiles err by 1 %, our criterion)")
 outside = validity[validity.warning != "inside both models"]
 md("**Scenes outside the model's validity:** " + ", ".join(f"{esc(v)}, {esc(SCENE_WORDS[s])}" for v, s in zip(outside.variant, outside.scene)) + "."
    if len(outside) else "Every scene stays inside the range of its contact and film models.")
@@ -503,19 +510,56 @@ md(
 
 # %%
 if "law_survives" in fnd:
-    lrows = [{"variant": str(v), "claim": CLAIM_WORDS[str(c)],
-              "sphere law (eq. 9)": OUTCOME[int(fnd.law_outcome_sphere.sel(variant=v, claim=c))],
-              f"{fnd.attrs['other_law']} law": OUTCOME[int(fnd.law_outcome_other.sel(variant=v, claim=c))],
-              "survives the law": "yes" if int(fnd.law_survives.sel(variant=v, claim=c)) else "no",
-              "counted as the paper's verdict": "yes" if int(fnd.verdict_counted.sel(variant=v, claim=c)) else "no (rests on the sphere law outside its range)"}
-             for v in fnd.variant.values for c in fnd.claim.values]
-    table(pd.DataFrame(lrows), caption="Each claim (first start) under the two elastic laws, the other inputs and the numerical error bars the nominal ones")
-    md(f"**Validity of the sphere law:** {esc(fnd.attrs['sphere_law_condition'])}. The deepest dry penetration is "
+    lrows = [{"variant": str(v), "start": str(st), "claim": CLAIM_WORDS[str(c)],
+              "sphere law (eq. 9)": OUTCOME[int(fnd.law_outcome_sphere.sel(variant=v, start=st, claim=c))],
+              "conformal law (Pereira et al.)": OUTCOME[int(fnd.law_outcome_other.sel(variant=v, start=st, claim=c))],
+              "survives the law": "yes" if int(fnd.law_survives.sel(variant=v, start=st, claim=c)) else "no",
+              "counted as the paper's verdict": "yes" if int(fnd.verdict_counted.sel(variant=v, start=st, claim=c)) else "no (rests on the sphere law outside its range)"}
+             for v in fnd.variant.values for st in fnd.start.values for c in fnd.claim.values]
+    table(pd.DataFrame(lrows), caption="Each claim under the two elastic laws, per start (each scene continued from its state under the conformal law; "
+                                       "the nominal numerical error bars kept)")
+    law_rows = []
+    for v in fnd.variant.values:
+        for st in fnd.start.values:
+            sphere_d = claims.comparison_difference.sel(variant=v, start=st).values
+            other_d = fnd.law_difference_other.sel(variant=v, start=st).values
+            for label, a, b in zip(claims.comparison.values, sphere_d, other_d):
+                if np.sign(a) != np.sign(b):
+                    law_rows.append({"variant": str(v), "start": str(st), "ordering": in_words(str(label)), "sphere law": f"{a:.4g}", "conformal law": f"{b:.4g}"})
+    table(pd.DataFrame(law_rows, columns=["variant", "start", "ordering", "sphere law", "conformal law"]),
+          caption="Orderings whose difference changes sign with the elastic law (rad/s² or N·m): the claims' outcomes can survive the law while "
+                  "single orderings do not")
+    md(f"**Validity of the sphere law:** {esc(fnd.attrs['sphere_law_condition'])} (the contact arc taken as the rigid overlap of journal and bushing, "
+       "our criterion). The deepest dry penetration is "
        + ", ".join(f"{float(fnd.dry_penetration_max.sel(variant=v)):.2f} c ({esc(str(v))})" for v in fnd.variant.values)
        + (": beyond it in every variant. " if not fnd.sphere_law_valid.any() else ". ")
-       + f"**Validity of the {esc(fnd.attrs['other_law'])} law:** {esc(fnd.attrs['other_law_condition'])}"
+       + f"**Validity of the conformal law:** {esc(fnd.attrs['other_law_condition'])}"
        + (" (inside)." if int(fnd.attrs["other_law_valid"]) else " (outside).")
        + " A verdict counts as the paper's where the sphere law is valid or the verdict survives the change of law.")
+
+# %% [markdown]
+# ### The contact memory: why the starts settle differently
+#
+# The Lankarani–Nikravesh damping divides by the impact velocity latched at a journal's first contact. In the dry
+# scenes the journals never leave their bushings once they touch, so that value is kept for ever: two runs can differ
+# in nothing but this memory of the first impact, and settle into different states. Each dry scene's state from one
+# start is continued with the other start's latched velocities: if its measure moves to the other start's, the
+# starts' states differ by that memory.
+
+# %%
+if "memory_swap_rms" in fnd and fnd.sizes.get("start", 1) > 1:
+    srows_ = []
+    for v in fnd.variant.values:
+        for sc in fnd.swapped_scene.values:
+            own = fnd.memory_own_rms.sel(variant=v, swapped_scene=sc).values
+            swp = fnd.memory_swap_rms.sel(variant=v, swapped_scene=sc).values
+            srows_.append({"variant": str(v), "scene": SCENE_WORDS[str(sc)], f"start {starts[0]}": f"{own[0]:.4g}", f"start {starts[-1]}": f"{own[-1]:.4g}",
+                           f"{starts[-1]} state, {starts[0]} memory": f"{swp[0]:.4g}", f"{starts[0]} state, {starts[-1]} memory": f"{swp[1]:.4g}"})
+    table(pd.DataFrame(srows_), caption="RMS deviation of the rocker acceleration (rad/s²) on each start's state, and on each state continued with "
+                                       "the other start's latched impact velocities (settled again by the same rule)")
+    md("Where the swapped columns take the other start's values, the difference between the starts is the memory the contact law keeps of "
+       "the first impact, not the journals' positions: a property of the printed contact model (a damping law derived for an impact, applied "
+       "to a journal in permanent contact), which the impact-velocity floor, an assumed input, does not remove where the latched values lie above it.")
 
 # %% [markdown]
 # ## 5. Accuracy of the integrators

@@ -143,12 +143,12 @@ def threshold_sentence(ds, var, along, other, what_above, what_below):
 
 # %%
 dims = ("clearance_m", "crank_speed_rad_s")
-cl_valid = ["penetration_over_clearance", "peak_joint_force", "peak_force_over_ideal"]
+cl_valid = ["penetration_over_limit", "peak_joint_force", "peak_force_over_ideal"]
 heat_row(cl, cl_valid, "crank_speed_rad_s", "clearance_m", width=17)
 caption(
     f"Validity map of the clearance model: {esc(cl.attrs['scene_description'])}, {esc(cl.attrs['variant_description'])}, "
     "over the judged turns of the state each point settles into (the clearance scenes' rule, first start). Left: the deepest penetration over "
-    "the radial clearance, with the Hertz validity limit (penetration = clearance, dashed). Middle: the peak contact force. Right: the "
+    "the sphere law's penetration limit (eq. (9) holds while the contact arc is short; 1 = the edge of its range, dashed). Middle: the peak contact force. Right: the "
     "peak contact force over the largest reaction the same joints carry with ideal (no-clearance) joints. Outlined: the paper's "
     "clearance and speed. Colour: log scale centred on the threshold (left) or the reference value, symmetric, at least ×/÷ "
     f"{cl.attrs['colour_floor_factor']:g}."
@@ -156,11 +156,10 @@ caption(
 
 # %%
 md(
-    threshold_sentence(cl, "penetration_over_clearance", "clearance_m", "crank_speed_rad_s",
-                       "penetration at or beyond the clearance", "penetration below the clearance")
-    + " Below the crossing clearance (smaller clearances, higher speeds) the dry contact is far outside Hertz's small-deformation "
-    "law: the forces and the claims' measures there describe the model, not a joint. Above it the penetration stays a fraction of "
-    "the clearance.\n\n"
+    threshold_sentence(cl, "penetration_over_limit", "clearance_m", "crank_speed_rad_s",
+                       "penetration beyond the sphere law's range", "penetration inside the sphere law's range")
+    + " Beyond the limit the contact arc is too wide for eq. (9)'s sphere law: the forces and the claims' measures there describe "
+    "that law, not a conformal journal in its bushing (the clearance report reruns the scenes under a conformal law).\n\n"
     + "\n\n".join(trend_sentence(cl, var, dims, cl[var].attrs["long_name"]) for var in cl_valid)
 )
 

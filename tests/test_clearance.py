@@ -292,13 +292,14 @@ def test_validity_exit_numbers_are_in_the_findings():
     }, coords={"variant": ["decoded"], "run": runs, "joint": [1, 2], "measure": ["rms", "peak"], "quantity": list(QUANTITIES), "scene": list(COMPARED)},
         attrs={"crank_mass_kg": 1.0})
     scenes = load_yaml("config/config.yaml")["clearance"]["scenes"]
-    f = physics(claims, {"scenes": scenes}).sel(variant="decoded")
+    joints = load_yaml("config/config.yaml")["clearance"]["joints"]
+    f = physics(claims, {"scenes": scenes, "joints": joints}).sel(variant="decoded")
     assert float(f.dry_penetration_max) == 1.5 and float(f.dry_torque_max) == 1.5e4 and float(f.crank_mass) == 1.0
     assert float(f.lubricated_2_eccentricity_max) == 0.98 and int(f.beyond_film_cap) == 1
     assert f.lubricated_friction_evaluations.values.tolist() == [0.0, 7.0, 0.0] and float(f.stray_evaluations) == 0.0
     # the same counts where the lubricated scenes named no friction: those 7 evaluations are stray
     no_friction = {k: {**v, "effects": [e for e in v["effects"] if e != "friction" or k.startswith("dry")]} for k, v in scenes.items()}
-    assert float(physics(claims, {"scenes": no_friction}).sel(variant="decoded").stray_evaluations) == 7.0
+    assert float(physics(claims, {"scenes": no_friction, "joints": joints}).sel(variant="decoded").stray_evaluations) == 7.0
 
 
 def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():

@@ -73,11 +73,11 @@ CLEARANCE_CONTACT = [s for s in clearance_studies_compared() if "contact" in CLE
 rule clearance_contact_law:
     input:
         nominal=expand("results/clearance/{{variant}}/{scene}.nc", scene=CLEARANCE_CONTACT),
-        code=code("linkwork.papers.clearance.uncertainty"),
+        code=code("linkwork.papers.clearance.sensitivity"),
     output:
         "results/clearance/contact_law/{variant}.nc",
     params:
-        study="linkwork.papers.clearance.uncertainty:contact_law",
+        study="linkwork.papers.clearance.sensitivity:model_sensitivity",
         cfg=lambda wildcards: section("clearance", *sorted({k for s in CLEARANCE_CONTACT for k in clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, s)
                                                              if not k.startswith("check_integrators.")} | {"assumed.joint_length_m"})),
         args=lambda wildcards: {"variant": wildcards.variant, "law": CLEARANCE["sensitivity"]["elastic_law"]},

@@ -28,12 +28,13 @@ def section_period(points, max_period: int, rtol: float, atol: float = 0.0, peri
     """(period, transient) of a Poincaré section record ``points`` (cycles x components, or one component).
 
     The period is the smallest k <= ``max_period`` such that, from some cycle t on, every point repeats k cycles
-    later (``repeats_after``) over at least ``periods`` whole periods up to the end of the record; the tolerance
+    later (``repeats_after``) and lies within the tolerance of the record's last period (no slow drift), over at
+    least ``periods`` whole periods up to the end of the record; the tolerance
     of a component is ``rtol`` times its spread over the last half of the record plus ``atol``.  The transient is
     that t (cycles before the orbit).  A record with no such k: (NOT_PERIODIC, number of cycles).
 
-    The test is on the change over one period, not on the distance to the orbit: a state that approaches its orbit
-    contracting by a factor rho per period lies within tol / (1 - rho) of it once it repeats to tol."""
+    A state that approaches its orbit contracting by a factor rho per period lies within tol / (1 - rho) of it once
+    it repeats to tol; the distance to the last period bounds what a drift can leave in the judged window."""
     x = np.atleast_2d(np.asarray(points, dtype=float).T).T
     n = x.shape[0]
     tail = x[n // 2:]
@@ -44,6 +45,12 @@ def section_period(points, max_period: int, rtol: float, atol: float = 0.0, peri
         close = repeats_after(x, k, tol)
         misses = np.flatnonzero(~close)
         start = int(misses[-1]) + 1 if misses.size else 0  # the first cycle from which every point repeats
+        # ... and lies within the tolerance of the last period's points: a slow drift, each step below the
+        # tolerance, does not pass as an orbit
+        final = x[n - k :]
+        off = np.any(np.abs(x - final[(np.arange(n) - (n - k)) % k]) > tol, axis=1)
+        far = np.flatnonzero(off)
+        start = max(start, int(far[-1]) + 1 if far.size else 0)
         if close.size - start >= periods * k:
             return k, start
     return NOT_PERIODIC, n

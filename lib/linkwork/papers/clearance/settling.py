@@ -55,7 +55,7 @@ class CycleRunner:
         self.p, self.joints, self.per, self.shown = p, tuple(joints), per, shown
         self.run = Run(p, joints, effects, integrator, y0=y0, memory=memory)
         self.ideal = np.stack([ideal_cycle["rocker_acceleration"][:-1], ideal_cycle["crank_torque"][:-1]])
-        self.memories, self.extremes, self.last = [], [], []
+        self.memories, self.extremes, self.last, self.peak_refinement = [], [], [], []
 
     def step(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """``n`` more cycles: (section points (n, components), measures (n, MEASURE_ROWS))."""
@@ -68,10 +68,21 @@ class CycleRunner:
             _, diags = self.run.advance(t)
             d = diags[:-1, :2].T - self.ideal
             measures.append(np.r_[np.sqrt(np.mean(d**2, axis=1)), np.abs(d).max(axis=1)])
+            self.peak_refinement.append([peak_refinement(row) for row in d])
             cols = [[4 + 6 * k + 1, 4 + 6 * k, 4 + 6 * k + 3, 4 + 6 * k + 4] for k in range(len(self.joints))]
             self.extremes.append(np.array([[np.nanmax(diags[:, c[0]]), np.nanmax(diags[:, c[1]]), np.nanmax(diags[:, c[2]]), np.nanmax(np.abs(diags[:, c[3]]))] for c in cols]))
             self.last = (self.last + [(t, diags)])[-self.shown:]
         return np.array(points), np.array(measures)
+
+
+def peak_refinement(x: np.ndarray) -> float:
+    """How much the peak of |x| (a periodic sample of one cycle) rises when refined by the parabola through the largest
+    sample and its two neighbours (>= 0): an estimate of what the sampling misses of a narrow peak."""
+    a = np.abs(x)
+    k = int(np.argmax(a))
+    y0, y1, y2 = a[k - 1], a[k], a[(k + 1) % a.size]
+    curvature = y0 - 2.0 * y1 + y2
+    return float(-((y0 - y2) ** 2) / (8.0 * curvature)) if curvature < 0 else 0.0
 
 
 def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) -> dict[str, Any]:
@@ -82,8 +93,8 @@ def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) 
 
 def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int, confidence: float) -> np.ndarray:
     """Per measure row: (mean, confidence half-width, standard error, degrees of freedom, cycles judged) over the
-    judged window.  A periodic state: the mean over one period, exact (half-width 0: the orbit repeats to the
-    section tolerance).  A stationary one: batch means over the window.  A record that reached the cap: its mean
+    judged window.  A periodic state: the mean over its last period (the most settled), exact (half-width 0: the
+    orbit repeats to the section tolerance).  A stationary one: batch means over the window.  A record that reached the cap: its mean
     drifts, no interval (infinite half-width)."""
     from .statistics import mean_ci
 
@@ -92,7 +103,7 @@ def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int
     out = np.empty((measures.shape[1], 5))
     for r in range(measures.shape[1]):
         if found["status"] == PERIODIC:
-            out[r] = (x[: found["period"], r].mean(), 0.0, 0.0, float("inf"), found["period"])
+            out[r] = (x[-found["period"]:, r].mean(), 0.0, 0.0, float("inf"), found["period"])
         else:
             mean, half, se, dof = mean_ci(x[:, r], batch, confidence)
             if found["status"] != "stationary":
@@ -103,9 +114,10 @@ def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int
 
 def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, checks, st: Mapping[str, Any]) -> dict[str, np.ndarray]:
     """The same state at each check integrator: restarted from the section point (with the contact memory) at the
-    start of the judged window, run ``check_cycles`` cycles (at least two periods).  Per check: the mean of each
-    measure row over its last period (periodic state) or over all its cycles (else), against the pipeline's mean
-    over the same cycles of the window; whether the rerun keeps the state (its last section point within
+    start of the last judged period (a periodic state) or of the judged window (else), run ``check_cycles`` cycles
+    (at least two periods).  Per check: the mean of each measure row over its last period (periodic state) or over
+    all its cycles (else), against the pipeline's mean over its judged period or the same cycles of the window
+    (any drift left in the state is counted with the error); whether the rerun keeps the state (its last section point within
     ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the state is not periodic: not testable); the
     period its section shows over the rerun (0 where the rerun is too short to show one: a report, not a test; -1
     where the check integrator failed, its delta then NaN).
@@ -117,9 +129,10 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     measures = found["measures"]
     deltas = np.full((len(checks), measures.shape[1]), np.nan)
     kept, periods, distances = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int), np.full(len(checks), np.nan)
-    orbit = found["points"][first : first + period] if period != NOT_PERIODIC else None
+    orbit = found["points"][stop - period : stop] if period != NOT_PERIODIC else None
+    restart = stop - period if period != NOT_PERIODIC else first
     for i, integ in enumerate(checks):
-        rerun = make_runner(integ, runner.memories[first])
+        rerun = make_runner(integ, runner.memories[restart])
         try:
             pts, meas = rerun.step(n)
         except RuntimeError:  # the check integrator gave up (a step size underflow): this check has no value
@@ -127,7 +140,7 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
             continue
         if period != NOT_PERIODIC:
             ours = meas[-period:].mean(axis=0)
-            base = measures[first : first + period].mean(axis=0)
+            base = measures[stop - period : stop].mean(axis=0)
             k, _ = section_period(pts, st["max_period"], 0.0, st["section_tolerance"], 2)
             periods[i] = k
             scale = np.maximum(1.0, np.abs(orbit))

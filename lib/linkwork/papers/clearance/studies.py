@@ -181,6 +181,10 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     if len(checks):
         largest = np.max(np.where(np.isfinite(delta), np.abs(delta), -np.inf), axis=1)
         numerical = np.where(np.isfinite(largest), largest, np.nan)
+    # what the sampling misses of a narrow peak (parabolic refinement), the largest over the judged turns: added to
+    # the peak measure's error bar
+    sampling = np.array([np.max(np.array(r.peak_refinement)[f["window"][0] : f["window"][1]], axis=0) for f, r in zip(found, runners, strict=True)])
+    numerical[:, 1, :] += sampling
     # the first start's last cycles: the figures' time series
     t = np.concatenate([runners[0].last[0][0]] + [x[0][1:] for x in runners[0].last[1:]])
     d = np.concatenate([runners[0].last[0][1]] + [x[1][1:] for x in runners[0].last[1:]])
@@ -234,7 +238,8 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             "check_period": (("start", "check"), check_period, {"units": "1", "long_name": "period found in the check run (0: none)"}),
             "window_memory": (("start", "memory"), np.array([r.memories[f["window"][0]] for f, r in zip(found, runners, strict=True)]),
                               {"units": "SI (t in s, then the state y, latched impact velocities, contact flags)", "long_name": "the run's whole state at the start of the judged window (restartable)"}),
-            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators",
+            "peak_sampling_error": (("start", "quantity"), sampling, {"units": "SI of the quantity", "long_name": "largest rise of a judged turn's peak when refined by a parabola through its largest samples"}),
+            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators (peaks: plus the peak sampling error)",
                                                 "nan_meaning": "no check ran (an input-uncertainty sample's run) or every check failed"}),
             "window_max_penetration": (("start", "joint"), window_ext[:, 0], {"units": "m", "long_name": "largest |e| - c over the judged cycles", **NO_CLEARANCE}),
             "window_max_eccentricity": (("start", "joint"), window_ext[:, 1], {"units": "m", "long_name": "largest |e| over the judged cycles", **NO_CLEARANCE}),
@@ -272,11 +277,10 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
                      f"(in c and c omega) over {st['periods']} periods, or the per-cycle measures' last third agrees with their middle third "
                      f"({stats['confidence']:.0%} Welch interval) with at least {st['min_cycles']} cycles in the last two thirds; at most {st['max_cycles']} cycles"),
         **({"film_eccentricity_cap": cap} if cap is not None else {}),
-        **validity.attributes(window_ext[0, 0][np.array(joints) - 1][:, None], window_ext[0, 1][np.array(joints) - 1][:, None], p.clearance, cap),
+        **validity.attributes(window_ext[0, 0][np.array(joints) - 1][:, None], per_joint[np.array(joints) - 1, 0], p.clearance, cap,
+                              validity.penetration_limit(p.elastic_law, p.journal_radius, p.bearing_radius)),
         **{f"integrator_{k}": v for k, v in integ.items()},
     )
-    if cap is not None:  # the time beyond the cap over the shown cycles of the first start
-        ds.attrs["validity_beyond_film_cap_fraction"] = validity.beyond_cap_fraction(per_joint[np.array(joints) - 1, 0], p.clearance, cap)
     return ds
 
 
@@ -312,8 +316,8 @@ CLAIMS = ("acceleration_order", "torque_order", "lubrication_close")
 def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[float, str], ...]]]:
     """Every ordering the claims are made of: (claim, label, measure, quantity, terms (coefficient, scene)); an
     ordering holds where sum of coefficient x mean > 0.  The order claims use the RMS and the peak deviation;
-    'lubrication close to ideal' the RMS: each lubricated scene below ``ratio`` times its dry one, and joint 2's
-    lubricated deviation above joint 1's (the ripples left at joint 2)."""
+    'lubrication close to ideal' the RMS: each lubricated scene below ``ratio`` times its dry one (both responses),
+    and joint 2's lubricated deviation of the rocker acceleration above joint 1's (the ripples left at joint 2)."""
     out = []
     for claim, quantity, first in (("acceleration_order", "rocker_acceleration", ("dry_2", "dry_1")), ("torque_order", "crank_torque", ("dry_1", "dry_2"))):
         for measure in ("rms", "peak"):
@@ -322,7 +326,8 @@ def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[floa
     for quantity in QUANTITIES:
         for dry, lub in zip(DRY, LUBRICATED, strict=True):
             out.append(("lubrication_close", f"rms {quantity}: {lub} < {ratio:g} x {dry}", "rms", quantity, ((ratio, dry), (-1.0, lub))))
-        out.append(("lubrication_close", f"rms {quantity}: lubricated_2 > lubricated_1", "rms", quantity, ((1.0, "lubricated_2"), (-1.0, "lubricated_1"))))
+    # the ripples the paper sees left at joint 2 (Fig. 6, the rocker acceleration; it says nothing of them in the torque)
+    out.append(("lubrication_close", "rms rocker_acceleration: lubricated_2 > lubricated_1", "rms", "rocker_acceleration", ((1.0, "lubricated_2"), (-1.0, "lubricated_1"))))
     return out
 
 

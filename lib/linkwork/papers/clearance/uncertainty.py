@@ -1,16 +1,15 @@
 """Input uncertainty of the clearance paper: the assumed joint length, friction thresholds, impact-velocity floor and
 film cap, and the initial state of the journals (a scenario).
 
-Each assumed input is moved alone to both ends of its range, in the first start (the nominal initial state).  A
-batch is one parameter variant's samples that move the same scenes (the dry ones or the lubricated ones); it reruns
-only those scenes, each settled and judged as the nominal run is (the same settling rule from the same start: the
+Each assumed input is moved alone to both ends of its range, in every start (the initial state is a scenario).  A
+batch is one sample of one parameter variant; it reruns only the scenes the sample's input enters, from every start's
+nominal state, each settled and judged as the nominal run is (the same settling rule from the same start: the
 state, its judged window, the measure on it and its interval), without the check reruns: a sample takes the nominal
 run's numerical error bar.  A sample continues from the nominal state (the run state at the start of the nominal
 judged window): its state is the one the nominal state moves to as the input moves.  Its config holds only those scenes' keys and the samples' moved values come as
 arguments, so an edit reruns only the batches whose scenes read the edited key.  The gather step judges the claims
 for every sample on its own measures (the moved scenes from the batch, the others from the nominal runs): no sample
-inherits the nominal outcome.  The other starts are scenarios: their claims come from the nominal runs (claims.nc),
-at the nominal inputs.
+inherits the nominal outcome.
 """
 
 from __future__ import annotations
@@ -35,12 +34,10 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
 
 
 def _design(cfg: Mapping[str, Any]):
-    """The samples: every one-at-a-time sample in the first start; the other starts at the nominal inputs only (their
-    runs are the nominal ones)."""
+    """The samples: nominal and every one-at-a-time sample, in every start (a scenario); a batch computes one sample
+    from every start's nominal state."""
     settings = cfg["uncertainty"]
-    design = samples(inputs(cfg), settings["lhs_points"], settings["seed"])
-    first = design[0].scenario
-    return [s for s in design if s.scenario == first or s.values.keys() <= {START} and not s.moved]
+    return samples(inputs(cfg), settings["lhs_points"], settings["seed"])
 
 
 def _moved_values(sample) -> dict[str, Any]:
@@ -59,8 +56,8 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
     design = _design(cfg)
     for variant in cfg["variants"]:
         for sample in design[1:]:
-            if not sample.moved:
-                continue  # another start's nominal point: the nominal runs hold it
+            if not sample.moved or sample.scenario != design[0].scenario:
+                continue  # a start's nominal point (the nominal runs hold it), or another start's sample (the same batch computes it)
             moved = [path.removesuffix(".value") for path in _moved_values(sample)]
             scenes = [name for name in COMPARED if any(m in model_keys(cfg, variant, name) for m in moved)]
             jobs.append({"variant": variant, "scenes": scenes, "samples": [{"label": sample.label, "values": _moved_values(sample)}]})
@@ -68,11 +65,21 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
 
 
 def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = ()):
-    """Rule study: the samples (each a label and its moved values) of one variant that move the same scenes: each
-    moved scene continued from the nominal run's state (first start; ``nominal``: those scenes' nominal runs) with
+    """Rule study: ``batch_at`` from every start's nominal state (``nominal``: the moved scenes' nominal runs), along
+    a ``start`` dimension."""
+    import xarray as xr
+
+    starts = [str(x) for x in nominal[0].start.values]
+    return xr.concat([batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start")
+
+
+def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), start: int = 0):
+    """The samples (each a label and its moved values) of one variant that move the same scenes: each
+    moved scene continued from the nominal run's state (``nominal``: those scenes' nominal runs) with
     the sample's inputs, settled and judged on its state as the nominal run is (``studies.scene`` without check
     reruns).  A scene whose nominal runs never touched (no contact evaluation) is held where the sample moves only
-    inputs of the contact and friction effects: they enter only in contact, so its run is the nominal one bit for bit."""
+    inputs of the contact and friction effects: they enter only in contact, so its run is the nominal one bit for bit.
+    ``start``: which start's nominal state the samples continue from (the first by default)."""
     import xarray as xr
 
     from .adapter import EFFECT_KEYS
@@ -92,12 +99,12 @@ def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant:
                 continue
             base = runs[name]
             if moved <= contact_only and base.attrs["evaluations_contact"] == 0:
-                run, held[i, 0, k] = base, 1.0
+                run, at, held[i, 0, k] = base, start, 1.0
             else:
-                run = scene(local, variant, name, first_start_only=True, check=False, memory=base.window_memory.values[0])
-            stats[i, 0, ..., k, :] = np.stack([run[v].values[0] for v in SAMPLE_STATISTICS], axis=-1)
-            state[i, 0, k] = [run[v].values[0] for v in SAMPLE_STATE]
-            status[i, 0, k] = str(run.state_status.values[0])
+                run, at = scene(local, variant, name, first_start_only=True, check=False, memory=base.window_memory.values[start]), 0
+            stats[i, 0, ..., k, :] = np.stack([run[v].values[at] for v in SAMPLE_STATISTICS], axis=-1)
+            state[i, 0, k] = [run[v].values[at] for v in SAMPLE_STATE]
+            status[i, 0, k] = str(run.state_status.values[at])
     labels = [sample["label"] for sample in samples]
     dims = ("sample", "variant", "measure", "quantity", "scene")
     return xr.Dataset(
@@ -127,14 +134,14 @@ SAMPLE_STATISTICS = ("judged_mean", "judged_half_width", "judged_standard_error"
 SAMPLE_STATE = ("state_period", "state_transient", "window_first", "window_stop")
 
 
-def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: float) -> tuple[dict[str, Any], np.ndarray]:
+def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: float, start: int = 0) -> tuple[dict[str, Any], np.ndarray]:
     """The claims at one sample of one variant in the first start: the moved scenes' measures and intervals from the
     sample's own runs (a state the cap cut short: no interval), the others' and every numerical error from the
-    nominal claims (``nominal``: one variant).  Returns (``studies.judge``'s verdict, the measures (measure,
+    nominal claims (``nominal``: one variant; ``start``: which start's).  Returns (``studies.judge``'s verdict, the measures (measure,
     quantity, scene))."""
     from .studies import judge, read, stats_for_judging
 
-    first = nominal.isel(start=0)
+    first = nominal.isel(start=start)
     stats = read(np.stack([first.mean_deviation.values, first.ci_half_width.values, first.standard_error.values, first.ci_dof.values, first.judged_cycles.values], axis=-1))
     if moved is not None:
         for k in range(stats.shape[2]):
@@ -162,20 +169,21 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
     starts = [str(x) for x in claims.start.values]
     ins = inputs(cfg)
     design = _design(cfg)
-    first = design[0].scenario
     rows, means, diffs, outcomes = [], [], [], []
     for sample in design:
         holds, sample_means, sample_diffs, sample_out = [], [], [], []
+        n = starts.index(str(sample.values.get(START, starts[0])))
+        label = sample.label.split(" | ", 1)[-1]  # the sample's label in the first start: its batch's
         for variant in variants:
             nominal = claims.sel(variant=variant)
-            if sample.scenario == first:
-                verdict, m = sample_judgement(nominal, moved.get((sample.label, variant)), ratio, confidence)
+            if sample.moved:
+                batch_run = moved.get((label, variant))
+                verdict, m = sample_judgement(nominal, batch_run.isel(start=n) if batch_run is not None else None, ratio, confidence, start=n)
                 holds.append(verdict["point"])
                 sample_out.append(verdict["outcome"])
                 sample_diffs.append([r["difference"] for r in verdict["rows"]])
-            else:  # another start at the nominal inputs: the nominal runs' judgement
-                k = starts.index(str(sample.values[START]))
-                at = nominal.isel(start=k)
+            else:  # a start at the nominal inputs: the nominal runs' judgement
+                at = nominal.isel(start=n)
                 holds.append(at.holds_by_start.values)
                 sample_out.append(at.outcome_by_start.values)
                 sample_diffs.append(at.comparison_difference.values)
@@ -205,17 +213,3 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                                "errors); no sample takes the nominal outcome")
     return ds
 
-
-def contact_law(cfg: Mapping[str, Any], variant: str, law: str, nominal: Sequence[Any] = ()):
-    """Rule study: the compared scenes with contact under another elastic law (``law``, e.g. the conformal one), each
-    continued from its nominal state (first start) and judged on its own state as an input-uncertainty sample is
-    (``batch`` with the law as the moved value; a scene whose nominal runs never touched is held: the law acts only
-    in contact).  The sensitivity of the verdicts to the contact law."""
-    return batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal)
-
-
-def law_judgement(nominal: Any, law_run: Any, ratio: float, confidence: float) -> dict[str, Any]:
-    """The claims of one variant under the other contact law (``law_run``: ``contact_law``'s result), the nominal
-    numerical errors kept: ``studies.judge``'s verdict."""
-    verdict, _ = sample_judgement(nominal, law_run.isel(sample=0, variant=0), ratio, confidence)
-    return verdict

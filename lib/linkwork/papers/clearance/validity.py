@@ -2,11 +2,10 @@
 
 Two limits, both dimensionless:
 
-* the Hertz law of the dry contact (eq. 9) is a small-deformation law; a penetration deeper than
-  ``PENETRATION_LIMIT`` times the radial clearance c (here 0.05 mm, so 50 um of steel-on-steel
-  indentation) is far outside it, and the forces it gives are no longer contact physics;
-* the short-bearing film is capped at the eccentricity ratio 1 - e0/c (the film/dry transition): a scene
-  that spends time beyond the cap is carried by the dry contact there, not by the film it names.
+* the dry contact's elastic law has a range (``penetration_limit``): eq. (9)'s sphere law holds while the contact
+  arc is short (``elastic_law_validity``, a fraction of the clearance); beyond it its forces are not contact physics;
+* the film is capped at the eccentricity ratio 1 - e0/c (the film/dry transition): a scene that spends time beyond
+  the cap is carried there by the capped film force, set by the assumed e0, until the dry contact takes over at e = c.
 
 Each elastic law of the dry contact has its own range (``elastic_law_validity``): the sphere law holds while the
 contact arc is short enough for its parabolic profiles, the conformal law of Pereira et al. over the radial
@@ -22,8 +21,6 @@ import numpy as np
 from ...engines.multibody.model import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
 from ...units import DEG_PER_RAD
 
-#: A dry penetration deeper than this fraction of the radial clearance puts the Hertz law far outside its range.
-PENETRATION_LIMIT = 1.0
 
 
 def penetration_ratio(penetration: np.ndarray, clearance: float) -> float:
@@ -38,26 +35,34 @@ def beyond_cap_fraction(eccentricity: np.ndarray, clearance: float, cap: float) 
     return float(np.mean((ratio > cap).any(axis=0)))
 
 
-def warnings(penetration_over_c: float, beyond_cap: float | None) -> str:
-    """The scene's validity warnings as one sentence each ('' when it stays inside both models)."""
+def penetration_limit(law: str, r_journal: float, r_bearing: float) -> float:
+    """The deepest penetration over the radial clearance inside the elastic law's range (inf where its source sets
+    no bound on the penetration)."""
+    limit = elastic_law_validity(law, r_journal, r_bearing).limits["max_penetration_over_clearance"]
+    return float(limit) if np.isfinite(limit) else float("inf")
+
+
+def warnings(penetration_over_c: float, beyond_cap: float | None, limit: float) -> str:
+    """The scene's validity warnings as one sentence each ('' when it stays inside both models); ``limit``: the
+    elastic law's penetration limit over the clearance."""
     out = []
-    if np.isfinite(penetration_over_c) and penetration_over_c > PENETRATION_LIMIT:
-        out.append(f"dry penetration reaches {penetration_over_c:.3g} times the radial clearance (limit {PENETRATION_LIMIT:g}): "
-                   "outside Hertz contact")
+    if np.isfinite(penetration_over_c) and penetration_over_c > limit:
+        out.append(f"dry penetration reaches {penetration_over_c:.3g} times the radial clearance (the elastic law's limit: {limit:.3g}): "
+                   "outside its contact law")
     if beyond_cap:
-        out.append(f"eccentricity beyond the film cap during {100 * beyond_cap:.3g} % of the recorded time: the dry contact, "
-                   "not the film, carries the journal there")
+        out.append(f"eccentricity beyond the film cap during {100 * beyond_cap:.3g} % of the time shown: the film force is held "
+                   "there at its capped value, set by the assumed e0")
     return "; ".join(out)
 
 
-def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: float, cap: float | None) -> dict[str, object]:
+def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: float, cap: float | None, limit: float) -> dict[str, object]:
     """The scene attributes: the two measures, the limit they are judged by, and the warnings."""
     pen = penetration_ratio(penetration, clearance)
     beyond = beyond_cap_fraction(eccentricity, clearance, cap) if cap is not None else None
     label, value = contact_extent(pen)
-    attrs: dict[str, object] = {"validity_penetration_over_clearance": pen, "validity_penetration_limit": PENETRATION_LIMIT,
+    attrs: dict[str, object] = {"validity_penetration_over_clearance": pen, "validity_penetration_limit": limit,
                                 "validity_contact_label": label, "validity_contact_value": value,
-                                "validity_warnings": warnings(pen, beyond)}
+                                "validity_warnings": warnings(pen, beyond, limit)}
     if beyond is not None:
         attrs["validity_beyond_film_cap_fraction"] = beyond
     return attrs
