@@ -160,29 +160,20 @@ md(
 
 # %%
 rows = []
-moved = [str(x) for x in unc.moved.values]
-of = [str(x) for x in unc.sample_scenario.values]
-for v in variants:
-    for n, scen in enumerate(unc.scenario.values):
-        in_scen = [k for k, o in enumerate(of) if o == str(scen)]
-        base = next(k for k in in_scen if not moved[k])
-        nominal_diff = unc.sample_comparison_difference.sel(variant=v).isel(sample=base).values
-        o0 = unc.sample_claim_outcome.sel(variant=v).isel(sample=base).values
-        for name in dict.fromkeys(moved[k] for k in in_scen if moved[k]):
-            idx = [k for k in in_scen if moved[k] == name]
-            d = unc.sample_comparison_difference.sel(variant=v).isel(sample=idx).values
-            o = unc.sample_claim_outcome.sel(variant=v).isel(sample=idx).values
-            flips = [CLAIM_WORDS[str(c)].split(" (")[0] for j, c in enumerate(unc.claim.values) if (o[:, j] != o0[j]).any()]
-            for j, label in enumerate(unc.comparison.values):
-                lo, hi = min(d[:, j].min(), nominal_diff[j]), max(d[:, j].max(), nominal_diff[j])
-                rows.append({"variant": v, "start": str(scen).removeprefix("start "), "input (config key)": name.removesuffix(".value"), "ordering": in_words(str(label)),
-                             "difference over the range": f"{lo:.4g} … {hi:.4g}", "crosses 0": "yes" if lo < 0 < hi else "no",
-                             "claims decided otherwise": ", ".join(flips) or "none"})
-ordering_ranges = pd.DataFrame(rows)
-table(ordering_ranges[ordering_ranges["crosses 0"] == "yes"] if (ordering_ranges["crosses 0"] == "yes").any() else ordering_ranges.head(0),
+for scen in unc.scenario.values:
+    for inp in unc.input.values:
+        for v in variants:
+            at = dict(scenario=scen, input=inp, variant=v)
+            flips = [CLAIM_WORDS[str(c)].split(" (")[0] for c in unc.claim.values if int(unc.oat_claim_changed.sel(**at, claim=c))]
+            for label in unc.comparison.values:
+                lo, hi = float(unc.oat_comparison_low.sel(**at, comparison=label)), float(unc.oat_comparison_high.sel(**at, comparison=label))
+                if lo < 0 < hi:
+                    rows.append({"variant": v, "start": str(scen).removeprefix("start "), "input (config key)": str(inp).removesuffix(".value"),
+                                 "ordering": in_words(str(label)), "difference over the range": f"{lo:.4g} … {hi:.4g}", "claims decided otherwise": ", ".join(flips) or "none"})
+table(pd.DataFrame(rows, columns=["variant", "start", "input (config key)", "ordering", "difference over the range", "claims decided otherwise"]),
       caption="Orderings whose difference changes sign as one assumed input moves over its range (rad/s² or N·m); "
-              "the full table of every input and ordering is in results/clearance/uncertainty.nc")
-md(f"{int((ordering_ranges['crosses 0'] == 'yes').sum())} of {len(ordering_ranges)} (input, ordering) pairs change sign over the input's range. "
+              "every input and ordering is in results/clearance/uncertainty.nc")
+md(f"{int(unc.oat_sign_changes)} of {int(unc.oat_orderings)} (start, input, variant, ordering) sets change sign over the input's range. "
    "A sample's claim is judged on its own state and its own interval, with the nominal run's numerical error bar; no sample takes the nominal outcome.")
 
 # %%
@@ -193,7 +184,7 @@ stat["numerical error / value"] = stat["numerical error"] / stat["value"]
 table(worded(stat), {"value": "{:.4g}", f"{claims.attrs['confidence']:.0%} half-width": "{:.3g}", "numerical error": "{:.3g}", "numerical error / value": "{:.1e}", "cycles": "{:.0f}"},
       caption="The claims' measure on each scene's state per start (rad/s² for the acceleration, N·m for the torque): one period of a periodic state "
               "(half-width 0), or the mean over the judged cycles of a state that is not periodic with its confidence half-width (empty: the state is in doubt); "
-              f"its numerical error from the check tolerances ({esc(claims.attrs['tight_settings'])}) on the same state")
+              f"its numerical error from the check tolerances ({esc(in_words(claims.attrs['tight_settings']))}) on the same state")
 md(f"**Interval:** {esc(in_words(claims.attrs['ci_method']))} (batches of {claims.attrs['batch_cycles']} cycles). **Decision:** {esc(claims.attrs['decision_rule'])}. "
    f"**Numerical error:** {esc(claims.attrs['numerical_error_method'])}.")
 comp = claims[["comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome", "comparison_decided_by"]].to_dataframe().reset_index()
@@ -220,25 +211,24 @@ for v in variants:
         for st in starts:
             at = dict(variant=v, scene=sc, start=st)
             kept = claims.scene_check_kept_state.sel(**at).values
-            dist = claims.scene_check_distance.sel(**at).values
+            dist = float(claims.scene_check_distance_max.sel(**at))
             srows.append({"variant": v, "scene": SCENE_WORDS[str(sc)], "start": st, "state": str(claims.scene_state_status.sel(**at).values),
                           "period (turns)": int(claims.scene_state_period.sel(**at)) or "not periodic",
                           "transient (cycles)": int(claims.scene_state_transient.sel(**at)),
                           "judged cycles": f"{int(claims.scene_window_first.sel(**at))}–{int(claims.scene_window_stop.sel(**at)) - 1}",
                           "cycles run": int(claims.scene_record_cycles.sel(**at)),
                           "check reruns keep the state": "not testable (not periodic)" if np.isnan(kept).all() else
-                          ("yes" if (kept == 1).all() else "no") + f" (section moved by {np.nanmax(dist):.2g})"})
+                          ("yes" if (kept == 1).all() else "no") + f" (section moved by {dist:.2g})"})
 table(pd.DataFrame(srows), caption=f"The state of every scene from every start. {esc(in_words(claims.attrs['settle_rule']))}. A check rerun keeps the "
       f"state when its last section point lies within {float(dry_cfg['states']['state_tolerance']):g} × max(1, |component|) of the orbit in every component "
       "(the largest such distance in brackets).")
 n_periodic = sum(r["state"] == "periodic" for r in srows)
 md(f"{n_periodic} of {len(srows)} scene runs settle onto a periodic orbit; "
    + (", ".join(f"{esc(r['variant'])}, {esc(r['scene'])}, start {esc(r['start'])}" for r in srows if r["state"] != "periodic") or "none")
-   + " do not (their measures are means over the judged cycles, with an interval)."
-   + (" Different starts reach different states in: " + ", ".join(
-       f"{esc(v)}, {esc(SCENE_WORDS[str(sc)])}" for v in variants for sc in claims.scene.values
-       if np.ptp(claims.mean_deviation.sel(variant=v, scene=sc, measure="rms", quantity="rocker_acceleration").values)
-       > 10 * float(claims.numerical_error.sel(variant=v, scene=sc, measure="rms", quantity="rocker_acceleration").max()) + 1e-12) + "."
+   + " do not (their measures are means over the judged cycles, with an interval; the interval assumes the judged turns sample the "
+   "motion: a quasi-periodic modulation slower than the window, a closed curve in the Poincaré maps below, makes it too narrow)."
+   + (" Different starts reach different states (measures apart beyond their margins) in: " + (", ".join(
+       f"{esc(v)}, {esc(SCENE_WORDS[str(sc)])}" for v in variants for sc in claims.scene.values if int(claims.scene_states_differ.sel(variant=v, scene=sc))) or "no scene") + "."
       if len(starts) > 1 else ""))
 
 # %%
@@ -294,38 +284,60 @@ for v in variants:
         ax.axis("off")
     plt.show()
     caption(f"Poincaré maps, {VARIANT_WORDS[v]}: the journal's eccentricity (over the radial clearance c) at the dead point once per crank turn, "
-            "per scene, joint and start (faint dots: the transient; open markers: the judged turns). The black circle is |e| = c.")
+            "per scene, joint and start (faint dots: the transient; open markers: the judged turns). The black circle is |e| = c. A periodic "
+            "orbit shows as a few points, a quasi-periodic motion as a closed curve, other motions as a cloud; positions alone can hide "
+            "the motion, so the next figure shows the rates.")
+    fig, axes = plt.subplots(2, 4, figsize=(16, 8), constrained_layout=True)
+    for ax, (sc, off) in zip(axes.flat, panels_):
+        run_ = scenes[(v, str(sc))]
+        for n, st in enumerate(starts):
+            sec = run_.section.sel(start=st).values
+            first, stop = int(run_.window_first.sel(start=st)), int(run_.window_stop.sel(start=st))
+            ax.plot(sec[:first, off + 2], sec[:first, off + 3], ".", ms=3, color=f"C{n}", alpha=0.25)
+            ax.plot(sec[first:stop, off + 2], sec[first:stop, off + 3], START_MARK[st], ms=6, mfc="none", color=f"C{n}", label=f"start {st}")
+        ax.set_title(f"{SCENE_WORDS[str(sc)]}", fontsize=8)
+        ax.set_xlabel("eccentricity rate e_x' / (c ω)")
+        ax.set_ylabel("eccentricity rate e_y' / (c ω)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(panels_):]:
+        ax.axis("off")
+    plt.show()
+    caption(f"Poincaré maps of the rates, {VARIANT_WORDS[v]}: the eccentricity's rate (over c times the crank speed) at the dead point, as above.")
 
 # %% [markdown]
 # ### Bifurcation diagram: the state over crank speed and clearance
 #
 # The same settling rule at every point of the clearance sweep's grid (one scene, first start): the journal's
 # eccentricity at the dead point over the last judged turns, against the crank speed, one panel per radial clearance.
-# One point per speed is a period-1 orbit; several distinct points a longer period; a smear a state that is not
-# periodic.
+# One point per speed is a period-1 orbit; several points a longer period (its number is written beside it); a smear
+# a state that is not periodic.
 
 # %%
 sw = load(files["sweep"])
-sections = [v for v in sw.data_vars if str(v).startswith("section_")]
-fig, axes = plt.subplots(1, sw.sizes["clearance_m"], figsize=(3.4 * sw.sizes["clearance_m"], 3.6), constrained_layout=True, sharey=False)
-for ax, cl in zip(np.atleast_1d(axes), sw.clearance_m.values):
-    for w in sw.crank_speed_rad_s.values:
-        at = sw.sel(clearance_m=cl, crank_speed_rad_s=w)
-        pts = np.array([float(at[k]) for k in sections])
-        periodic = bool(float(at.state_periodic))
-        ax.plot(np.full(pts.size, w), pts, "o" if periodic else "x", ms=4, color="C0" if periodic else "C3")
-    ax.set_title(f"clearance {cl * 1e6:.0f} µm", fontsize=9)
-    ax.set_xlabel("crank speed (rad/s)")
-    ax.set_ylabel("joint 1 eccentricity e_x / c at the dead point")
-    ax.grid(alpha=0.3)
+n_sec = sum(str(v).startswith("section_rate_") for v in sw.data_vars)
+fig, axes = plt.subplots(2, sw.sizes["clearance_m"], figsize=(3.4 * sw.sizes["clearance_m"], 7), constrained_layout=True, squeeze=False)
+for col, cl in enumerate(sw.clearance_m.values):
+    for row, (prefix, label) in enumerate((("section_", "joint 1 eccentricity e_x / c"), ("section_rate_", "joint 1 eccentricity rate e_x' / (c ω)"))):
+        ax = axes[row, col]
+        for w in sw.crank_speed_rad_s.values:
+            at = sw.sel(clearance_m=cl, crank_speed_rad_s=w)
+            pts = np.array([float(at[f"{prefix}{k}"]) for k in range(n_sec)])
+            periodic = bool(float(at.state_periodic))
+            ax.plot(np.full(pts.size, w), pts, "o" if periodic else "x", ms=4, mfc="none", color="C0" if periodic else "C3")
+            if periodic:
+                ax.annotate(f"{int(at.state_period)}", (w, np.nanmax(pts)), textcoords="offset points", xytext=(3, 3), fontsize=7)
+        ax.set_title(f"clearance {cl * 1e6:.0f} µm", fontsize=9)
+        ax.set_xlabel("crank speed (rad/s)")
+        ax.set_ylabel(label, fontsize=8)
+        ax.grid(alpha=0.3)
 plt.show()
 caption(f"Bifurcation diagram on the clearance sweep's grid ({sw.attrs['scene_description']}, {sw.attrs['variant_description']}): the last "
-        f"{len(sections)} judged section points of each settled state (blue dots: periodic orbit; red crosses: not periodic), against the crank "
-        "speed, per radial clearance. The grid is the sweep's (coarse: five speeds); a finer one is a config edit (sweeps.grid: large).")
-periods = sw.state_period.values
-md(f"Over the {periods.size} grid points, {int((sw.state_periodic.values == 1).sum())} states are periodic "
-   f"(periods: {', '.join(str(int(k)) for k in sorted(set(periods[sw.state_periodic.values == 1].ravel().tolist())))} turns) and "
-   f"{int((sw.state_periodic.values == 0).sum())} are not.")
+        f"{n_sec} judged section points of each settled state, eccentricity (top) and its rate (bottom), against the crank speed, per radial "
+        "clearance (blue circles: periodic orbit, its period in turns beside it; red crosses: not periodic). The points of a longer period can "
+        "lie close together in one component. The grid is the sweep's (five speeds); a finer one is a config edit (sweeps.grid: large).")
+md(f"Over the {int(sw.grid_points)} grid points, {int(sw.periodic_points)} states are periodic (periods: {esc(sw.attrs['periods_found'])} turns) and "
+   f"{int(sw.grid_points) - int(sw.periodic_points)} are not.")
 
 # %% [markdown]
 # ## 1. Model, parameters and the defects of the printed model
@@ -633,7 +645,7 @@ md(
         + "The error of the eccentricity relative to the clearance is what the contact force depends on. "
         for s_ in dry)
     + "The numerical error of the claims themselves is measured on each settled state: the same state rerun at the check tolerances "
-    f"({esc(claims.attrs['tight_settings'])}) from its section point, on RMS and peak (the table of measures above). In the lubricated scene the film damps the motion: the references agree to the rounding level, a moved start moves "
+    f"({esc(in_words(claims.attrs['tight_settings']))}) from its section point, on RMS and peak (the table of measures above). In the lubricated scene the film damps the motion: the references agree to the rounding level, a moved start moves "
     "the RMS measure in proportion, so that measure ranks the integrator there. RK4 would need steps below 1e-8 s in it, because "
     "the film damping makes the problem stiff, so it is not run there."
 )

@@ -181,9 +181,12 @@ def test_validity_measures_against_hand_values():
     assert np.isnan(validity.penetration_ratio(np.full((2, 3), np.nan), c))
     ecc = np.array([[4e-5, 4.9e-5, 1e-5, np.nan], [0.0, 0.0, 4.8e-5, 1e-5]])  # |e|/c: 0.8, 0.98 | 0.96
     assert validity.beyond_cap_fraction(ecc, c, cap=0.95) == pytest.approx(0.5)
-    assert validity.warnings(0.5, 0.0) == ""
-    assert "outside Hertz contact" in validity.warnings(2.0, None)
-    assert "beyond the film cap during 50 %" in validity.warnings(0.5, 0.5)
+    assert validity.warnings(0.05, 0.0, 0.0635) == ""
+    assert "outside its contact law" in validity.warnings(2.0, None, 0.0635) and validity.warnings(2.0, None, float("inf")) == ""
+    assert "beyond the film cap during 50 %" in validity.warnings(0.05, 0.5, 0.0635)
+    # the sphere law's limit: the rigid overlap's contact half-angle at which parabolic profiles err by 1 %
+    assert validity.penetration_limit("hertz-sphere", 0.00995, 0.01) == pytest.approx(0.0635, abs=5e-4)
+    assert validity.penetration_limit("pereira", 0.00995, 0.01) == float("inf")
 
 
 def test_crank_speed_times_hundred_is_flagged_outside_hertz():
@@ -194,7 +197,7 @@ def test_crank_speed_times_hundred_is_flagged_outside_hertz():
     section["numerics"] = {**section["numerics"], "record_cycles": 1, "points_per_cycle": 720}
     ds = scene_dataset(section, "slender", "dry_both")
     assert ds.attrs["validity_penetration_over_clearance"] > ds.attrs["validity_penetration_limit"]
-    assert "outside Hertz contact" in ds.attrs["validity_warnings"]
+    assert "outside its contact law" in ds.attrs["validity_warnings"]
     nominal = scene_dataset({**_quick(SECTION), "numerics": section["numerics"]}, "slender", "lubricated_1")
     assert nominal.attrs["validity_warnings"] == "" and nominal.attrs["validity_beyond_film_cap_fraction"] == 0.0
 
@@ -323,9 +326,10 @@ def test_an_undetermined_ordering_names_the_margin_that_decides_it():
     assert claim_reason(["", "numerical error", "statistical margin", "numerical error"]) == "numerical error; statistical margin"
 
 
-def test_the_answer_is_two_plain_sentences_read_from_the_results():
-    """answer() on a hand-made comparison table and findings: at most two sentences, no code name, the verdicts
-    per variant and the penetration numbers as given (not typed)."""
+def test_the_answer_is_plain_sentences_read_from_the_results():
+    """answer() on a hand-made comparison table (two starts) and findings: a few sentences, no code name, the
+    verdicts per variant from the first start, the claim the start decides, the penetration numbers and the law's
+    limit as given (not typed), and the claims that do not survive the other law."""
     import re
 
     import pandas as pd
@@ -334,15 +338,19 @@ def test_the_answer_is_two_plain_sentences_read_from_the_results():
     from linkwork.papers.clearance.findings import answer
     from prose import leaks
 
-    verdicts = {"slender": ("undetermined (numerics)", "deviates", "undetermined (numerics)"),
-                "decoded": ("deviates", "undetermined (numerics)", "undetermined (numerics)")}
-    table = pd.DataFrame([{"model": v, "id": c, "role": "headline", "verdict": verdict}
-                          for v, row in verdicts.items() for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)])
-    findings = xr.Dataset({"dry_penetration_max": ("variant", [1.37, 0.61]), "physically_consistent": ("variant", [0, 1]),
-                           "beyond_film_cap_fraction": (("variant", "scene"), [[1.0, 0.2, 1.0], [0.0, 0.0, 0.0]])},
-                          coords={"variant": ["decoded", "slender"], "scene": ["lubricated_1", "lubricated_2", "lubricated_both"]})
+    verdicts = {"slender": ("undetermined (numerics)", "deviates", "deviates"), "decoded": ("deviates", "undetermined (numerics)", "deviates")}
+    rows = [{"model": v, "scenario": st, "id": c, "role": "headline", "verdict": "matches" if (st == "start b" and v == "decoded" and c == "acceleration_order") else verdict}
+            for st in ("start a", "start b") for v, row in verdicts.items() for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)]
+    table = pd.DataFrame(rows)
+    survives = [[[1, 1, 1], [0, 1, 1]], [[1, 1, 1], [1, 1, 1]]]  # decoded, start b: claim 1 changes with the law
+    findings = xr.Dataset({"dry_penetration_max": ("variant", [1.37, 0.61]), "physically_consistent": ("variant", [0, 0]),
+                           "sphere_law_valid": ("variant", [0, 0]), "law_survives": (("variant", "start", "claim"), survives),
+                           "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]), "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]])},
+                          coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "claim": ["acceleration_order", "torque_order", "lubrication_close"]},
+                          attrs={"sphere_law_limit_over_clearance": 0.0635})
     text = answer(table, findings)
-    assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 2, text
+    assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 5, text
     assert leaks(text) == [], leaks(text)
-    assert text.startswith("No claim") and "1.4 times the clearance" in text and "0.61" in text and "outside the contact model" in text
-    assert "claim 2 (crank-torque order) fails" in text and "text claim 1 fails" in text
+    assert text.startswith("No claim") and "1.37 c" in text and "0.61 c" in text and "0.0635 c" in text
+    assert "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text and "holds from the start b" in text
+    assert "claim 1 (decoded, start b) changes outcome" in text and "ripples alone (decoded, slender)" in text

@@ -144,7 +144,7 @@ def pereira_exponent(clearance: float) -> float:
     """Pereira's exponent n = Y dR^-0.005 (-) of the radial clearance ``clearance`` (m; dR in mm in the fit).
 
     Y = 1.51 [ln(1000 dR)]^-0.151 up to the break clearance (the logarithm of dR in micrometres), Y = 0.0151 dR + 1.151
-    above it.  Outside the fitted range the nearer branch is extrapolated (see papers.clearance.validity); below
+    above it.  Outside the fitted range the nearer branch is extrapolated (the clearance paper states each law's range); below
     1 um the logarithm is not positive and the law is undefined (ValueError).
     """
     dr = clearance * _MM_PER_M

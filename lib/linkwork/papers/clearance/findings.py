@@ -226,6 +226,8 @@ def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
             third = (f" The dry penetration ({', '.join(f'{v}: {depth[v]:.2f} c' for v in invalid)}) is beyond the sphere law's validity "
                      f"({limit:.3g} c); under the conformal law of Pereira et al. "
                      + (f"every claim keeps its outcome, so the verdicts stand." if not lost else
+                        f"{', '.join(lost)} {'changes' if len(lost) == 1 else 'change'} outcome: {'that verdict rests' if len(lost) == 1 else 'those verdicts rest'} "
+                        "on the sphere law outside its range and is not counted as the paper's." if len(lost) == 1 else
                         f"{', '.join(lost)} change outcome: those verdicts rest on the sphere law outside its range and are not counted as the paper's."))
     return f"{first}{second}{third}{ripples_text(findings)}"
 

@@ -474,6 +474,20 @@ def judge_start(runs: Mapping[str, xr.Dataset], k: int, ratio: float, confidence
     return verdict, stats, num
 
 
+def states_differ(stats: np.ndarray, num: np.ndarray) -> np.ndarray:
+    """Per variant and scene: 1 where some measure of two starts differs by more than the sum of their half-widths
+    and numerical errors (``stats``: variant, start, measure, quantity, scene, statistic; ``num``: the same without
+    the statistic)."""
+    mean, half = stats[..., 0], np.where(np.isfinite(stats[..., 1]), stats[..., 1], np.inf)
+    margin = half + np.nan_to_num(num, nan=np.inf)
+    out = np.zeros((stats.shape[0], stats.shape[4]), dtype=int)
+    for a in range(stats.shape[1]):
+        for b in range(a + 1, stats.shape[1]):
+            apart = np.abs(mean[:, a] - mean[:, b]) > margin[:, a] + margin[:, b]  # variant, measure, quantity, scene
+            out |= apart.any(axis=(1, 2)).astype(int)
+    return out
+
+
 def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
     """The three claims per variant and start, judged on the state each scene settles into from that start: the
     claims' measures on the state (one period, or batch means over the judged window), their interval, and the
@@ -535,6 +549,11 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
     for key in ("check_kept_state", "check_distance"):
         arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])
         data[f"scene_{key}"] = (("variant", "scene", "start", "check"), arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
+    dist = data["scene_check_distance"][1]
+    largest = np.max(np.where(np.isfinite(dist), dist, -np.inf), axis=-1)
+    data["scene_check_distance_max"] = (("variant", "scene", "start"), np.where(np.isfinite(largest), largest, np.nan),
+                                        {"units": "1", "long_name": "largest distance of a check rerun from the pipeline orbit", "nan_meaning": "not periodic, or every check failed"})
+    data["scene_states_differ"] = (("variant", "scene"), states_differ(stats, num), {"units": "1", "long_name": "1 if two starts' measures differ beyond their intervals and numerical errors (different states)"})
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
         data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr,

@@ -81,9 +81,10 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
     for key, (row, _) in PER_CYCLE.items():
         per_cycle = found["measures"][first:stop, row] / scale[key]
         out[key], out[key + SCATTER] = float(judged[row, 0] / scale[key]), float(per_cycle.max() - per_cycle.min())
-    last = found["points"][first:stop, 0][-SECTION_POINTS:]
+    last = found["points"][first:stop][-SECTION_POINTS:]
     for k in range(SECTION_POINTS):
-        out[f"section_{k}"] = float(last[k]) if k < last.size else float("nan")
+        out[f"section_{k}"] = float(last[k, 0]) if k < last.shape[0] else float("nan")
+        out[f"section_rate_{k}"] = float(last[k, 2]) if k < last.shape[0] else float("nan")
     return out
 
 
@@ -102,6 +103,8 @@ SWEEP_OUTPUTS = {
     "state_periodic": ("1", "1 if the state is a periodic orbit"),
     **{f"section_{k}": ("1", f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the bifurcation diagram)",
                         "the state was judged on fewer turns") for k in range(SECTION_POINTS)},
+    **{f"section_rate_{k}": ("1", f"joint 1's e_x' / (c omega) at the dead point, judged turn {k + 1} of the last {SECTION_POINTS}",
+                             "the state was judged on fewer turns") for k in range(SECTION_POINTS)},
 }
 
 #: The threshold drawn on the map: where the Hertz contact law leaves its range (the clearance report's limit).
@@ -129,6 +132,10 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset]) -> xr.Dataset
             units="1", long_name=f"{grid_ds[spread].attrs['long_name']} / its mean")
     states = [k for k in grid_ds.data_vars if k.startswith(("section_", "state_"))]  # the bifurcation diagram's: no trends of them
     ds = interpret(grid_ds.drop_vars(states), cfg["reference"], THRESHOLDS, scatter=scatter).merge(grid_ds[states])
+    periodic = grid_ds.state_periodic.values == 1
+    ds["periodic_points"] = ((), int(periodic.sum()), {"units": "1", "long_name": "grid points whose state is a periodic orbit"})
+    ds["grid_points"] = ((), int(periodic.size), {"units": "1", "long_name": "grid points"})
+    ds.attrs["periods_found"] = ", ".join(str(int(k)) for k in sorted(set(grid_ds.state_period.values[periodic].ravel().tolist())))
     spec = cfg["spec"]
     ds.attrs.update(title=f"clearance sweep ({cfg['grid']} grid)", scene=spec["scene"], variant=spec["variant"],
                     scene_description=SCENE_WORDS.get(spec["scene"], spec["scene"]),

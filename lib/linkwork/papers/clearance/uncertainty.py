@@ -154,6 +154,25 @@ def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: 
     return verdict, stats[..., 0]
 
 
+def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per scenario, continuous input, variant and ordering: the smallest and largest difference over the samples that
+    move the input alone and the scenario's nominal one; per claim, whether such a sample decides it otherwise than
+    the nominal (``diffs``: sample, variant, comparison; ``outcomes``: sample, variant, claim)."""
+    from ...pipeline.uncertainty import continuous, scenarios
+
+    scens, ranged = [s.label for s in scenarios(ins)], continuous(ins)
+    lo = np.full((len(scens), len(ranged)) + diffs.shape[1:], np.nan)
+    hi, changed = np.full_like(lo, np.nan), np.zeros((len(scens), len(ranged)) + outcomes.shape[1:], dtype=int)
+    for n, scen in enumerate(scens):
+        rows = [i for i, s in enumerate(design) if s.scenario == scen]
+        base = next(i for i in rows if not design[i].moved)
+        for k, inp in enumerate(ranged):
+            idx = [i for i in rows if design[i].moved == inp.path] + [base]
+            lo[n, k], hi[n, k] = diffs[idx].min(axis=0), diffs[idx].max(axis=0)
+            changed[n, k] = (outcomes[idx] != outcomes[base]).any(axis=0)
+    return lo, hi, changed
+
+
 def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, published: Mapping[str, Any]):
     """Rule study: the claims at every sample, each judged on its own measures (moved scenes from the batches, the
     others from the nominal runs in ``claims``; the other starts from the nominal runs), evaluated as the comparison
@@ -195,12 +214,21 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
         diffs.append(sample_diffs)
         outcomes.append(sample_out)
     ds = summary([evaluated_dataset(rows, ins, design)], ins)
+    lo, hi, changed = oat_orderings(design, ins, np.array(diffs), np.array(outcomes, dtype=int))
     ds["sample_mean_deviation"] = (("sample", "variant", "measure", "response", "scene"), np.array(means),
                                    {"units": "SI of the quantity", "long_name": "the claims' measure on the sample's state (deviation from the ideal curve)"})
     ds["sample_comparison_difference"] = (("sample", "variant", "comparison"), np.array(diffs),
                                           {"units": "SI of the quantity", "long_name": "difference the ordering is about at the sample (> 0: as claimed)"})
     ds["sample_claim_outcome"] = (("sample", "variant", "claim"), np.array(outcomes, dtype=int),
                                   {"units": "1", "long_name": "the claim at the sample: 1 holds, 0 fails, -1 undetermined (within its margins)"})
+    oat_dims = ("scenario", "input", "variant")
+    ds["oat_comparison_low"] = (oat_dims + ("comparison",), lo, {"units": "SI of the quantity", "long_name": "smallest difference of the ordering moving this input alone (with the nominal)",
+                                                                 "nan_meaning": "the input moves no sample in this scenario"})
+    ds["oat_comparison_high"] = (oat_dims + ("comparison",), hi, {"units": "SI of the quantity", "long_name": "largest difference of the ordering moving this input alone (with the nominal)",
+                                                                  "nan_meaning": "the input moves no sample in this scenario"})
+    ds["oat_claim_changed"] = (oat_dims + ("claim",), changed, {"units": "1", "long_name": "1 if a sample moving this input decides the claim otherwise than the scenario's nominal"})
+    ds["oat_sign_changes"] = ((), int(np.sum((lo < 0) & (hi > 0))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets whose difference changes sign over the input's range"})
+    ds["oat_orderings"] = ((), int(np.sum(np.isfinite(lo))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets"})
     ds = ds.assign_coords(variant=("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
                           measure=("measure", claims.measure.values, {"units": "1", "long_name": "deviation measure"}),
                           response=("response", claims.quantity.values, {"units": "1", "long_name": "compared response"}),

@@ -20,8 +20,11 @@ CLAIM_WORDS = {"acceleration_order": "claim 1 (rocker-acceleration order)",
 QUANTITY_WORDS = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
 #: Symbols of the interval's description -> words.
 SYMBOL_WORDS = {"n_b": "N", "s_b": "S"}
-WORDS = {**SCENE_WORDS, **CLAIM_WORDS, **QUANTITY_WORDS, **SYMBOL_WORDS}
-_NAMES = sorted((re.escape(k) for k in WORDS if "_" in k), key=len, reverse=True)
+#: Integrator and contact-law names -> words.
+METHOD_WORDS = {"dopri5": "Dormand–Prince 5(4)", "ndf": "variable-order BDF (compiled)", "bdf": "BDF (scipy)", "radau": "Radau IIA (scipy)",
+                "rk4": "RK4", "pereira": "Pereira et al.", "hertz-sphere": "sphere law (eq. 9)"}
+WORDS = {**SCENE_WORDS, **CLAIM_WORDS, **QUANTITY_WORDS, **SYMBOL_WORDS, **METHOD_WORDS}
+_NAMES = sorted((re.escape(k) for k in WORDS if "_" in k or k in METHOD_WORDS), key=len, reverse=True)
 _CODE = re.compile(r"(?<![\w])(" + "|".join(_NAMES) + r")(?![\w])")
 
 
