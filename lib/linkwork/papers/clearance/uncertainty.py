@@ -70,7 +70,8 @@ def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant:
     import xarray as xr
 
     starts = [str(x) for x in nominal[0].start.values]
-    return xr.concat([batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start")
+    ds = xr.concat([batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start")
+    return ds.assign_coords(start=("start", np.array(starts, dtype=object), {"units": "1", "long_name": "the start whose nominal state the sample continues"}))
 
 
 def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), start: int = 0):
