@@ -444,7 +444,7 @@ table(worded(show), {"max drift |Φ| (m)": "{:.1e}", "steps (every start and che
                      "friction evaluations": "{:.0f}", "lubrication evaluations": "{:.0f}"},
       caption=f"Cost and accuracy checks per scene. Sampling: {int(dry_cfg['numerics']['points_per_cycle'])} points per crank turn against the "
               "linearised contact frequency sqrt(1.5 K δ^0.5 / m) / 2π at the deepest penetration (lightest body the joint connects); "
-              "the peaks are taken from this sampling (tests/test_clearance_states.py shows them converged).")
+              "the peaks are taken from this sampling (a test shows them converged as the sampling doubles), their error bar adding a parabolic refinement's rise.")
 md("The evaluation counters show that an effect a scene does not name is never evaluated: the lubrication count is zero in every dry scene."
    if not fnd.stray_evaluations.any() else "**The evaluation counters show effects evaluated in scenes that do not name them.**")
 
@@ -547,14 +547,16 @@ if "law_survives" in fnd:
        + (": beyond it in every variant. " if not fnd.sphere_law_valid.any() else ". ")
        + f"**Validity of the conformal law:** {esc(fnd.attrs['other_law_condition'])}"
        + (" (inside)." if int(fnd.attrs["other_law_valid"]) else " (outside).")
-       + " A verdict counts as the paper's where the sphere law is valid or the verdict survives the change of law.")
+       + " Its source fits its coefficients to clearances, not to penetrations: at the deepest penetrations here the contact arc is wide for it too, so "
+       "'survives the law' says the verdicts do not hinge on the choice between these two laws, not that either law is valid there. "
+       "A verdict counts as the paper's where the sphere law is valid or the verdict survives the change of law.")
 
 # %% [markdown]
 # ### The contact memory: why the starts settle differently
 #
 # The Lankarani–Nikravesh damping divides by the impact velocity latched at a journal's first contact. In the dry
-# scenes the journals never leave their bushings once they touch, so that value is kept for ever: two runs can differ
-# in nothing but this memory of the first impact, and settle into different states. Each dry scene's state from one
+# scenes the journals stay pressed into their bushings almost all the time, so that value is kept (it changes only at
+# a new impact): two runs can differ in nothing but this memory of the first impact, and settle into different states. Each dry scene's state from one
 # start is continued with the other start's latched velocities: if its measure moves to the other start's, the
 # starts' states differ by that memory.
 
@@ -571,7 +573,8 @@ if "memory_swap_rms" in fnd and fnd.sizes.get("start", 1) > 1:
                                        "the other start's latched impact velocities (settled again by the same rule)")
     md("Where the swapped columns take the other start's values, the difference between the starts is the memory the contact law keeps of "
        "the first impact, not the journals' positions: a property of the printed contact model (a damping law derived for an impact, applied "
-       "to a journal in permanent contact), which the impact-velocity floor, an assumed input, does not remove where the latched values lie above it.")
+       "to a journal in nearly permanent contact), which the impact-velocity floor, an assumed input, does not remove where the latched values lie "
+       "above it. A claim the starts decide differently is then decided by that memory, no physical input: its rows read 'depends on assumptions'.")
 
 # %% [markdown]
 # ## 5. Accuracy of the integrators

@@ -351,9 +351,9 @@ def test_the_answer_is_plain_sentences_read_from_the_results():
     text = answer(table, findings)
     assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 5, text
     from linkwork.papers.clearance.findings import memory_explains
-    own = np.array([[[100.0, 150.0], [100.0, 100.5]]])  # one variant: a scene whose starts settle apart, one whose do not
-    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [[1, 0]]
-    assert memory_explains(own, np.array([[[140.0, 150.0], [100.0, 100.5]]])).tolist() == [[0, 0]]
+    own = np.array([[[100.0, 150.0], [100.0, 100.5]]])  # one variant, two scenes: starts 50 apart, and 0.5 apart
+    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [[1, 1]]  # each swap lands on the donor
+    assert memory_explains(own, np.array([[[140.0, 150.0], [100.5, 100.0]]])).tolist() == [[0, 0]]  # the swaps keep their own states
     assert leaks(text) == [], leaks(text)
     assert text.startswith("No claim") and "1.37 c" in text and "0.61 c" in text and "0.0635 c" in text
     assert "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text and "holds from the start b" in text

@@ -5,7 +5,7 @@ the Lankarani-Nikravesh damping.
   other law (``clearance.sensitivity.elastic_law``, the conformal law of Pereira et al.) and settled and judged as an
   input-uncertainty sample is (``uncertainty.batch`` with the law as the moved value).
 * **The contact memory.** The hysteresis damping divides by the impact velocity latched at a journal's first contact.
-  A journal that never leaves its bushing keeps that value for ever, so two runs can differ in nothing but the
+  A journal that stays pressed into its bushing keeps that value until a new impact, so two runs can differ in nothing but the
   latched value, and settle into different states.  Each dry scene's state from the second start is continued with
   the first start's latched velocities (and the reverse): if the measure follows the latched value, the starts'
   states differ by that memory alone.

@@ -91,6 +91,23 @@ def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) 
                   st["min_cycles"], confidence)
 
 
+def convergence_error(measures: np.ndarray, found: Mapping[str, Any]) -> np.ndarray:
+    """Per measure row: what a periodic state that still converges can move its measure beyond the last period, from
+    the per-period means over the judged window: the last change times rho / (1 - rho), rho the ratio of the last two
+    changes (at most 0.99; 0 where fewer than three periods are judged or the state is not periodic)."""
+    if found["status"] != PERIODIC:
+        return np.zeros(measures.shape[1])
+    first, stop = found["window"]
+    k = found["period"]
+    n = (stop - first) // k
+    if n < 3:
+        return np.zeros(measures.shape[1])
+    means = measures[stop - n * k : stop].reshape(n, k, -1).mean(axis=1)
+    d1, d2 = np.abs(means[-2] - means[-3]), np.abs(means[-1] - means[-2])
+    rho = np.clip(np.divide(d2, d1, out=np.zeros_like(d2), where=d1 > 0), 0.0, 0.99)
+    return d2 * rho / (1.0 - rho)
+
+
 def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int, confidence: float) -> np.ndarray:
     """Per measure row: (mean, confidence half-width, standard error, degrees of freedom, cycles judged) over the
     judged window.  A periodic state: the mean over its last period (the most settled), exact (half-width 0: the

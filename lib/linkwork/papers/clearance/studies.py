@@ -155,6 +155,8 @@ def _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_st
 
 def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, extremes_names, judged_statistics):
     """The scene's result Dataset (see ``scene``)."""
+    from .settling import convergence_error
+
     st, stats = cfg["states"], cfg["statistics"]
     n_max = max(f["points"].shape[0] for f in found)
     n_comp = found[0]["points"].shape[1]
@@ -185,6 +187,9 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     # the peak measure's error bar
     sampling = np.array([np.max(np.array(r.peak_refinement)[f["window"][0] : f["window"][1]], axis=0) for f, r in zip(found, runners, strict=True)])
     numerical[:, 1, :] += sampling
+    # a periodic state still converging: what its measure can still move, added too
+    converging = np.array([convergence_error(f["measures"], f).reshape(2, len(QUANTITIES)) for f in found])
+    numerical += converging
     # the first start's last cycles: the figures' time series
     t = np.concatenate([runners[0].last[0][0]] + [x[0][1:] for x in runners[0].last[1:]])
     d = np.concatenate([runners[0].last[0][1]] + [x[1][1:] for x in runners[0].last[1:]])
@@ -238,8 +243,9 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             "check_period": (("start", "check"), check_period, {"units": "1", "long_name": "period found in the check run (0: none)"}),
             "window_memory": (("start", "memory"), np.array([r.memories[f["window"][0]] for f, r in zip(found, runners, strict=True)]),
                               {"units": "SI (t in s, then the state y, latched impact velocities, contact flags)", "long_name": "the run's whole state at the start of the judged window (restartable)"}),
+            "convergence_error": (sd, converging, {"units": "SI of the quantity", "long_name": "what a periodic state still converging can move its measure (from the per-period changes)"}),
             "peak_sampling_error": (("start", "quantity"), sampling, {"units": "SI of the quantity", "long_name": "largest rise of a judged turn's peak when refined by a parabola through its largest samples"}),
-            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators (peaks: plus the peak sampling error)",
+            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators, plus the convergence error (peaks: plus the peak sampling error)",
                                                 "nan_meaning": "no check ran (an input-uncertainty sample's run) or every check failed"}),
             "window_max_penetration": (("start", "joint"), window_ext[:, 0], {"units": "m", "long_name": "largest |e| - c over the judged cycles", **NO_CLEARANCE}),
             "window_max_eccentricity": (("start", "joint"), window_ext[:, 1], {"units": "m", "long_name": "largest |e| over the judged cycles", **NO_CLEARANCE}),
