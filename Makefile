@@ -19,8 +19,10 @@ $(STAMP): pyproject.toml constraints.txt
 reproduce: $(STAMP)
 	PATH="$(BIN):$$PATH" snakemake
 
+# two workers, one test file each at a time (a file's module fixtures are built once): the workflow tests' snakemake
+# run and the other files share the two cores
 test: $(STAMP) browser
-	PATH="$(BIN):$$PATH" python -m pytest
+	PATH="$(BIN):$$PATH" python -m pytest -n 2 --dist loadfile
 
 # The browser the report test drives: Debian's chromium (installed if missing and apt-get is at hand).
 browser:

@@ -262,7 +262,7 @@ def test_gap_and_penetration_are_named_by_their_sign():
     assert contact_extent(0.73) == ("max penetration / c", 0.73)
     assert contact_extent(-0.12) == ("min gap / c", 0.12)
     assert contact_extent(0.0)[0] == "max penetration / c"
-    attrs = validity.attributes(np.array([[-2e-5, -1e-5]]), np.array([[3e-5, 4e-5]]), 5e-5, None)
+    attrs = validity.attributes(np.array([[-2e-5, -1e-5]]), np.array([[3e-5, 4e-5]]), 5e-5, None, 0.0635)
     assert (attrs["validity_contact_label"], attrs["validity_contact_value"]) == ("min gap / c", pytest.approx(0.2))
 
 
