@@ -216,7 +216,7 @@ def law_sensitivity(claims: xr.Dataset, laws: Sequence[xr.Dataset], cfg: Mapping
 
 
 #: A claim's verdict class as a predicate of the claim(s) in plain words.
-VERDICT_PREDICATE = {"matches": ("holds", "hold"), "deviates": ("fails", "fail"),
+VERDICT_PREDICATE = {"matches": ("holds", "hold"), "deviates": ("fails", "fail"), "depends on assumptions": ("depends on assumptions", "depend on assumptions"),
                      "undetermined (numerics)": ("is undetermined by the numerics", "are undetermined by the numerics")}
 
 
