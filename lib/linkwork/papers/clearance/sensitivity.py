@@ -45,7 +45,7 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
 
     runs = {str(r.attrs["scene"]): r for r in nominal}
     starts = [str(x) for x in next(iter(runs.values())).start.values]
-    ds = batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal)
+    ds = batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal, all_starts=True)
     names = [n for n in SWAPPED if n in runs]
     swap = np.full((len(names), 2, 2, len(QUANTITIES)), np.nan)
     latched = np.full((len(names), 2, 2), np.nan)  # scene, start, joint

@@ -1,9 +1,9 @@
 """Input uncertainty of the clearance paper: the assumed joint length, friction thresholds, impact-velocity floor and
 film cap, and the initial state of the journals (a scenario).
 
-Each assumed input is moved alone to both ends of its range, in every start (the initial state is a scenario).  A
-batch is one sample of one parameter variant; it reruns only the scenes the sample's input enters, from every start's
-nominal state, each settled and judged as the nominal run is (the same settling rule from the same start: the
+Each assumed input is moved alone to both ends of its range, in the first start (the initial state is a scenario;
+the other starts are judged at the nominal inputs).  A batch is one sample of one parameter variant; it reruns only
+the scenes the sample's input enters, from the first start's nominal state, each settled and judged as the nominal run is (the same settling rule from the same start: the
 state, its judged window, the measure on it and its interval), without the check reruns: a sample takes the nominal
 run's numerical error bar.  A sample continues from the nominal state (the run state at the start of the nominal
 judged window): its state is the one the nominal state moves to as the input moves.  Its config holds only those scenes' keys and the samples' moved values come as
@@ -34,10 +34,13 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
 
 
 def _design(cfg: Mapping[str, Any]):
-    """The samples: nominal and every one-at-a-time sample, in every start (a scenario); a batch computes one sample
-    from every start's nominal state."""
+    """The samples: every one-at-a-time sample in the first start; the other starts (scenarios) at the nominal inputs
+    only (their runs are the nominal ones; the inputs are propagated from the first start, a measured cost: each start
+    doubles the samples' runs)."""
     settings = cfg["uncertainty"]
-    return samples(inputs(cfg), settings["lhs_points"], settings["seed"])
+    design = samples(inputs(cfg), settings["lhs_points"], settings["seed"])
+    first = design[0].scenario
+    return [s for s in design if s.scenario == first or not s.moved]
 
 
 def _moved_values(sample) -> dict[str, Any]:
@@ -64,12 +67,12 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
     return jobs
 
 
-def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = ()):
-    """Rule study: ``batch_at`` from every start's nominal state (``nominal``: the moved scenes' nominal runs), along
-    a ``start`` dimension."""
+def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), all_starts: bool = False):
+    """Rule study: ``batch_at`` from the first start's nominal state (``all_starts``: from every start's; ``nominal``:
+    the moved scenes' nominal runs), along a ``start`` dimension."""
     import xarray as xr
 
-    starts = [str(x) for x in nominal[0].start.values]
+    starts = [str(x) for x in nominal[0].start.values][: None if all_starts else 1]
     ds = xr.concat([batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start")
     return ds.assign_coords(start=("start", np.array(starts, dtype=object), {"units": "1", "long_name": "the start whose nominal state the sample continues"}))
 
@@ -168,7 +171,10 @@ def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple
         rows = [i for i, s in enumerate(design) if s.scenario == scen]
         base = next(i for i in rows if not design[i].moved)
         for k, inp in enumerate(ranged):
-            idx = [i for i in rows if design[i].moved == inp.path] + [base]
+            idx = [i for i in rows if design[i].moved == inp.path]
+            if not idx:  # the input is not propagated in this scenario
+                continue
+            idx.append(base)
             lo[n, k], hi[n, k] = diffs[idx].min(axis=0), diffs[idx].max(axis=0)
             changed[n, k] = (outcomes[idx] != outcomes[base]).any(axis=0)
     return lo, hi, changed
@@ -215,6 +221,9 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
         diffs.append(sample_diffs)
         outcomes.append(sample_out)
     ds = summary([evaluated_dataset(rows, ins, design)], ins)
+    for n in range(1, ds.sizes["scenario"]):  # the inputs are not propagated in the other starts: no range there
+        for key in ("low", "high", "oat_low", "oat_high"):
+            ds[key][n] = np.nan
     lo, hi, changed = oat_orderings(design, ins, np.array(diffs), np.array(outcomes, dtype=int))
     ds["sample_mean_deviation"] = (("sample", "variant", "measure", "response", "scene"), np.array(means),
                                    {"units": "SI of the quantity", "long_name": "the claims' measure on the sample's state (deviation from the ideal curve)"})
@@ -229,7 +238,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                                                                   "nan_meaning": "the input moves no sample in this scenario"})
     ds["oat_claim_changed"] = (oat_dims + ("claim",), changed, {"units": "1", "long_name": "1 if a sample moving this input decides the claim otherwise than the scenario's nominal"})
     ds["oat_sign_changes"] = ((), int(np.sum((lo < 0) & (hi > 0))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets whose difference changes sign over the input's range"})
-    ds["oat_orderings"] = ((), int(np.sum(np.isfinite(lo))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets"})
+    ds["oat_orderings"] = ((), int(np.sum(np.isfinite(lo))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets propagated"})
     ds = ds.assign_coords(variant=("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
                           measure=("measure", claims.measure.values, {"units": "1", "long_name": "deviation measure"}),
                           response=("response", claims.quantity.values, {"units": "1", "long_name": "compared response"}),
