@@ -247,6 +247,9 @@ def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
              f"{VARIANT_WORDS[PAPER_MODEL]} {verdicts_text(nominal, PAPER_MODEL, short=True)}.")
     changed = scenario_changes(table)
     changed = changed[changed.role == "headline"] if len(changed) else changed
+    if len(changed) and "law_outcome_sphere" in findings:  # a start whose outcome is the same (a verdict moved only by the inputs' range) is no change of state
+        differs = [len(set(findings.law_outcome_sphere.sel(variant=r["model"], claim=r["id"]).values.tolist())) > 1 for _, r in changed.iterrows()]
+        changed = changed[differs]
     second = ""
     if len(changed):
         parts = [f"{CLAIM_WORDS.get(str(r['id']), str(r['id'])).split(' (')[0]} ({r['model']}) {VERDICT_PREDICATE.get(r['verdict'], (r['verdict'],))[0]} from the {r['scenario']}"
