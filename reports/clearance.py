@@ -261,48 +261,40 @@ for v in variants:
 # clearance (|e| = c); points outside it are journals pressed into their bushings.
 
 # %%
-for v in variants:
+def poincare_map(v: str, first_component: int, xlabel: str, ylabel: str, circle: bool) -> None:
+    """One variant's Poincaré maps: per scene and clearance joint, two section components (from ``first_component``
+    on within the joint's four) per start, the transient faint and the judged turns as open markers."""
     fig, axes = plt.subplots(2, 4, figsize=(16, 8), constrained_layout=True)
     panels_ = [(sc, comp_) for sc in claims.scene.values for comp_ in ((0,) if "both" not in str(sc) else (0, 4))]
     for ax, (sc, off) in zip(axes.flat, panels_):
         run_ = scenes[(v, str(sc))]
-        names_ = [str(x) for x in run_.component.values]
+        col = off + first_component
         for n, st in enumerate(starts):
             sec = run_.section.sel(start=st).values
             first, stop = int(run_.window_first.sel(start=st)), int(run_.window_stop.sel(start=st))
-            ax.plot(sec[:first, off], sec[:first, off + 1], ".", ms=3, color=f"C{n}", alpha=0.25)
-            ax.plot(sec[first:stop, off], sec[first:stop, off + 1], START_MARK[st], ms=6, mfc="none", color=f"C{n}", label=f"start {st}")
-        theta = np.linspace(0, 2 * np.pi, 200)
-        ax.plot(np.cos(theta), np.sin(theta), "k-", lw=0.6)
-        ax.set_aspect("equal", adjustable="datalim")
-        ax.set_title(f"{SCENE_WORDS[str(sc)]}\n({names_[off].split(' e_')[0]})", fontsize=8)
-        ax.set_xlabel("eccentricity e_x / c")
-        ax.set_ylabel("eccentricity e_y / c")
+            ax.plot(sec[:first, col], sec[:first, col + 1], ".", ms=3, color=f"C{n}", alpha=0.25)
+            ax.plot(sec[first:stop, col], sec[first:stop, col + 1], START_MARK[st], ms=6, mfc="none", color=f"C{n}", label=f"start {st}")
+        if circle:
+            theta = np.linspace(0, 2 * np.pi, 200)
+            ax.plot(np.cos(theta), np.sin(theta), "k-", lw=0.6)
+            ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(f"{SCENE_WORDS[str(sc)]}\n({str(run_.component.values[off]).split(' e_')[0]})", fontsize=8)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
         ax.grid(alpha=0.3)
         ax.legend(fontsize=6)
     for ax in list(axes.flat)[len(panels_):]:
         ax.axis("off")
     plt.show()
+
+
+for v in variants:
+    poincare_map(v, 0, "eccentricity e_x / c", "eccentricity e_y / c", circle=True)
     caption(f"Poincaré maps, {VARIANT_WORDS[v]}: the journal's eccentricity (over the radial clearance c) at the dead point once per crank turn, "
             "per scene, joint and start (faint dots: the transient; open markers: the judged turns). The black circle is |e| = c. A periodic "
             "orbit shows as a few points, a quasi-periodic motion as a closed curve, other motions as a cloud; positions alone can hide "
             "the motion, so the next figure shows the rates.")
-    fig, axes = plt.subplots(2, 4, figsize=(16, 8), constrained_layout=True)
-    for ax, (sc, off) in zip(axes.flat, panels_):
-        run_ = scenes[(v, str(sc))]
-        for n, st in enumerate(starts):
-            sec = run_.section.sel(start=st).values
-            first, stop = int(run_.window_first.sel(start=st)), int(run_.window_stop.sel(start=st))
-            ax.plot(sec[:first, off + 2], sec[:first, off + 3], ".", ms=3, color=f"C{n}", alpha=0.25)
-            ax.plot(sec[first:stop, off + 2], sec[first:stop, off + 3], START_MARK[st], ms=6, mfc="none", color=f"C{n}", label=f"start {st}")
-        ax.set_title(f"{SCENE_WORDS[str(sc)]}", fontsize=8)
-        ax.set_xlabel("eccentricity rate e_x' / (c ω)")
-        ax.set_ylabel("eccentricity rate e_y' / (c ω)")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=6)
-    for ax in list(axes.flat)[len(panels_):]:
-        ax.axis("off")
-    plt.show()
+    poincare_map(v, 2, "eccentricity rate e_x' / (c ω)", "eccentricity rate e_y' / (c ω)", circle=False)
     caption(f"Poincaré maps of the rates, {VARIANT_WORDS[v]}: the eccentricity's rate (over c times the crank speed) at the dead point, as above.")
 
 # %% [markdown]
