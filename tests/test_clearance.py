@@ -202,10 +202,10 @@ def test_crank_speed_times_hundred_is_flagged_outside_hertz():
     assert nominal.attrs["validity_warnings"] == "" and nominal.attrs["validity_beyond_film_cap_fraction"] == 0.0
 
 
-@pytest.mark.parametrize("method", ["rk45", "dop853", "lsoda"])
+@pytest.mark.parametrize("method", ["rk45", "scipy-dop853", "lsoda", "dop853"])
 def test_scipys_integrators_on_the_compiled_right_hand_side_agree_with_dormand_prince(method):
-    """Second route for the scipy path added for the side-by-side study: on the ideal linkage, forward
-    integration by each scipy integrator around the compiled right-hand side equals inverse dynamics."""
+    """Second route for the scipy path added for the side-by-side study and for the compiled DOP853: on the ideal
+    linkage, forward integration by each integrator around the compiled right-hand side equals inverse dynamics."""
     integ = {"method": method, "rtol": 1e-10, "atol": 1e-13, "first_step_s": 1e-6, "max_step_s": 1e-3}
     t, _, diags, _ = run(SLENDER, (), ("gravity",), cycles=0.5, integ=integ)
     ideal = inverse_dynamics(SLENDER, t, gravity=True)

@@ -55,10 +55,10 @@ CASES = [
     ("material-dots", "  materials:\n    LF6:", "  materials:\n    ..:", ["transplanter.materials...", "not allowed"]),
     ("scene-home", "    dry_1: {clearance_joints: [1]", "    '~': {clearance_joints: [1]", ["not allowed"]),
     # integrator and step settings outside what the numerics can honour
-    ("rtol-one", "explicit: {method: dopri5, rtol: 1.0e-9", "explicit: {method: dopri5, rtol: 1.0", ["clearance.integrators.explicit.rtol", "1.0"]),
-    ("rtol-zero", "explicit: {method: dopri5, rtol: 1.0e-9", "explicit: {method: dopri5, rtol: 0.0", ["clearance.integrators.explicit.rtol", "0.0"]),
+    ("rtol-one", "explicit: {method: dop853, rtol: 1.0e-9", "explicit: {method: dop853, rtol: 1.0", ["clearance.integrators.explicit.rtol", "1.0"]),
+    ("rtol-zero", "explicit: {method: dop853, rtol: 1.0e-9", "explicit: {method: dop853, rtol: 0.0", ["clearance.integrators.explicit.rtol", "0.0"]),
     ("rtol-negative", "- {method: ndf, rtol: 1.0e-10", "- {method: ndf, rtol: -1.0e-10", ["clearance.check_integrators.stiff.0.rtol", "-1e-10"]),
-    ("unknown-method", "explicit: {method: dopri5, rtol: 1.0e-9", "explicit: {method: euler, rtol: 1.0e-9", ["clearance.integrators.explicit.method", "euler"]),
+    ("unknown-method", "explicit: {method: dop853, rtol: 1.0e-9", "explicit: {method: euler, rtol: 1.0e-9", ["clearance.integrators.explicit.method", "euler"]),
     ("fine-step-tiny", "    fine_step_deg: 1.0", "    fine_step_deg: 1.0e-5", ["stiffness.grids.fine_step_deg", "1e-05"]),
     ("angle-step-huge", "angle_step_deg: 1.0  ", "angle_step_deg: 180.0  ", ["transplanter.fe.angle_step_deg", "180.0"]),
     ("points-per-cycle-huge", "points_per_cycle: 14400", "points_per_cycle: 100000000", ["clearance.numerics.points_per_cycle", "size guard"]),

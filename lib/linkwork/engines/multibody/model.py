@@ -313,8 +313,21 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("    diag[3] = np.sqrt(np.sum(phi * phi))")
     a("    return out")
     a("")
+    a(dop853_coefficients_source())
     a(INTEGRATORS)
     return "\n".join(L)
+
+
+def dop853_coefficients_source() -> str:
+    """The DOP853 tableau (Hairer, Norsett and Wanner; as tabulated in scipy.integrate) as module constants of a
+    generated scene: stages A, C, weights B, error weights E3, E5, dense-output weights D (extra stages 13-15)."""
+    from scipy.integrate._ivp import dop853_coefficients as c
+
+    def arr(x) -> str:
+        return "np.array(" + repr(np.asarray(x, dtype=float).tolist()) + ")"
+
+    return "\n".join([f"D853_A = {arr(c.A)}", f"D853_B = {arr(c.B)}", f"D853_C = {arr(c.C)}", f"D853_E3 = {arr(c.E3)}",
+                      f"D853_E5 = {arr(c.E5)}", f"D853_D = {arr(c.D)}", ""])
 
 
 INTEGRATORS = '''
@@ -416,7 +429,8 @@ def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
             if err <= 1.0:
                 t = t + hh
                 y = y_new
-                k1 = rhs(t, y, p, latched, counts, diag)
+                k1 = k7  # first same as last: its diagnostics are in scratch
+                diag[:] = scratch
                 _latch(diag, latched, was)
                 accepted += 1
                 fac = 5.0 if err == 0.0 else min(5.0, max(0.2, 0.9 * err ** -0.2))
@@ -611,6 +625,119 @@ def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
         n_equal = 0
         inv_ok = False
     return ys, diags, accepted, rejected, h_abs
+
+@njit(cache=True)
+def _d853_stage(y, K, row, s, h, out):
+    """out = y + h * sum_j<s A[row, j] K[j]."""
+    for m in range(y.size):
+        acc = 0.0
+        for j in range(s):
+            acc += D853_A[row, j] * K[j, m]
+        out[m] = y[m] + h * acc
+
+
+@njit(cache=True)
+def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
+    """Adaptive Dormand-Prince 8(5,3) (DOP853: scipy's step-size control and error norm), compiled; outputs at t_out
+    by its 7th-order dense output (three extra stages in a step that holds an output), the diagnostics evaluated
+    there; steps land only on t_out[-1]; latching at accepted steps."""
+    n_out = t_out.size
+    ys, diags, diag, scratch, was, y, f = _start(y0, t0, n_out, p, latched, counts, was)
+    n = y.size
+    K = np.empty((16, n))
+    F = np.empty((7, n))
+    yy = np.empty(n)
+    y_new = np.empty(n)
+    diag_new = np.zeros(N_DIAG)
+    t = t0
+    h = h0
+    t_end = t_out[-1]
+    accepted = 0
+    rejected = 0
+    i = 0
+    while i < n_out and t_out[i] <= t + 1e-15:
+        ys[i] = y
+        diags[i] = diag
+        i += 1
+    while t < t_end - 1e-15:
+        step_rejected = False
+        while True:
+            hh = min(h, h_max)
+            t_new = t + hh
+            if t_new >= t_end - 1e-15:
+                t_new = t_end
+                hh = t_end - t
+            K[0] = f
+            for s in range(1, 12):
+                _d853_stage(y, K, s, s, hh, yy)
+                K[s] = rhs(t + D853_C[s] * hh, yy, p, latched, counts, scratch)
+            for m in range(n):
+                acc = 0.0
+                for j in range(12):
+                    acc += D853_B[j] * K[j, m]
+                y_new[m] = y[m] + hh * acc
+            K[12] = rhs(t_new, y_new, p, latched, counts, diag_new)
+            e5 = 0.0
+            e3 = 0.0
+            for m in range(n):
+                sc = atol + rtol * max(abs(y[m]), abs(y_new[m]))
+                a5 = 0.0
+                a3 = 0.0
+                for j in range(13):
+                    a5 += D853_E5[j] * K[j, m]
+                    a3 += D853_E3[j] * K[j, m]
+                e5 += (a5 / sc) ** 2
+                e3 += (a3 / sc) ** 2
+            err = 0.0 if e5 == 0.0 and e3 == 0.0 else hh * e5 / np.sqrt((e5 + 0.01 * e3) * n)
+            if err < 1.0:
+                break
+            rejected += 1
+            step_rejected = True
+            h = hh * max(0.2, 0.9 * err ** (-1.0 / 8.0))
+            if h < 1e-14:
+                raise RuntimeError("dop853: step size underflow")
+        factor = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
+        if step_rejected:
+            factor = min(1.0, factor)
+        if i < n_out and t_out[i] < t_new - 1e-15:
+            for s in range(13, 16):
+                _d853_stage(y, K, s, s, hh, yy)
+                K[s] = rhs(t + D853_C[s] * hh, yy, p, latched, counts, scratch)
+            for m in range(n):
+                dy = y_new[m] - y[m]
+                F[0, m] = dy
+                F[1, m] = hh * f[m] - dy
+                F[2, m] = 2.0 * dy - hh * (f[m] + K[12, m])
+                for r in range(4):
+                    acc = 0.0
+                    for j in range(16):
+                        acc += D853_D[r, j] * K[j, m]
+                    F[3 + r, m] = hh * acc
+            while i < n_out and t_out[i] < t_new - 1e-15:
+                x = (t_out[i] - t) / hh
+                for m in range(n):
+                    v = 0.0
+                    for r in range(7):
+                        v += F[6 - r, m]
+                        v *= x if r % 2 == 0 else 1.0 - x
+                    yy[m] = y[m] + v
+                ys[i] = yy
+                rhs(t_out[i], yy, p, latched, counts, diags[i])
+                i += 1
+        t = t_new
+        y[:] = y_new
+        f = K[12].copy()
+        diag[:] = diag_new
+        _latch(diag, latched, was)
+        accepted += 1
+        while i < n_out and t_out[i] <= t + 1e-15:
+            ys[i] = y
+            diags[i] = diag
+            i += 1
+        if t_new != t_end or hh >= h:
+            h = hh * factor
+    return ys, diags, accepted, rejected, h
+
 '''
 
 

@@ -1,5 +1,6 @@
-"""Time integration of a compiled scene: explicit RK4 / Dormand-Prince and the implicit variable-order NDF (a
-compiled port of scipy's BDF; all in the scene module) or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853) stepped from
+"""Time integration of a compiled scene: explicit RK4, Dormand-Prince 5(4) and 8(5,3) (DOP853, scipy's algorithm
+with its dense output) and the implicit variable-order NDF (a compiled port of scipy's BDF; all in the scene module)
+or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853 as ``scipy-dop853``) stepped from
 Python around the compiled right-hand side.
 
 An integrator setting is a mapping ``{method, step_s}`` (rk4) or ``{method, rtol, atol, first_step_s,
@@ -15,8 +16,8 @@ import numpy as np
 
 from .model import N_STATE, FourBarParameters, compile_scene, initial_state, pack
 
-SCIPY = ("bdf", "radau", "lsoda", "rk45", "dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
-METHODS = ("rk4", "dopri5", "ndf", *SCIPY)
+SCIPY = ("bdf", "radau", "lsoda", "rk45", "scipy-dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
+METHODS = ("rk4", "dopri5", "dop853", "ndf", *SCIPY)
 
 
 class Run:
@@ -59,8 +60,8 @@ class Run:
         integ, method = self.integrator, self.integrator["method"]
         if method == "rk4":
             ys, diags, steps, rejected, _ = self.module.rk4(self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was)
-        elif method == "dopri5":
-            ys, diags, steps, rejected, self.h = self.module.dopri5(
+        elif method in ("dopri5", "dop853"):
+            ys, diags, steps, rejected, self.h = getattr(self.module, method)(
                 self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
         elif method == "ndf":
             saved = self.latched.copy(), self.was.copy(), self.counts.copy()
@@ -99,7 +100,7 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
 
     diag = np.zeros(module.N_DIAG)
     scratch = np.zeros(module.N_DIAG)
-    solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "dop853": si.DOP853}[integrator["method"]]
+    solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "scipy-dop853": si.DOP853}[integrator["method"]]
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
     jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
     ys = np.empty((t_out.size, y0.size))
@@ -110,7 +111,8 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
     i = 1
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
         implicit = {"jac": jac} if integrator["method"] in ("bdf", "radau", "lsoda") else {}
-        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"], **implicit)
+        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"],
+                             first_step=integrator.get("first_step_s"), **implicit)
         steps = 0
         while solver.status == "running":
             solver.step()
