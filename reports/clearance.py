@@ -117,7 +117,8 @@ caption(f"The claims' measures per clearance scene on the state it settles into:
 # the dead point, we record the journals' eccentricity and its rate (a Poincaré section); the state is periodic when
 # the section repeats, and otherwise stationary when its per-cycle measures no longer drift. The claims are judged on
 # the cycles after the transient only. Their numerical error bar comes from the same state rerun at two tighter
-# tolerances, restarted from its section point.
+# tolerances, restarted from its section point, and from the start settled once more at the first of them: where
+# states coexist, which one a start falls into can depend on the integrator, and then so can the measure.
 
 # %% [markdown]
 # ## Summary: each claim per parameter variant and start
@@ -184,7 +185,8 @@ stat["numerical error / value"] = stat["numerical error"] / stat["value"]
 table(worded(stat), {"value": "{:.4g}", f"{claims.attrs['confidence']:.0%} half-width": "{:.3g}", "numerical error": "{:.3g}", "numerical error / value": "{:.1e}", "cycles": "{:.0f}"},
       caption="The claims' measure on each scene's state per start (rad/s² for the acceleration, N·m for the torque): one period of a periodic state "
               "(half-width 0), or the mean over the judged cycles of a state that is not periodic with its confidence half-width (empty: the state is in doubt); "
-              f"its numerical error from the check tolerances ({esc(in_words(claims.attrs['tight_settings']))}) on the same state")
+              f"its numerical error from the check tolerances ({esc(in_words(claims.attrs['tight_settings']))}): on the same state, and on the state "
+              "the start reaches at the first of them")
 md(f"**Interval:** {esc(in_words(claims.attrs['ci_method']))} (batches of {claims.attrs['batch_cycles']} cycles). **Decision:** {esc(claims.attrs['decision_rule'])}. "
    f"**Numerical error:** {esc(claims.attrs['numerical_error_method'])}.")
 comp = claims[["comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome", "comparison_decided_by"]].to_dataframe().reset_index()
@@ -201,10 +203,25 @@ table(worded(comp), {"difference": "{:.4g}", "statistical margin": "{:.3g}", "nu
 # ## The states: per scene and start
 #
 # For every scene and start: how the state was found, its period in crank turns (0: not periodic), the transient
-# (cycles never judged), the judged window, and whether the two check reruns at tighter tolerances stayed on the same
-# periodic orbit.
+# (cycles never judged), the judged window, whether the two check reruns at tighter tolerances stayed on the same
+# periodic orbit, and which state the start reaches when it is settled from its initial state at the first check
+# tolerance (where several states coexist, which one a start falls into can depend on the integrator).
 
 # %%
+def reached_words(claims, at):
+    """Which state the start reaches at the first check tolerance, in words, with the relative change of its RMS acceleration measure."""
+    status = str(claims.scene_reach_status.sel(**at).values)
+    if status in ("not run", "failed"):
+        return status
+    same = float(claims.scene_reach_same_state.sel(**at))
+    period = int(claims.scene_reach_period.sel(**at))
+    state = "the same orbit" if same == 1 else (f"another state ({'period ' + str(period) if period > 0 else status})" if same == 0 else
+                                                 f"{'period ' + str(period) if period > 0 else status} (the pipeline state is not periodic)")
+    rms = dict(measure="rms", quantity="rocker_acceleration")
+    moved = float(claims.scene_reach_delta.sel(**at, **rms)) / float(claims.mean_deviation.sel(variant=at["variant"], start=at["start"], scene=at["scene"], **rms))
+    return f"{state}; its RMS acceleration measure {moved:+.1%}"
+
+
 srows = []
 for v in variants:
     for sc in claims.scene.values:
@@ -218,7 +235,8 @@ for v in variants:
                           "judged cycles": f"{int(claims.scene_window_first.sel(**at))}–{int(claims.scene_window_stop.sel(**at)) - 1}",
                           "cycles run": int(claims.scene_record_cycles.sel(**at)),
                           "check reruns keep the state": "not testable (not periodic)" if np.isnan(kept).all() else
-                          ("yes" if (kept == 1).all() else "no") + f" (section moved by {dist:.2g})"})
+                          ("yes" if (kept == 1).all() else "no") + f" (section moved by {dist:.2g})",
+                          "from the start at the first check tolerance": reached_words(claims, at)})
 table(pd.DataFrame(srows), caption=f"The state of every scene from every start. {esc(in_words(claims.attrs['settle_rule']))}. A check rerun keeps the "
       f"state when its last section point lies within {float(dry_cfg['states']['state_tolerance']):g} × max(1, |component|) of the orbit in every component "
       "(the largest such distance in brackets).")
@@ -640,7 +658,8 @@ md(
         + "The error of the eccentricity relative to the clearance is what the contact force depends on. "
         for s_ in dry)
     + "The numerical error of the claims themselves is measured on each settled state: the same state rerun at the check tolerances "
-    f"({esc(in_words(claims.attrs['tight_settings']))}) from its section point, on RMS and peak (the table of measures above). In the lubricated scene the film damps the motion: the references agree to the rounding level, a moved start moves "
+    f"({esc(in_words(claims.attrs['tight_settings']))}) from its section point, and the start settled again at the first of them, on RMS and peak "
+    "(the table of measures above). In the lubricated scene the film damps the motion: the references agree to the rounding level, a moved start moves "
     "the RMS measure in proportion, so that measure ranks the integrator there. RK4 would need steps below 1e-8 s in it, because "
     "the film damping makes the problem stiff, so it is not run there."
 )

@@ -150,7 +150,8 @@ def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar(
     """A real scene (link inertias as printed, joint 1 dry, one start): its state is a periodic orbit found before
     the cap; the judged window starts after the transient and holds whole periods; the measure is the mean over one
     period; the two check integrators, restarted from the section point, stay on the orbit and move the measure by
-    far less than the margins the claims are decided by (1e-4 of it)."""
+    far less than the margins the claims are decided by (1e-4 of it); the start settled again from its initial state
+    at the first check integrator reaches a recorded state, and the error bar holds the largest of all these changes."""
     from linkwork.papers.clearance.studies import scene
 
     cfg = copy.deepcopy(SECTION)
@@ -162,6 +163,48 @@ def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar(
     rms = ds.cycle_deviation.sel(measure="rms", quantity="rocker_acceleration").values[0]
     assert np.isclose(float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0]), rms[first : first + int(ds.state_period[0])].mean())
     assert (ds.check_kept_state.values == 1).all() and ds.sizes["check"] == 2
-    measure = float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0])
-    assert float(ds.numerical_error.sel(measure="rms", quantity="rocker_acceleration")[0]) < 1e-4 * measure
+    rms = dict(measure="rms", quantity="rocker_acceleration")
+    measure = float(ds.judged_mean.sel(**rms)[0])
+    assert np.abs(ds.check_delta.sel(**rms)[0]).max() < 1e-4 * measure
+    assert str(ds.reach_status.values[0]) in ("periodic", "stationary") and np.isfinite(ds.reach_same_state.values[0])
+    largest = max(float(np.abs(ds.check_delta.sel(**rms)[0]).max()), abs(float(ds.reach_delta.sel(**rms)[0])))
+    assert float(ds.numerical_error.sel(**rms)[0]) == pytest.approx(largest + float(ds.convergence_error.sel(**rms)[0]), rel=1e-12)
     assert ds.attrs["sampling_over_contact_frequency"] >= 4.0
+
+
+class _Scripted:
+    """A stand-in for CycleRunner: per cycle the section point and measures of a scripted orbit after a transient."""
+
+    def __init__(self, orbit, measures, transient=3):
+        self.orbit, self.measures, self.transient, self.n = np.asarray(orbit, float), np.asarray(measures, float), transient, 0
+
+    def step(self, n):
+        k = np.arange(self.n, self.n + n)
+        self.n += n
+        kick = np.where(k < self.transient, 1.0, 0.0)[:, None]
+        return self.orbit[k % len(self.orbit)] + kick, self.measures[k % len(self.measures)] + kick
+
+
+def test_the_state_a_start_reaches_at_the_check_tolerance_is_compared_with_the_pipelines():
+    """``reach_state``: a start that reaches the pipeline's period-2 orbit again is 'the same state' with its measure
+    difference; one that falls into a coexisting period-1 state is 'another state', and the difference of the two
+    states' measures is what enters the error bar; a failing check integrator records no value."""
+    from linkwork.engines.states import settle
+    from linkwork.papers.clearance.settling import reach_state
+
+    st = {"chunk_cycles": 4, "max_cycles": 60, "max_period": 4, "section_tolerance": 1e-9, "periods": 3, "min_cycles": 20, "state_tolerance": 0.2}
+    orbit2, meas2 = [[0.3, 0.1], [-0.4, 0.2]], [[10.0, 1.0], [12.0, 3.0]]
+    pipeline = _Scripted(orbit2, meas2)
+    found = settle(pipeline.step, 4, 60, 4, 1e-9, 3, 20, 0.95)
+    assert found["period"] == 2
+    same = reach_state(lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
+    assert same["same"] == 1.0 and same["period"] == 2 and np.allclose(same["delta"], [0.5, 0.0])
+    other = reach_state(lambda _c, **_: _Scripted([[0.9, -0.9]], [[30.0, 2.0]]), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
+    assert other["same"] == 0.0 and other["period"] == 1 and np.allclose(other["delta"], [30.0 - 11.0, 0.0])
+
+    class _Failing:
+        def step(self, n):
+            raise RuntimeError("step size underflow")
+
+    failed = reach_state(lambda _c, **_: _Failing(), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
+    assert failed["status"] == "failed" and np.isnan(failed["delta"]).all() and np.isnan(failed["same"])

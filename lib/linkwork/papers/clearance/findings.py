@@ -25,7 +25,7 @@ def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, tuple[float, str
     """Per variant and claim: 1 where a margin decides the claim (its difference within the confidence interval
     or the numerical error of an ordering it is made of), else 0."""
     source = (f"{claims.attrs['confidence']:.0%} interval over the judged cycles (states that are not periodic) and the numerical error "
-              f"(the same state at the check tolerances: {claims.attrs.get('tight_settings', 'see the claims')})")
+              f"(the same state at the check tolerances, {claims.attrs.get('tight_settings', 'see the claims')}, and the state the start reaches at the first of them)")
     return {str(v): {str(c): (float(claims.undecided.sel(variant=v, claim=c)), source) for c in claims.claim.values} for v in claims.variant.values}
 
 

@@ -10,7 +10,9 @@ The numerical error bar of a state comes from three tolerances on the same state
 each setting of ``check_integrators`` restarted from the section point (with the contact memory) at the start of
 the judged window.  Where a rerun settles onto another state (its section leaves the pipeline orbit by more than
 ``states.state_tolerance``), the state itself depends on the tolerance, and the claims that use it are undetermined
-for that reason.
+for that reason.  Besides, each start is settled once more from its initial state at the first check integrator
+(``reach_state``): where coexisting states attract neighbouring trajectories, which one a start reaches can depend on
+the integrator; the measure of the state reached there enters the error bar too.
 """
 
 from __future__ import annotations
@@ -168,3 +170,29 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
             base = measures[first : min(first + n, stop)].mean(axis=0)
         deltas[i] = ours - base
     return {"delta": deltas, "kept": kept, "period": periods, "distance": distances}
+
+
+def reach_state(make_runner, found: Mapping[str, Any], start_runner_args: Mapping[str, Any], check, st: Mapping[str, Any], batch: int,
+                confidence: float) -> dict[str, Any]:
+    """The start settled again from its initial state at the check integrator ``check`` (``make_runner(check,
+    **start_runner_args)`` builds its runner): the state it reaches (status, period), its measure (judged as the
+    pipeline's: ``judged_statistics``'s mean per measure row) minus the pipeline's, and whether it is the pipeline's
+    state (both periodic with the same period and its last section point within ``state_tolerance`` times
+    max(1, |component|) of a point of the pipeline orbit: 1, else 0; NaN where the pipeline state is not periodic:
+    not testable).  A failed check integrator (step size underflow): status 'failed', the rest NaN."""
+    n_rows = found["measures"].shape[1]
+    out = {"status": "failed", "period": -1, "delta": np.full(n_rows, np.nan), "same": np.nan, "cycles": 0}
+    runner = make_runner(check, **start_runner_args)
+    try:
+        reached = settle_start(runner, st, confidence)
+    except RuntimeError:
+        return out
+    ours = judged_statistics(reached["measures"], reached, batch, confidence)[:, 0]
+    base = judged_statistics(found["measures"], found, batch, confidence)[:, 0]
+    out.update(status=reached["status"], period=reached["period"], delta=ours - base, cycles=reached["points"].shape[0])
+    if found["period"] != NOT_PERIODIC:
+        orbit = found["points"][found["window"][1] - found["period"] : found["window"][1]]
+        last = reached["points"][reached["window"][1] - 1]
+        distance = np.min(np.max(np.abs(last[None] - orbit) / np.maximum(1.0, np.abs(orbit)), axis=1))
+        out["same"] = float(reached["period"] == found["period"] and distance <= st["state_tolerance"])
+    return out

@@ -132,7 +132,7 @@ def _ideal_scene(p, variant: str, scene: str, effects, per: int, shown: int) -> 
 
 
 def _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_start_only=False, check=True, memory=None) -> xr.Dataset:
-    from .settling import EXTREMES, CycleRunner, check_state, judged_statistics, settle_start, start_state
+    from .settling import EXTREMES, CycleRunner, check_state, judged_statistics, reach_state, settle_start, start_state
 
     st, stats = cfg["states"], cfg["statistics"]
     kind = integrator_kind(cfg["scenes"][scene])
@@ -143,18 +143,26 @@ def _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_st
     def make_runner(integrator, memory=None, y0=None):
         return CycleRunner(p, joints, effects, integrator, ideal_cycle, per, shown, y0=y0, memory=memory)
 
-    found, runners, checked = [], [], []
+    found, runners, checked, reached = [], [], [], []
     for k, start in enumerate(starts):
-        runner = make_runner(integ, memory=memory) if memory is not None and k == 0 else make_runner(integ, y0=start_state(p, joints, start))
+        from_memory = memory is not None and k == 0
+        runner = make_runner(integ, memory=memory) if from_memory else make_runner(integ, y0=start_state(p, joints, start))
         f = settle_start(runner, st, stats["confidence"])
         found.append(f)
         runners.append(runner)
         checked.append(check_state(make_runner, f, runner, checks, st))
-    return _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, EXTREMES, judged_statistics)
+        if checks and not from_memory:  # the start once more from its initial state at the first check integrator
+            reached.append(reach_state(make_runner, f, {"y0": start_state(p, joints, start)}, checks[0], st, stats["batch_cycles"], stats["confidence"]))
+            print(f"clearance_scene: {variant} {scene}, start {start['label']}: {f['status']} (period {f['period']}, {f['points'].shape[0]} turns); "
+                  f"from the start at rtol {checks[0]['rtol']:g}: {reached[-1]['status']} (period {reached[-1]['period']}, {reached[-1]['cycles']} turns)", flush=True)
+    return _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, EXTREMES, judged_statistics,
+                          reached)
 
 
-def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, extremes_names, judged_statistics):
-    """The scene's result Dataset (see ``scene``)."""
+def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, extremes_names, judged_statistics,
+                   reached=()):
+    """The scene's result Dataset (see ``scene``); ``reached``: per start, ``settling.reach_state``'s record (empty:
+    none ran)."""
     from .settling import convergence_error
 
     st, stats = cfg["states"], cfg["statistics"]
@@ -179,9 +187,16 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             window_ext[i, :, j - 1] = np.nanmax(ext[:, k, :], axis=0)
         delta[i] = c["delta"].reshape(len(checks), 2, len(QUANTITIES))
         kept[i], check_period[i], check_distance[i] = c["kept"], c["period"], c["distance"]
+    reach_delta = np.full((ns, 2, len(QUANTITIES)), np.nan)
+    reach_same, reach_period = np.full(ns, np.nan), np.full(ns, -1)
+    reach_status = np.full(ns, "not run", dtype=object)
+    for i, r in enumerate(reached):
+        reach_delta[i] = r["delta"].reshape(2, len(QUANTITIES))
+        reach_same[i], reach_period[i], reach_status[i] = r["same"], r["period"], r["status"]
     numerical = np.full(delta.shape[:1] + delta.shape[2:], np.nan)  # no check ran (or every one failed): no error bar
     if len(checks):
-        largest = np.max(np.where(np.isfinite(delta), np.abs(delta), -np.inf), axis=1)
+        both = np.concatenate([delta, reach_delta[:, None]], axis=1)  # the reruns from the section point and the run from the start
+        largest = np.max(np.where(np.isfinite(both), np.abs(both), -np.inf), axis=1)
         numerical = np.where(np.isfinite(largest), largest, np.nan)
     # what the sampling misses of a narrow peak (parabolic refinement), the largest over the judged turns: added to
     # the peak measure's error bar
@@ -245,7 +260,16 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
                               {"units": "SI (t in s, then the state y, latched impact velocities, contact flags)", "long_name": "the run's whole state at the start of the judged window (restartable)"}),
             "convergence_error": (sd, converging, {"units": "SI of the quantity", "long_name": "what a periodic state still converging can move its measure (from the per-period changes)"}),
             "peak_sampling_error": (("start", "quantity"), sampling, {"units": "SI of the quantity", "long_name": "largest rise of a judged turn's peak when refined by a parabola through its largest samples"}),
-            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest |check_delta| over the check integrators, plus the convergence error (peaks: plus the peak sampling error)",
+            "reach_status": ("start", reach_status, {"units": "1", "long_name": "the state the start reaches when settled from its initial state at the first check integrator: how it was found",
+                                                     "nan_meaning": "'not run': an input-uncertainty sample's run or a start continued from a saved state"}),
+            "reach_period": ("start", reach_period, {"units": "1", "long_name": "period of the state reached at the first check integrator (0: not periodic; -1: not run or failed)"}),
+            "reach_same_state": ("start", reach_same, {"units": "1", "long_name": "1 if the start reaches the pipeline's periodic orbit at the first check integrator too (same period, "
+                                                                              "last section point within the state tolerance), 0 if it reaches another state",
+                                                     "nan_meaning": "the pipeline state is not periodic (not testable) or the run did not run or failed"}),
+            "reach_delta": (sd, reach_delta, {"units": "SI of the quantity", "long_name": "measure of the state reached from the start at the first check integrator - the pipeline's",
+                                              "nan_meaning": "not run, or the check integrator failed"}),
+            "numerical_error": (sd, numerical, {"units": "SI of the quantity", "long_name": "largest of |check_delta| over the check integrators and |reach_delta|, plus the convergence error "
+                                                                                           "(peaks: plus the peak sampling error)",
                                                 "nan_meaning": "no check ran (an input-uncertainty sample's run) or every check failed"}),
             "window_max_penetration": (("start", "joint"), window_ext[:, 0], {"units": "m", "long_name": "largest |e| - c over the judged cycles", **NO_CLEARANCE}),
             "window_max_eccentricity": (("start", "joint"), window_ext[:, 1], {"units": "m", "long_name": "largest |e| over the judged cycles", **NO_CLEARANCE}),
@@ -549,12 +573,15 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
         "undecided": (("variant", "claim"), 1.0 - decided[:, 0], {"units": "1", "long_name": "1 if a margin decides the claim (the verdict's error bar; first start)"}),
         "claim_decided_by": (("variant", "claim"), claim_reasons[:, 0], {"units": "1", "long_name": "which margin leaves the claim undetermined (first start; empty: decided)"}),
     }
-    for key in ("state_status", "state_period", "state_transient", "window_first", "window_stop", "record_cycles", "state_change"):
+    for key in ("state_status", "state_period", "state_transient", "window_first", "window_stop", "record_cycles", "state_change", "reach_status", "reach_period",
+                "reach_same_state"):
         arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])  # variant, scene, start
-        data[f"scene_{key}"] = (("variant", "scene", "start"), arr.astype(object) if key == "state_status" else arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
+        data[f"scene_{key}"] = (("variant", "scene", "start"), arr.astype(object) if key.endswith("status") else arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
     for key in ("check_kept_state", "check_distance"):
         arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])
         data[f"scene_{key}"] = (("variant", "scene", "start", "check"), arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
+    reach = np.array([[runs[(v, n)].reach_delta.values for n in COMPARED] for v in variants])  # variant, scene, start, measure, quantity
+    data["scene_reach_delta"] = (("variant", "scene", "start", "measure", "quantity"), reach, dict(runs[(variants[0], COMPARED[0])].reach_delta.attrs))
     dist = data["scene_check_distance"][1]
     largest = np.max(np.where(np.isfinite(dist), dist, -np.inf), axis=-1)
     data["scene_check_distance_max"] = (("variant", "scene", "start"), np.where(np.isfinite(largest), largest, np.nan),
@@ -582,8 +609,9 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
     ds.attrs.update(title="Claims of the clearance paper, per parameter variant and start", close_to_ideal_ratio=ratio, ci_method=CI_METHOD_STATES,
                     crank_mass_kg=runs[(variants[0], "ideal")].attrs["crank_mass_kg"], decision_rule=DECISION_RULE, confidence=confidence,
                     batch_cycles=st["batch_cycles"], settle_rule=first.attrs["settle_rule"],
-                    numerical_error_method="per scene and start: the largest |measure at a check integrator - measure at the pipeline's| on the same state (reruns "
-                                           "restarted from the section point at the start of the judged window); of a difference: the sum over its scenes",
+                    numerical_error_method="per scene and start: the largest |measure at a check integrator - measure at the pipeline's|, over reruns of the same state "
+                                           "restarted from the section point at the start of the judged window and a run settled from the start itself at the first "
+                                           "check integrator (which of coexisting states a start reaches can depend on the integrator); of a difference: the sum over its scenes",
                     tight_settings="; ".join(sorted({f"{runs[(variants[0], n)].attrs['integrator']}: " + ", ".join(str(c) for c in runs[(variants[0], n)].check.values)
                                                      for n in COMPARED})))
     return ds
