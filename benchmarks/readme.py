@@ -115,6 +115,21 @@ def clearance(f: dict) -> list[str]:
     ]
 
 
+def clearance_turns(f: dict) -> list[str]:
+    rows = []
+    for name, v in f["scenes"].items():
+        before = v.get("dopri5")
+        ratio = f"{before['s_per_turn'] / v['pipeline']['s_per_turn']:.2f}×" if before else ""
+        rows.append(f"| `{name}` | {v['integrator']} | {1e3 * v['pipeline']['s_per_turn']:.0f} ms | {1e3 * v['coarse']['s_per_turn']:.0f} ms | "
+                    f"{v['pipeline']['steps_per_turn']:.0f} / {v['pipeline']['rejected_per_turn']:.0f} | "
+                    + (f"{1e3 * before['s_per_turn']:.0f} ms ({ratio} the time)" if before else "") + " |")
+    return [
+        f"`python benchmarks/clearance_turns.py` on {_machine(f['machine'])}. Method: {f['method']}", "",
+        f"| scene | integrator | a turn at {f['points_per_cycle']} points | at {f['coarse_points']} points | steps / rejected a turn | dopri5, same rtol |",
+        "|---|---|---|---|---|---|", *rows,
+    ]
+
+
 def transplanter(f: dict) -> list[str]:
     t = f["targets"]
     return [
@@ -174,7 +189,7 @@ def job_resources(f: dict) -> list[str]:
     ]
 
 
-SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "transplanter": transplanter, "chains": chains, "tests": tests}
+SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "transplanter": transplanter, "chains": chains, "tests": tests}
 
 
 def render(measured: Path = MEASURED) -> str:
