@@ -358,3 +358,26 @@ def test_the_answer_is_plain_sentences_read_from_the_results():
     assert text.startswith("No claim") and "1.37 c" in text and "0.61 c" in text and "0.0635 c" in text
     assert "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text and "holds from the start b" in text
     assert "claim 1 (decoded, start b) changes outcome" in text and "two parts (decoded, slender)" in text
+
+
+def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_fails_from_the_other():
+    """``memory_relabel``: where the memory swap explains the starts' states, a claim holding decidedly from one start
+    and failing decidedly from the other becomes 'depends on assumptions' decided by the memory; one undetermined from a
+    start and failing from the other keeps its rows (no start shows it holding)."""
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers.clearance.findings import MEMORY_DECIDES, NOMINAL_ONLY, memory_relabel, nominal_only
+
+    claims = xr.Dataset({"outcome_by_start": (("variant", "start", "claim"), np.array([[[0, -1], [1, 0]]]))},
+                        coords={"variant": ["decoded"], "start": ["centred", "off-centre"], "claim": ["c1", "c2"]})
+    phys = xr.Dataset({"memory_explains": (("variant", "scene"), np.array([[1, 1]]))}, coords={"variant": ["decoded"], "scene": ["dry_1", "dry_2"]})
+    table = pd.DataFrame({"model": ["decoded"] * 4, "scenario": ["start centred", "start centred", "start off-centre", "start off-centre"],
+                          "id": ["c1", "c2", "c1", "c2"], "verdict": ["deviates", "undetermined (numerics)", "matches", "deviates"],
+                          "decided_by": ["", "numerical error", "", ""], "input_low": [0.0, 0.0, np.nan, np.nan]})
+    out = memory_relabel(table, claims, phys)
+    assert (out[out["id"] == "c1"].verdict == "depends on assumptions").all() and (out[out["id"] == "c1"].decided_by == MEMORY_DECIDES).all()
+    assert out[out["id"] == "c2"].verdict.tolist() == ["undetermined (numerics)", "deviates"]
+    # a decided verdict in a start without propagated inputs says it holds at the nominal inputs only
+    marked = nominal_only(table)
+    assert marked.decided_by.tolist() == ["", "numerical error", NOMINAL_ONLY, NOMINAL_ONLY]

@@ -34,7 +34,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], claims: xr.Dat
     """Comparison table per variant and its verdict counts, the physics that interprets them and the verdicts'
     sensitivity to the contact law and its memory (``laws``: ``sensitivity.model_sensitivity`` per variant)."""
     table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty)
-    table = with_reasons(table, claims)
+    table = nominal_only(with_reasons(table, claims))
     phys = physics(claims, cfg, uncertainty).merge(claim3_parts(claims))
     law_attrs = {}
     if laws:
@@ -54,18 +54,33 @@ MEMORY_DECIDES = ("the impact velocity the contact damping latched at the first 
 
 
 def memory_relabel(table: pd.DataFrame, claims: xr.Dataset, phys: xr.Dataset) -> pd.DataFrame:
-    """A claim (per variant) whose outcome differs between the starts, where swapping the latched impact velocities
-    swaps the dry scenes' states (``memory_explains``), is decided by that memory, not by the linkage: every
-    scenario's row of it becomes 'depends on assumptions', decided by the memory."""
+    """A claim (per variant) that holds decidedly from one start and fails decidedly from another, where swapping the
+    latched impact velocities swaps the dry scenes' states (``memory_explains``), is decided by that memory, not by the
+    linkage: every scenario's row of it becomes 'depends on assumptions', decided by the memory.  A claim undetermined
+    from one start and failing from the other is not (no start shows it holding)."""
     out = table.copy()
     for v in claims.variant.values:
         if not int(phys.memory_explains.sel(variant=v).sum()):
             continue
         for c in claims.claim.values:
-            if len(set(claims.outcome_by_start.sel(variant=v, claim=c).values.tolist())) > 1:
+            if {0, 1} <= set(claims.outcome_by_start.sel(variant=v, claim=c).values.tolist()):
                 rows = (out.model == v) & (out["id"] == c)
                 out.loc[rows, "verdict"] = "depends on assumptions"
                 out.loc[rows, "decided_by"] = MEMORY_DECIDES
+    return out
+
+
+#: What decides a verdict in a start the assumed inputs are not propagated in.
+NOMINAL_ONLY = "the nominal inputs only (the assumed inputs are propagated from the first start alone)"
+
+
+def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
+    """Rows of a start other than the first, where no assumed input was propagated (no input range): a decided verdict
+    there holds at the nominal inputs, not 'whatever the assumed inputs'; 'decided by' says so."""
+    out = table.copy()
+    first = out.scenario.iloc[0] if len(out) else None
+    rows = (out.scenario != first) & out.input_low.isna() & out.verdict.isin(["deviates", "matches"]) & out.decided_by.fillna("").eq("")
+    out.loc[rows, "decided_by"] = NOMINAL_ONLY
     return out
 
 

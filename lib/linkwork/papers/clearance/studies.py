@@ -504,6 +504,17 @@ def judge_start(runs: Mapping[str, xr.Dataset], k: int, ratio: float, confidence
     return verdict, stats, num
 
 
+def reached_point(runs: Mapping[str, xr.Dataset], k: int, stats: np.ndarray, num: np.ndarray, ratio: float, confidence: float) -> np.ndarray:
+    """Per claim, 1 if every ordering holds on the means of the states start ``k`` reaches at the first check
+    tolerance (the pipeline's means plus each scene's ``reach_delta``), else 0; NaN where a scene has no such run."""
+    moved = stats.copy()
+    for s, name in enumerate(COMPARED):
+        moved[:, :, s, 0] = stats[:, :, s, 0] + runs[name].reach_delta.values[k]
+    if not np.isfinite(moved[..., 0]).all():
+        return np.full(len(CLAIMS), np.nan)
+    return np.array(judge(stats_for_judging(moved, num), ratio, confidence)["point"], dtype=float)
+
+
 def states_differ(stats: np.ndarray, num: np.ndarray) -> np.ndarray:
     """Per variant and scene: 1 where some measure of two starts differs by more than the sum of their half-widths
     and numerical errors (``stats``: variant, start, measure, quantity, scene, statistic; ``num``: the same without
@@ -538,6 +549,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
     comp_reason = np.full((nv, nk, len(labels)), "", dtype=object)
     holds, decided = np.zeros((nv, nk, len(CLAIMS))), np.zeros((nv, nk, len(CLAIMS)))
     outcome = np.zeros((nv, nk, len(CLAIMS)), dtype=int)
+    reached = np.full((nv, nk, len(CLAIMS)), np.nan)
     claim_reasons = np.full((nv, nk, len(CLAIMS)), "", dtype=object)
     for v, variant in enumerate(variants):
         scene_runs = {name: runs[(variant, name)] for name in COMPARED}
@@ -547,6 +559,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
             comp_reason[v, k] = [r["reason"] for r in verdict["rows"]]
             claim_reasons[v, k] = verdict["reason"]
             holds[v, k], decided[v, k], outcome[v, k] = verdict["point"], verdict["decided"], verdict["outcome"]
+            reached[v, k] = reached_point(scene_runs, k, stats[v, k], num[v, k], ratio, confidence)
     all_scenes = sorted({name for (_, name) in runs}, key=lambda n: (n != "ideal", n))
     summary = _scene_summary(runs, variants, all_scenes)
     sd = ("variant", "start", "measure", "quantity", "scene")
@@ -558,7 +571,9 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
         "standard_error": (sd, finite(stats[..., 2]), {"units": "SI of the quantity", "long_name": "standard error of the measure (batch means; 0 on a periodic orbit)", "nan_meaning": "the state is in doubt"}),
         "ci_dof": (sd, finite(stats[..., 3]), {"units": "1", "long_name": "degrees of freedom of the interval", "nan_meaning": "a periodic orbit (exact) or no interval"}),
         "judged_cycles": (sd, stats[..., 4], {"units": "1", "long_name": "cycles the measure is taken over"}),
-        "numerical_error": (sd, num, {"units": "SI of the quantity", "long_name": "largest |measure at a check integrator - measure at the pipeline's| on the same state"}),
+        "numerical_error": (sd, num, {"units": "SI of the quantity", "long_name": "the scene run's numerical error: the largest |measure at a check integrator - measure at "
+                                                                          "the pipeline's|, on the same state and on the state the start reaches at the first check tolerance, "
+                                                                          "plus the convergence and peak-sampling terms"}),
         "comparison_difference": (("variant", "start", "comparison"), comp[..., 0], {"units": "SI of the quantity", "long_name": "difference of the measures the ordering is about (> 0: as claimed)"}),
         "comparison_statistical": (("variant", "start", "comparison"), finite(comp[..., 1]), {"units": "SI of the quantity", "long_name": f"{confidence:.0%} half-width of the difference",
                                                                                              "nan_meaning": "a scene of the ordering has no interval (its state is in doubt)"}),
@@ -567,6 +582,9 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
         "comparison_decided_by": (("variant", "start", "comparison"), comp_reason, {"units": "1", "long_name": "which margin leaves the ordering undetermined (empty: decided)"}),
         "holds_by_start": (("variant", "start", "claim"), holds, {"units": "1", "long_name": "1 if every ordering of the claim holds on the measures, per start"}),
         "outcome_by_start": (("variant", "start", "claim"), outcome, {"units": "1", "long_name": "1 holds, 0 fails decidedly, -1 undetermined, per start"}),
+        "holds_on_reached_states": (("variant", "start", "claim"), reached, {"units": "1", "long_name": "1 if every ordering of the claim holds on the measures of the states the "
+                                                                                                 "starts reach at the first check tolerance (their means only)",
+                                                                             "nan_meaning": "a scene's run from the start at the check tolerance did not run or failed"}),
         "claim_decided_by_start": (("variant", "start", "claim"), claim_reasons, {"units": "1", "long_name": "which margin leaves the claim undetermined, per start (empty: decided)"}),
         "holds": (("variant", "claim"), holds[:, 0], {"units": "1", "long_name": "1 if every ordering of the claim holds on the measures (first start)"}),
         "decided": (("variant", "claim"), decided[:, 0], {"units": "1", "long_name": "1 if the claim's outcome is beyond the statistical and numerical margins (first start)"}),

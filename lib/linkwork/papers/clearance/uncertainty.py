@@ -205,7 +205,8 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
             if sample.moved:
                 batch_run = moved.get((label, variant))
                 verdict, m = sample_judgement(nominal, batch_run.isel(start=n) if batch_run is not None else None, ratio, confidence, start=n)
-                holds.append(verdict["point"])
+                # a sample enters the claim's range only where its margins decide it: an undetermined sample shows neither outcome
+                holds.append(np.where(np.array(verdict["outcome"]) >= 0, verdict["point"], np.nan))
                 sample_out.append(verdict["outcome"])
                 sample_diffs.append([r["difference"] for r in verdict["rows"]])
             else:  # a start at the nominal inputs: the nominal runs' judgement
@@ -247,7 +248,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                           claim=("claim", claims.claim.values, {"units": "1", "long_name": "claim"}))
     ds.attrs["title"] = "Clearance: assumed joint length, friction thresholds, impact-velocity floor and film cap, propagated; the start as a scenario"
     ds.attrs["sample_rule"] = ("a sample's claim value is its own outcome on its measures (every ordering's difference > 0), its moved scenes settled and "
-                               "judged as the nominal runs are; sample_claim_outcome adds the margins (the sample's own intervals, the nominal numerical "
-                               "errors); no sample takes the nominal outcome")
+                               "judged as the nominal runs are, where the sample's margins (its own intervals, the nominal numerical errors) decide it; "
+                               "a sample they leave undetermined enters no claim's range (sample_claim_outcome -1); no sample takes the nominal outcome")
     return ds
 
