@@ -148,6 +148,12 @@ for v in variants:
               caption=f"{v} variant, {unc.scenario.values[0]}: each assumed input moved alone over its range, the others at their assumed values; each "
                       f"sample's scenes settled and judged on their own states ({design_text(unc)}); 1 = the claim holds on the sample's measures. "
                       "The other start is judged at the assumed values only (its rows show no range): propagating the inputs there too doubles the samples' runs")
+undetermined = [f"{CLAIM_WORDS[str(c)].split(' (')[0]} ({v}): " + ", ".join(esc(in_words(str(x))) for x in unc.sample.values
+                                                                      if int(unc.sample_claim_outcome.sel(sample=x, variant=v, claim=c)) == -1)
+                for v in variants for c in unc.claim.values if (unc.sample_claim_outcome.sel(variant=v, claim=c).values == -1).any()]
+md(f"**Samples left undetermined.** {esc(in_words(unc.attrs['sample_rule']))}. A range in the tables above therefore spans the decided samples only; "
+   "where the nominal point itself is undetermined, its means-only outcome still enters the range (the verdict then reads 'undetermined' from the "
+   "numerical margin, not from the range). The samples each claim's margins leave undetermined: " + ("; ".join(undetermined) or "none") + ".")
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
     "*slender*: J = mL²/12. Each verdict is broken down below by state, measure and tolerance."

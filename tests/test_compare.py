@@ -123,3 +123,27 @@ def test_nominal_rows_and_the_verdicts_other_scenarios_change():
     assert list(changed.id) == ["y"] and list(changed.scenario) == ["off"]
     empty = table.assign(scenario=float("nan")).iloc[:2]
     assert len(nominal_rows(empty)) == 2 and scenario_changes(empty).empty
+
+
+def test_each_scenario_can_carry_its_own_numerical_error_bar():
+    """``errors`` per scenario index: the second scenario's row is judged with its own error bar (here 0: decided,
+    so 'deviates' where the first scenario's bar of 1 leaves it undetermined) and its source is not marked as
+    borrowed; a plain (value, source) pair keeps the old behaviour (the first scenario's, marked)."""
+    import numpy as np
+    import xarray as xr
+
+    from linkwork.pipeline.compare import compare
+
+    published = {"quantities": [{"id": "c", "quantity": "a claim", "value": 1, "relation": "ge", "unit": "1", "where": "Sec. 1",
+                                 "tolerance": {"abs": 0.0}, "measure": {"variable": "holds", "reduce": "at", "at": {"claim": "c"}}}]}
+    ds = xr.Dataset({"holds": (("claim",), np.array([0.0]))}, coords={"claim": ["c"]})
+    study = xr.Dataset({"nominal": (("scenario", "quantity"), np.array([[0.0], [0.0]])), "low": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
+                        "high": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
+                        "oat_low": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))), "oat_high": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))),
+                        "samples": ((), 3)},
+                       coords={"scenario": ["start a", "start b"], "quantity": ["|c"], "input": ["x"]})
+    own = compare(published, ds, errors={"c": {0: (1.0, "bar"), 1: (0.0, "bar")}}, uncertainty=study)
+    assert own.verdict.tolist() == ["undetermined (numerics)", "deviates"] and own.numerical_source.tolist() == ["bar", "bar"]
+    borrowed = compare(published, ds, errors={"c": (1.0, "bar")}, uncertainty=study)
+    assert borrowed.verdict.tolist() == ["undetermined (numerics)", "undetermined (numerics)"]
+    assert borrowed.numerical_source.tolist() == ["bar", "bar (the first scenario's)"]

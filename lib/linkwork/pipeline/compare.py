@@ -221,11 +221,12 @@ def compare(
 ) -> pd.DataFrame:
     """The comparison table for one result Dataset (one model variant), one block of rows per scenario.
 
-    ``errors``: published id -> (our numerical error bar in the published unit, where it comes from); an id
-    missing here has no estimate (NaN; it cannot make a verdict 'undetermined').  ``uncertainty``: the
+    ``errors``: published id -> (our numerical error bar in the published unit, where it comes from), or -> {scenario
+    index: (error bar, source)} where each scenario has its own; an id missing here has no estimate (NaN; it cannot
+    make a verdict 'undetermined').  ``uncertainty``: the
     gathered input-uncertainty study (linkwork.pipeline.uncertainty.summary, searched) or None (no assumed
     input).  The first scenario's values are read from ``ds``; another scenario's from the study's nominal
-    point of that scenario (with the first scenario's numerical error bars).
+    point of that scenario (with its own numerical error bars where ``errors`` gives them, else the first scenario's).
     """
     scenario_labels = [str(x) for x in uncertainty.scenario.values] if uncertainty is not None and "scenario" in uncertainty.dims else [""]
     rows = [row for n, label in enumerate(scenario_labels) for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label)]
@@ -263,8 +264,13 @@ def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, err
         reproduced = evaluate_measure(ds, entry["measure"]) if n == 0 or study is None else study["nominal"]
         tol = tolerance_of(entry)
         relation = entry.get("relation", "eq")
-        error, error_source = errors.get(entry["id"], (math.nan, "no estimate"))
-        if n > 0:
+        given = errors.get(entry["id"], (math.nan, "no estimate"))
+        if isinstance(given, Mapping):  # per scenario index: the scenario's own error bar, else the first scenario's
+            error, error_source = given.get(n, given.get(0, (math.nan, "no estimate")))
+            own = n in given
+        else:
+            (error, error_source), own = given, n == 0
+        if not own:
             error_source = f"{error_source} (the first scenario's)"
         low = high = reproduced
         source, decider, consistent, rounding_only = "no assumed input enters this number", "", None, False

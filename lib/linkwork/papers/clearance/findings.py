@@ -21,12 +21,14 @@ DRY_SCENES = ("dry_1", "dry_2", "dry_both")
 LUBRICATED_SCENES = ("lubricated_1", "lubricated_2", "lubricated_both")
 
 
-def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, tuple[float, str]]]:
-    """Per variant and claim: 1 where a margin decides the claim (its difference within the confidence interval
-    or the numerical error of an ordering it is made of), else 0."""
+def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, dict[int, tuple[float, str]]]]:
+    """Per variant, claim and start (the comparison's scenarios, in the starts' order): 1 where a margin decides the
+    claim from that start (its difference within the confidence interval or the numerical error of an ordering it is
+    made of), else 0."""
     source = (f"{claims.attrs['confidence']:.0%} interval over the judged cycles (states that are not periodic) and the numerical error "
               f"(the same state at the check tolerances, {claims.attrs.get('tight_settings', 'see the claims')}, and the state the start reaches at the first of them)")
-    return {str(v): {str(c): (float(claims.undecided.sel(variant=v, claim=c)), source) for c in claims.claim.values} for v in claims.variant.values}
+    return {str(v): {str(c): {k: (float(claims.outcome_by_start.sel(variant=v, claim=c).values[k] == -1), source) for k in range(claims.sizes["start"])}
+                     for c in claims.claim.values} for v in claims.variant.values}
 
 
 def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], claims: xr.Dataset, uncertainty: xr.Dataset | None = None,
@@ -262,8 +264,8 @@ def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
              f"{VARIANT_WORDS[PAPER_MODEL]} {verdicts_text(nominal, PAPER_MODEL, short=True)}.")
     changed = scenario_changes(table)
     changed = changed[changed.role == "headline"] if len(changed) else changed
-    if len(changed) and "law_outcome_sphere" in findings:  # a start whose outcome is the same (a verdict moved only by the inputs' range) is no change of state
-        differs = [len(set(findings.law_outcome_sphere.sel(variant=r["model"], claim=r["id"]).values.tolist())) > 1 for _, r in changed.iterrows()]
+    if len(changed) and "law_outcome_sphere" in findings:  # the state decides only where it holds from one start and fails from another
+        differs = [{0, 1} <= set(findings.law_outcome_sphere.sel(variant=r["model"], claim=r["id"]).values.tolist()) for _, r in changed.iterrows()]
         changed = changed[differs]
     second = ""
     if len(changed):
@@ -275,7 +277,8 @@ def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
         claims_ = sorted({f"{CLAIM_WORDS.get(str(r['id']), str(r['id'])).split(' (')[0]} ({r['model']})" for _, r in memory.iterrows()})
         second += (f" {' and '.join(claims_).capitalize()} {'holds from one start and fails from the other' if len(claims_) == 1 else 'hold from one start and fail from the other'}, "
                    f"and the starts settle apart only through the impact velocity the contact damping latched at the first impact "
-                   f"(swapping it swaps the states in {int(findings.memory_explains.sum())} of {findings.memory_explains.size} dry scenes): "
+                   "(swapping it swaps the states in " + ", ".join(f"{int(findings.memory_explains.sel(variant=v).sum())} of {findings.memory_explains.sel(variant=v).size} "
+                                                                  f"dry scenes of the {v} variant" for v in sorted(set(memory.model))) + "): "
                    "a memory of the printed contact law that no physical input controls, so the paper's model cannot decide "
                    f"{'it' if len(claims_) == 1 else 'them'}.")
     third = ""

@@ -263,8 +263,9 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             "reach_status": ("start", reach_status, {"units": "1", "long_name": "the state the start reaches when settled from its initial state at the first check integrator: how it was found",
                                                      "nan_meaning": "'not run': an input-uncertainty sample's run or a start continued from a saved state"}),
             "reach_period": ("start", reach_period, {"units": "1", "long_name": "period of the state reached at the first check integrator (0: not periodic; -1: not run or failed)"}),
-            "reach_same_state": ("start", reach_same, {"units": "1", "long_name": "1 if the start reaches the pipeline's periodic orbit at the first check integrator too (same period, "
-                                                                              "last section point within the state tolerance), 0 if it reaches another state",
+            "reach_same_state": ("start", reach_same, {"units": "1", "long_name": "1 if the start reaches, at the first check integrator, an orbit of the pipeline's period whose last "
+                                                                              "section point lies within the state tolerance of the pipeline's orbit (its measures can still differ: "
+                                                                              "reach_delta), 0 if it reaches another state",
                                                      "nan_meaning": "the pipeline state is not periodic (not testable) or the run did not run or failed"}),
             "reach_delta": (sd, reach_delta, {"units": "SI of the quantity", "long_name": "measure of the state reached from the start at the first check integrator - the pipeline's",
                                               "nan_meaning": "not run, or the check integrator failed"}),
