@@ -148,12 +148,29 @@ for v in variants:
               caption=f"{v} variant, {unc.scenario.values[0]}: each assumed input moved alone over its range, the others at their assumed values; each "
                       f"sample's scenes settled and judged on their own states ({design_text(unc)}); 1 = the claim holds on the sample's measures. "
                       "The other start is judged at the assumed values only (its rows show no range): propagating the inputs there too doubles the samples' runs")
-undetermined = [f"{CLAIM_WORDS[str(c)].split(' (')[0]} ({v}): " + ", ".join(esc(in_words(str(x))) for x in unc.sample.values
+def sample_words(label: str) -> str:
+    """A sample's label in words: 'joint length (low end)' for 'assumed.joint_length_m.value low'; another start's
+    'start off-centre | nominal' as 'nominal (start off-centre)'."""
+    if " | " in label:
+        scenario, rest = label.split(" | ", 1)
+        return f"{sample_words(rest)} ({scenario})"
+    key, _, end = label.rpartition(" ")
+    if end not in ("low", "high"):
+        return label
+    name = key.removeprefix("assumed.").removesuffix(".value")
+    for unit in ("_m_s", "_m", "_Pa_s", "_Pa"):
+        name = name.removesuffix(unit)
+    return f"{name.replace('_', ' ')} ({end} end)"
+
+
+undetermined = [f"{CLAIM_WORDS[str(c)].split(' (')[0]} ({v}): " + "; ".join(esc(sample_words(str(x))) for x in unc.sample.values
                                                                       if int(unc.sample_claim_outcome.sel(sample=x, variant=v, claim=c)) == -1)
                 for v in variants for c in unc.claim.values if (unc.sample_claim_outcome.sel(variant=v, claim=c).values == -1).any()]
-md(f"**Samples left undetermined.** {esc(in_words(unc.attrs['sample_rule']))}. A range in the tables above therefore spans the decided samples only; "
-   "where the nominal point itself is undetermined, its means-only outcome still enters the range (the verdict then reads 'undetermined' from the "
-   "numerical margin, not from the range). The samples each claim's margins leave undetermined: " + ("; ".join(undetermined) or "none") + ".")
+md("**Samples left undetermined.** A sample's claim is judged on its own measures, its moved scenes settled and judged as the nominal runs "
+   "are; where the sample's own margins (its intervals and the nominal numerical errors) leave the claim undetermined, that sample enters no "
+   "claim's range. A range in the tables above therefore spans the decided samples only; where the nominal point itself is undetermined, its "
+   "outcome on the means alone still enters the range (the verdict then reads 'undetermined' from the numerical margin, not from the range). "
+   "The samples each claim's margins leave undetermined, per claim: " + (" — ".join(undetermined) or "none") + ".")
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "
     "*slender*: J = mL²/12. Each verdict is broken down below by state, measure and tolerance."
