@@ -452,6 +452,9 @@ def test_a_killed_run_completes_on_the_next_run(tmp_path, sig):
         proc = subprocess.Popen(
             [sys.executable, "-m", "snakemake", target, "--cores", "1"],
             cwd=root, env=_env(root), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
+            # Ctrl-C as a terminal delivers it: a SIGINT ignored by a parent (make, a CI shell) would be inherited and Python
+            # would then install no KeyboardInterrupt handler in Snakemake
+            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
         )
         deadline = time.time() + 120
         while not (root / "results/stiffness/stiffness.nc").exists() and time.time() < deadline:
