@@ -172,6 +172,31 @@ def test_small_linear_solve_equals_lapack():
         assert np.allclose(gauss_solve(a.copy(), b.copy()), np.linalg.solve(a, b), rtol=1e-10, atol=1e-12)
 
 
+def test_sparse_schur_source_solves_the_saddle_point_system():
+    """The generated Schur-complement lines (only Phi_q's nonzero products, each symmetric pair once) against numpy's
+    LAPACK on the whole saddle-point system [[M, Phi_q^T], [Phi_q, 0]] [q''; lam] = [g; gamma_b], for the constraint
+    patterns of the four-bar's scenes (no, one or two ideal joints), with random entries on each pattern."""
+    from linkwork.engines.multibody.kernels import gauss_solve_into
+    from linkwork.engines.multibody.model import revolute_pattern, schur_source
+
+    rng = np.random.default_rng(11)
+    base = [*revolute_pattern(0, -1), [2], *revolute_pattern(2, -1)]
+    for extra in ([], revolute_pattern(1, 2), revolute_pattern(0, 1) + revolute_pattern(1, 2)):
+        pattern = base + extra
+        nc = len(pattern)
+        phiq = np.zeros((nc, 9))
+        for r, cols in enumerate(pattern):
+            phiq[r, cols] = rng.normal(size=len(cols)) + np.where(rng.random(len(cols)) < 0.5, 1.0, -1.0)
+        mass, g, gamma_b = rng.uniform(0.1, 2.0, 9), rng.normal(size=9), rng.normal(size=nc)
+        scope = {"phiq": phiq, "mass": mass, "g": g, "gamma_b": gamma_b, "schur": np.zeros((nc, nc)), "schur_rhs": np.zeros(nc),
+                 "lam": np.zeros(nc), "qdd": np.zeros(9), "gauss_solve_into": gauss_solve_into}
+        exec("\n".join(line[4:] for line in schur_source(pattern)), scope)
+        kkt = np.block([[np.diag(mass), phiq.T], [phiq, np.zeros((nc, nc))]])
+        expected = np.linalg.solve(kkt, np.r_[g, gamma_b])
+        assert np.allclose(scope["qdd"], expected[:9], rtol=1e-10, atol=1e-12)
+        assert np.allclose(scope["lam"], expected[9:], rtol=1e-10, atol=1e-12)
+
+
 def test_validity_measures_against_hand_values():
     from linkwork.papers.clearance import validity
 

@@ -13,32 +13,35 @@ from numba import njit
 
 
 @njit(cache=True)
-def rot(phi):
-    c, s = np.cos(phi), np.sin(phi)
-    return c, s
+def body_trig(q, cs):
+    """cos and sin of every body's angle into cs (c0, s0, c1, s1, ...): computed once per right-hand side and read
+    by every kernel below."""
+    for b in range(cs.size // 2):
+        cs[2 * b] = np.cos(q[3 * b + 2])
+        cs[2 * b + 1] = np.sin(q[3 * b + 2])
 
 
 @njit(cache=True)
-def point(q, body, sx, sy):
-    """Global position of a body point."""
-    c, s = rot(q[3 * body + 2])
+def point(q, cs, body, sx, sy):
+    """Global position of a body point (cs: ``body_trig``)."""
+    c, s = cs[2 * body], cs[2 * body + 1]
     return q[3 * body] + c * sx - s * sy, q[3 * body + 1] + s * sx + c * sy
 
 
 @njit(cache=True)
-def point_velocity(q, qd, body, sx, sy):
-    c, s = rot(q[3 * body + 2])
+def point_velocity(q, qd, cs, body, sx, sy):
+    c, s = cs[2 * body], cs[2 * body + 1]
     w = qd[3 * body + 2]
     return qd[3 * body] - w * (s * sx + c * sy), qd[3 * body + 1] + w * (c * sx - s * sy)
 
 
 @njit(cache=True)
-def revolute(q, qd, bi, six, siy, bj, sjx, sjy, gx, gy, row, phi, phiq, gamma, phidot):
+def revolute(q, qd, cs, bi, six, siy, bj, sjx, sjy, gx, gy, row, phi, phiq, gamma, phidot):
     """Rows row, row+1: point s_i of body bi coincides with point s_j of body bj (bj < 0: ground point g)."""
-    ci, si = rot(q[3 * bi + 2])
+    ci, si = cs[2 * bi], cs[2 * bi + 1]
     wi = qd[3 * bi + 2]
-    pix, piy = point(q, bi, six, siy)
-    vix, viy = point_velocity(q, qd, bi, six, siy)
+    pix, piy = point(q, cs, bi, six, siy)
+    vix, viy = point_velocity(q, qd, cs, bi, six, siy)
     # d(A s)/dphi = B s
     bsx, bsy = -si * six - ci * siy, ci * six - si * siy
     phiq[row, 3 * bi] = 1.0
@@ -48,10 +51,10 @@ def revolute(q, qd, bi, six, siy, bj, sjx, sjy, gx, gy, row, phi, phiq, gamma, p
     gamma[row] = (ci * six - si * siy) * wi * wi
     gamma[row + 1] = (si * six + ci * siy) * wi * wi
     if bj >= 0:
-        cj, sj = rot(q[3 * bj + 2])
+        cj, sj = cs[2 * bj], cs[2 * bj + 1]
         wj = qd[3 * bj + 2]
-        pjx, pjy = point(q, bj, sjx, sjy)
-        vjx, vjy = point_velocity(q, qd, bj, sjx, sjy)
+        pjx, pjy = point(q, cs, bj, sjx, sjy)
+        vjx, vjy = point_velocity(q, qd, cs, bj, sjx, sjy)
         phiq[row, 3 * bj] = -1.0
         phiq[row + 1, 3 * bj + 1] = -1.0
         phiq[row, 3 * bj + 2] = -(-sj * sjx - cj * sjy)
@@ -76,9 +79,9 @@ def driver(q, qd, t, body, phi0, omega, row, phi, phiq, gamma, phidot):
 
 
 @njit(cache=True)
-def apply_force(q, g, body, sx, sy, fx, fy):
+def apply_force(q, cs, g, body, sx, sy, fx, fy):
     """Add a force applied at a body point (local s) to the generalized forces."""
-    c, s = rot(q[3 * body + 2])
+    c, s = cs[2 * body], cs[2 * body + 1]
     rx, ry = c * sx - s * sy, s * sx + c * sy
     g[3 * body] += fx
     g[3 * body + 1] += fy
@@ -86,17 +89,17 @@ def apply_force(q, g, body, sx, sy, fx, fy):
 
 
 @njit(cache=True)
-def clearance_state(q, qd, bj_journal, jx, jy, bb_bearing, bx, by, clearance, r_journal, r_bearing):
+def clearance_state(q, qd, cs, bj_journal, jx, jy, bb_bearing, bx, by, clearance, r_journal, r_bearing):
     """Kinematics of a clearance joint.
 
     Returns e (|eccentricity|, m), nx, ny (unit normal bearing -> journal centre), delta
     (penetration e - c), delta_dot (rate of e), v_t (relative tangential slip at the contact,
     journal minus bearing), omega_j, omega_b, gamma_dot (rate of the eccentricity direction).
     """
-    pjx, pjy = point(q, bj_journal, jx, jy)
-    pbx, pby = point(q, bb_bearing, bx, by)
-    vjx, vjy = point_velocity(q, qd, bj_journal, jx, jy)
-    vbx, vby = point_velocity(q, qd, bb_bearing, bx, by)
+    pjx, pjy = point(q, cs, bj_journal, jx, jy)
+    pbx, pby = point(q, cs, bb_bearing, bx, by)
+    vjx, vjy = point_velocity(q, qd, cs, bj_journal, jx, jy)
+    vbx, vby = point_velocity(q, qd, cs, bb_bearing, bx, by)
     ex, ey = pjx - pbx, pjy - pby
     e = np.sqrt(ex * ex + ey * ey)
     if e > 1e-300:
@@ -169,7 +172,16 @@ def film_forces(eps, eps_dot, omega_sum, gamma_dot, coefficient, eps_limit):
 
 @njit(cache=True)
 def gauss_solve(a, b):
-    """x with a x = b by Gaussian elimination with partial pivoting (a, b are overwritten).
+    """x with a x = b by Gaussian elimination with partial pivoting (a, b are overwritten): ``gauss_solve_into``
+    with a new x."""
+    x = np.empty(b.size)
+    gauss_solve_into(a, b, x)
+    return x
+
+
+@njit(cache=True)
+def gauss_solve_into(a, b, x):
+    """x with a x = b by Gaussian elimination with partial pivoting, into x (a, b are overwritten).
 
     For the small Schur complements here (at most 9 x 9) this is faster than a LAPACK call and gives the same
     rounding on every CPU, so a chaotic impact sequence replays identically on another machine.
@@ -189,37 +201,8 @@ def gauss_solve(a, b):
             for k in range(col, n):
                 a[row, k] -= factor * a[col, k]
             b[row] -= factor * b[col]
-    x = np.empty(n)
     for row in range(n - 1, -1, -1):
         acc = b[row]
         for k in range(row + 1, n):
             acc -= a[row, k] * x[k]
         x[row] = acc / a[row, row]
-    return x
-
-
-@njit(cache=True)
-def solve_constrained(mass, g, phiq, gamma_b, nc):
-    """q'' and lambda from M q'' = g - Phi_q^T lambda, Phi_q q'' = gamma_b (M diagonal): Schur complement."""
-    n = g.size
-    minv_g = g / mass
-    s = np.zeros((nc, nc))
-    rhs = np.zeros(nc)
-    for a in range(nc):
-        for b in range(nc):
-            acc = 0.0
-            for k in range(n):
-                acc += phiq[a, k] * phiq[b, k] / mass[k]
-            s[a, b] = acc
-        acc = 0.0
-        for k in range(n):
-            acc += phiq[a, k] * minv_g[k]
-        rhs[a] = acc - gamma_b[a]
-    lam = gauss_solve(s, rhs)
-    qdd = np.empty(n)
-    for k in range(n):
-        acc = g[k]
-        for a in range(nc):
-            acc -= phiq[a, k] * lam[a]
-        qdd[k] = acc / mass[k]
-    return qdd, lam

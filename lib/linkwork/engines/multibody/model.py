@@ -233,7 +233,7 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("import numpy as np")
     a("from numba import njit")
     a("from linkwork.engines.multibody.kernels import (revolute, driver, apply_force, clearance_state, hertz_damping_factor,")
-    a("    friction_coefficient, film_forces, solve_constrained, point, elastic_contact)")
+    a("    friction_coefficient, film_forces, gauss_solve_into, elastic_contact, body_trig)")
     a(f"NC = {nc}")
     a(f"N_DIAG = {n_diag}")
     a(f"JOINTS = {tuple(clearance_joints)}")
@@ -243,7 +243,19 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("def rhs(t, y, p, latched, counts, diag):")
     a("    q = y[0:9]")
     a("    qd = y[9:18]")
-    a("    g = np.zeros(9)")
+    a("    # one work array, cut into the pieces below (one allocation, not eleven)")
+    a("    w = np.zeros(15 + NC * (15 + NC))")
+    a("    cs = w[0:6]")
+    a("    body_trig(q, cs)")
+    a("    g = w[6:15]")
+    a("    phi = w[15 : 15 + NC]")
+    a("    gamma = w[15 + NC : 15 + 2 * NC]")
+    a("    phidot = w[15 + 2 * NC : 15 + 3 * NC]")
+    a("    gamma_b = w[15 + 3 * NC : 15 + 4 * NC]")
+    a("    schur_rhs = w[15 + 4 * NC : 15 + 5 * NC]")
+    a("    lam = w[15 + 5 * NC : 15 + 6 * NC]")
+    a("    phiq = w[15 + 6 * NC : 15 + 15 * NC].reshape((NC, 9))")
+    a("    schur = w[15 + 15 * NC :].reshape((NC, NC))")
     a(f"    mass = p[{idx['mass']}:{idx['mass'] + 9}]")
     a("    potential = 0.0")
     if "gravity" in effects:
@@ -255,7 +267,7 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
         bj, jx, jy, bb, bx, by = pts[j]
         o = DIAG_FIXED + DIAG_PER_JOINT * k
         a(f"    # clearance joint {j}")
-        a(f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, "
+        a(f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, "
           f"{P('clearance')}, {P('r_journal')}, {P('r_bearing')})")
         a("    fn = 0.0")
         a("    ft = 0.0")
@@ -278,30 +290,31 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
         a("    tx, ty = -ny, nx")
         a("    fx = (-fn + fr_film) * nx + (ft + ft_film) * tx")
         a("    fy = (-fn + fr_film) * ny + (ft + ft_film) * ty")
-        a(f"    apply_force(q, g, {bj}, {jx}, {jy}, fx, fy)")
-        a(f"    apply_force(q, g, {bb}, {bx}, {by}, -fx, -fy)")
+        a(f"    apply_force(q, cs, g, {bj}, {jx}, {jy}, fx, fy)")
+        a(f"    apply_force(q, cs, g, {bb}, {bx}, {by}, -fx, -fy)")
         if "friction" in effects:
             a(f"    g[{3 * bj + 2}] += {P('r_journal')} * ft")
             a(f"    g[{3 * bb + 2}] -= {P('r_bearing')} * ft")
         for m_, val in enumerate(("e", "delta", "ddot", "fn", "fr_film", "ft_film")):
             a(f"    diag[{o + m_}] = {val}")
-    a("    phi = np.zeros(NC)")
-    a("    phiq = np.zeros((NC, 9))")
-    a("    gamma = np.zeros(NC)")
-    a("    phidot = np.zeros(NC)")
-    a(f"    revolute(q, qd, 0, -0.5 * {l2}, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)")
+    a(f"    revolute(q, qd, cs, 0, -0.5 * {l2}, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)")
     a(f"    driver(q, qd, t, 0, {P('phi0')}, {P('omega')}, 2, phi, phiq, gamma, phidot)")
-    a(f"    revolute(q, qd, 2, -0.5 * {l4}, 0.0, -1, 0.0, 0.0, {P('ground')}, 0.0, 3, phi, phiq, gamma, phidot)")
+    a(f"    revolute(q, qd, cs, 2, -0.5 * {l4}, 0.0, -1, 0.0, 0.0, {P('ground')}, 0.0, 3, phi, phiq, gamma, phidot)")
+    pattern = [*revolute_pattern(0, -1), [2], *revolute_pattern(2, -1)]  # Phi_q's nonzero columns per row
     row = 5
     for j in ideal:
         bj, jx, jy, bb, bx, by = pts[j]
-        a(f"    revolute(q, qd, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, 0.0, 0.0, {row}, phi, phiq, gamma, phidot)")
+        a(f"    revolute(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, 0.0, 0.0, {row}, phi, phiq, gamma, phidot)")
+        pattern += revolute_pattern(bj, bb)
         row += 2
-    a(f"    gamma_b = gamma - 2.0 * {P('alpha')} * phidot - {P('beta')} ** 2 * phi")
-    a("    qdd, lam = solve_constrained(mass, g, phiq, gamma_b, NC)")
+    a(f"    damping = 2.0 * {P('alpha')}")
+    a(f"    stiffness = {P('beta')} ** 2")
+    a("    for r in range(NC):")
+    a("        gamma_b[r] = gamma[r] - damping * phidot[r] - stiffness * phi[r]")
     a("    out = np.empty(19)")
     a("    out[0:9] = qd")
-    a("    out[9:18] = qdd")
+    a("    qdd = out[9:18]")
+    L.extend(schur_source(pattern))
     a("    torque = -lam[2]")
     a("    out[18] = torque * qd[2]")
     a("    kinetic = 0.0")
@@ -310,12 +323,44 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("    diag[0] = qdd[8]")
     a("    diag[1] = torque")
     a("    diag[2] = kinetic + potential")
-    a("    diag[3] = np.sqrt(np.sum(phi * phi))")
+    a("    drift = 0.0")
+    a("    for r in range(NC):")
+    a("        drift += phi[r] * phi[r]")
+    a("    diag[3] = np.sqrt(drift)")
     a("    return out")
     a("")
     a(dop853_coefficients_source())
     a(INTEGRATORS)
     return "\n".join(L)
+
+
+def revolute_pattern(bi: int, bj: int) -> list[list[int]]:
+    """The columns of Phi_q a revolute between bodies bi and bj (bj < 0: the ground) fills, in its x and y rows."""
+    bodies = [b for b in (bi, bj) if b >= 0]
+    return [sorted(c for b in bodies for c in (3 * b, 3 * b + 2)), sorted(c for b in bodies for c in (3 * b + 1, 3 * b + 2))]
+
+
+def schur_source(pattern: list[list[int]]) -> list[str]:
+    """Source lines that solve M q'' = g - Phi_q^T lam, Phi_q q'' = gamma_b (M diagonal) by the Schur complement
+    Phi_q M^-1 Phi_q^T lam = Phi_q M^-1 g - gamma_b, summing only the products of Phi_q's nonzero entries
+    (``pattern``: the nonzero columns of each row).  The sums run over the columns in increasing order, as a full
+    loop would, and the terms left out are exact zeros, so the result is the full loop's to the bit; the complement
+    is symmetric and each pair is summed once."""
+    lines = []
+    for a, cols_a in enumerate(pattern):
+        for b in range(a, len(pattern)):
+            common = sorted(set(cols_a) & set(pattern[b]))
+            terms = "".join(f" + phiq[{a}, {k}] * phiq[{b}, {k}] / mass[{k}]" for k in common)
+            lines.append(f"    schur[{a}, {b}] = 0.0{terms}")
+            if b != a:
+                lines.append(f"    schur[{b}, {a}] = schur[{a}, {b}]")
+        terms = "".join(f" + phiq[{a}, {k}] * (g[{k}] / mass[{k}])" for k in cols_a)
+        lines.append(f"    schur_rhs[{a}] = (0.0{terms}) - gamma_b[{a}]")
+    lines.append("    gauss_solve_into(schur, schur_rhs, lam)")
+    for k in range(9):
+        terms = "".join(f" - phiq[{a}, {k}] * lam[{a}]" for a, cols in enumerate(pattern) if k in cols)
+        lines.append(f"    qdd[{k}] = (g[{k}]{terms}) / mass[{k}]")
+    return lines
 
 
 def dop853_coefficients_source() -> str:
@@ -821,7 +866,7 @@ def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict
     theta = phi0 + p.crank_speed * np.asarray(t, dtype=float)
     q, qd, qdd = kinematic_state(p, theta)
     params, idx = pack(p, phi0)
-    from .kernels import driver, revolute
+    from .kernels import body_trig, driver, revolute
 
     mass = params[idx["mass"] : idx["mass"] + 9]
     l2, l3, l4 = p.lengths
@@ -831,12 +876,13 @@ def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict
     energy = np.empty(theta.size)
     for i in range(theta.size):
         nc = module.NC
-        phi, phiq, gamma, phidot = np.zeros(nc), np.zeros((nc, 9)), np.zeros(nc), np.zeros(nc)
-        revolute(q[i], qd[i], 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
+        phi, phiq, gamma, phidot, cs = np.zeros(nc), np.zeros((nc, 9)), np.zeros(nc), np.zeros(nc), np.empty(6)
+        body_trig(q[i], cs)
+        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
         driver(q[i], qd[i], t[i], 0, phi0, p.crank_speed, 2, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
         g = np.zeros(9)
         if gravity:
             g[1::3] -= mass[0::3] * p.gravity
