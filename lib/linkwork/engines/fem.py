@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from numba import njit
 from numpy.typing import NDArray
 
 FloatArray = NDArray[np.float64]
@@ -293,3 +294,33 @@ def gather(mesh: BeamMesh, u: FloatArray) -> FloatArray:
     _, table = mesh.dof_indices()
     padded = np.concatenate([u, np.zeros(u.shape[:-1] + (1,))], axis=-1)
     return padded[..., np.where(table >= 0, table, u.shape[-1])]
+
+
+def newmark_history(step_inverse: FloatArray, k: FloatArray, c: FloatArray, f: FloatArray, u0: FloatArray, v0: FloatArray,
+                    a0: FloatArray, dt: float, steps: int, beta: float = 0.25, gamma: float = 0.5) -> FloatArray:
+    """Newmark's method on M u'' + C u' + K u = F with matrices that vary periodically over ``f.shape[0]`` steps
+    (angle index s of step number i is (i + 1) mod n): displacements (m) after each of ``steps`` steps of ``dt`` (s)
+    from u0, v0, a0.  ``step_inverse[s]`` is (M + gamma dt C + beta dt^2 K)^-1 at angle s.  Compiled (numba); the
+    same operations in the same order as the loop in numpy, so the same numbers to the bit
+    (tests/test_transplanter.py checks both)."""
+    return _newmark_compiled(step_inverse, k, c, f, np.asarray(u0, dtype=float), np.asarray(v0, dtype=float), np.asarray(a0, dtype=float),
+                         float(dt), int(steps), float(beta), float(gamma))
+
+
+def newmark_steps(step_inverse, k, c, f, ud, vd, ad, dt, steps, beta, gamma):
+    """``newmark_history``'s loop, in plain numpy (the reference its compiled copy is tested against)."""
+    n = f.shape[0]
+    history = np.empty((steps, ud.size))
+    for step in range(steps):
+        s = (step + 1) % n
+        pred_u = ud + dt * vd + (0.5 - beta) * dt**2 * ad
+        pred_v = vd + (1 - gamma) * dt * ad
+        ad = step_inverse[s] @ (f[s] - c[s] @ pred_v - k[s] @ pred_u)
+        ud = pred_u + beta * dt**2 * ad
+        vd = pred_v + gamma * dt * ad
+        history[step] = ud
+    return history
+
+
+
+_newmark_compiled = njit(cache=True)(newmark_steps)

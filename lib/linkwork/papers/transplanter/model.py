@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, rotate
+from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
 FloatArray = NDArray[np.float64]
@@ -313,15 +313,7 @@ def ked(
         ud = np.linalg.solve(k[0], f[0])
         vd = np.zeros_like(ud)
         ad = np.linalg.solve(m[0], f[0] - k[0] @ ud)
-        history = np.empty((revolutions * n, ud.size))
-        for step in range(revolutions * n):
-            s = (step + 1) % n
-            pred_u = ud + dt * vd + (0.5 - beta) * dt**2 * ad
-            pred_v = vd + (1 - gamma) * dt * ad
-            ad = step_inverse[s] @ (f[s] - c[s] @ pred_v - k[s] @ pred_u)
-            ud = pred_u + beta * dt**2 * ad
-            vd = pred_v + gamma * dt * ad
-            history[step] = ud
+        history = newmark_history(step_inverse, k, c, f, ud, vd, ad, dt, revolutions * n, beta, gamma)
         # the step that lands on angle index s is history[step] with s = (step + 1) % n
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
