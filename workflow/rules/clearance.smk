@@ -71,6 +71,7 @@ CLEARANCE_CONTACT = [s for s in clearance_studies_compared() if "contact" in CLE
 
 
 rule clearance_contact_law:
+    priority: CHAIN_HEAD_PRIORITY
     input:
         nominal=expand("results/clearance/{{variant}}/{scene}.nc", scene=CLEARANCE_CONTACT),
         code=code("linkwork.papers.clearance.sensitivity"),

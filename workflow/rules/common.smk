@@ -11,11 +11,15 @@ ROOT = Path(workflow.basedir)
 LIB = ROOT / "lib"
 STUDY = "../scripts/study.py"
 RENDERER = "workflow/scripts/render_report.py"
-# The longest jobs (work-precision, optimisation, uncertainty batches) start first: left to the end, one of
-# them runs alone on a core while its report waits (job times: .snakemake/metadata, benchmarks/pipeline.py).
+# The long jobs (work-precision, sweep points) start before the short ones: left to the end, one of them runs
+# alone on a core while its report waits (job times: .snakemake/metadata, benchmarks/pipeline.py,
+# benchmarks/job_resources.py).
 LONG_JOB_PRIORITY = 10
-# Then the clearance scenes: they feed the longest report, which should not be the last job left.
-CHAIN_HEAD_PRIORITY = 5
+# Before them the heads of the long chains: the clearance scenes (every clearance sample, the contact-law
+# sensitivity and the longest report wait for them), the sensitivity (one 36-s job), the transplanter optimum and
+# the uncertainty batches (the transplanter gather, one 63-s job, waits for them), and each gather as soon as its
+# batches are in.  Behind the sweep points, the sensitivity and the transplanter gather ran alone at the end.
+CHAIN_HEAD_PRIORITY = 20
 # The interpreter Snakemake runs on: shell rules use it, so an unactivated .venv/bin/snakemake works.
 PYTHON = sys.executable
 

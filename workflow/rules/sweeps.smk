@@ -59,6 +59,7 @@ def sweep_args(wildcards):
 
 
 rule sweep_point:
+    priority: LONG_JOB_PRIORITY
     input:
         code=lambda wildcards: code(f"linkwork.papers.{wildcards.sweep}.sweep"),
     output:

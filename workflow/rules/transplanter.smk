@@ -11,7 +11,7 @@ TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLA
 
 
 rule transplanter_optim:
-    priority: LONG_JOB_PRIORITY
+    priority: CHAIN_HEAD_PRIORITY
     input:
         code=code("linkwork.papers.transplanter.studies"),
     output:

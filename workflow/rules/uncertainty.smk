@@ -65,7 +65,7 @@ def uncertainty_gather_inputs(wildcards):
 
 
 rule uncertainty_batch:
-    priority: LONG_JOB_PRIORITY
+    priority: CHAIN_HEAD_PRIORITY
     input:
         unpack(uncertainty_inputs),
     output:
@@ -82,9 +82,11 @@ rule uncertainty_batch:
 
 
 rule uncertainty_gather:
-    priority: LONG_JOB_PRIORITY
+    # it starts as soon as its batches are in, on half the cores: on two cores a two-thread gather waited for both
+    # to be free, which the clearance jobs never left them until the end (it then ran alone for 44 s)
+    priority: CHAIN_HEAD_PRIORITY + 1
     # the scenarios' bounded searches run side by side (linkwork.pipeline.search.refine, one process per thread)
-    threads: 2
+    threads: max(1, (workflow.cores or 2) // 2)
     input:
         unpack(uncertainty_gather_inputs),
     output:
