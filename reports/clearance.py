@@ -169,8 +169,8 @@ undetermined = [f"{CLAIM_WORDS[str(c)].split(' (')[0]} ({v}): " + "; ".join(esc(
                 for v in variants for c in unc.claim.values if (unc.sample_claim_outcome.sel(variant=v, claim=c).values == -1).any()]
 md("**Samples left undetermined.** A sample's claim is judged on its own measures, its moved scenes settled and judged as the nominal runs "
    "are; where the sample's own margins (its intervals and the nominal numerical errors) leave the claim undetermined, that sample enters no "
-   "claim's range. A range in the tables above therefore spans the decided samples only; where the nominal point itself is undetermined, its "
-   "outcome on the means alone still enters the range (the verdict then reads 'undetermined' from the numerical margin, not from the range). "
+   "claim's range, the nominal sample included. A range in the tables above therefore spans the decided samples only; where the margins "
+   "decide no sample, the comparison table shows no range and its input source says so (the verdict then comes from the nominal run's margins). "
    "The samples each claim's margins leave undetermined, per claim: " + (" — ".join(undetermined) or "none") + ".")
 md(
     "*decoded*: the inertias as decoded from the text (their radii of gyration exceed the link lengths). "

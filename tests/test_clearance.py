@@ -392,7 +392,7 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
     import pandas as pd
     import xarray as xr
 
-    from linkwork.papers.clearance.findings import MEMORY_DECIDES, NOMINAL_ONLY, memory_relabel, nominal_only
+    from linkwork.papers.clearance.findings import MEMORY_DECIDES, NOMINAL_ONLY, NOT_PROPAGATED, memory_relabel, nominal_only
 
     claims = xr.Dataset({"outcome_by_start": (("variant", "start", "claim"), np.array([[[0, -1], [1, 0]]]))},
                         coords={"variant": ["decoded"], "start": ["centred", "off-centre"], "claim": ["c1", "c2"]})
@@ -404,5 +404,27 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
     assert (out[out["id"] == "c1"].verdict == "depends on assumptions").all() and (out[out["id"] == "c1"].decided_by == MEMORY_DECIDES).all()
     assert out[out["id"] == "c2"].verdict.tolist() == ["undetermined (numerics)", "deviates"]
     # a decided verdict in a start without propagated inputs says it holds at the nominal inputs only
-    marked = nominal_only(table)
+    marked = nominal_only(table.assign(input_source="12 samples over 5 inputs"))
     assert marked.decided_by.tolist() == ["", "numerical error", NOMINAL_ONLY, NOMINAL_ONLY]
+    assert marked.input_source.tolist() == ["12 samples over 5 inputs"] * 2 + [NOT_PROPAGATED] * 2
+
+
+def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
+    """``undetermined_ranges``: a first-start row whose samples (the nominal one included) its margins all leave
+    undetermined loses its range cells and says why; a row with one decided sample keeps them, and so does another
+    start's row (no samples of its own there)."""
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, undetermined_ranges
+
+    outcome = np.array([[[-1, 0]], [[-1, -1]], [[1, 1]]])  # sample, variant, claim: c1 undetermined at every sample of start a
+    unc = xr.Dataset({"sample_claim_outcome": (("sample", "variant", "claim"), outcome)},
+                     coords={"sample": ["nominal", "x low", "b | nominal"], "sample_scenario": ("sample", ["start a", "start a", "start b"]),
+                             "variant": ["decoded"], "claim": ["c1", "c2"]})
+    table = pd.DataFrame({"model": ["decoded"] * 4, "scenario": ["start a", "start a", "start b", "start b"], "id": ["c1", "c2", "c1", "c2"],
+                          "input_low": [0.0, 0.0, np.nan, np.nan], "input_high": [0.0, 1.0, np.nan, np.nan], "input_source": ["12 samples"] * 4})
+    out = undetermined_ranges(table, unc)
+    assert np.isnan(out.input_low[0]) and np.isnan(out.input_high[0]) and out.input_source[0] == ALL_UNDETERMINED
+    assert out.input_low[1] == 0.0 and out.input_high[1] == 1.0 and out.input_source[1] == "12 samples"
+    assert out.input_source[2:].tolist() == ["12 samples"] * 2

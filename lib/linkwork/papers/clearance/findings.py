@@ -36,7 +36,7 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], claims: xr.Dat
     """Comparison table per variant and its verdict counts, the physics that interprets them and the verdicts'
     sensitivity to the contact law and its memory (``laws``: ``sensitivity.model_sensitivity`` per variant)."""
     table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty)
-    table = nominal_only(with_reasons(table, claims))
+    table = undetermined_ranges(nominal_only(with_reasons(table, claims)), uncertainty)
     phys = physics(claims, cfg, uncertainty).merge(claim3_parts(claims))
     law_attrs = {}
     if laws:
@@ -76,13 +76,40 @@ def memory_relabel(table: pd.DataFrame, claims: xr.Dataset, phys: xr.Dataset) ->
 NOMINAL_ONLY = "the nominal inputs only (the assumed inputs are propagated from the first start alone)"
 
 
+#: The input source of a row of a start the assumed inputs are not propagated in.
+NOT_PROPAGATED = "none: the assumed inputs are propagated from the first start alone"
+#: The input source of a row whose samples its margins all leave undetermined.
+ALL_UNDETERMINED = "no range: every sample, the nominal one included, is undetermined within its margins"
+
+
 def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
     """Rows of a start other than the first, where no assumed input was propagated (no input range): a decided verdict
-    there holds at the nominal inputs, not 'whatever the assumed inputs'; 'decided by' says so."""
+    there holds at the nominal inputs, not 'whatever the assumed inputs'; 'decided by' says so, and the input source
+    says that no input was propagated there."""
     out = table.copy()
     first = out.scenario.iloc[0] if len(out) else None
-    rows = (out.scenario != first) & out.input_low.isna() & out.verdict.isin(["deviates", "matches"]) & out.decided_by.fillna("").eq("")
+    other = (out.scenario != first) & out.input_low.isna()
+    out.loc[other, "input_source"] = NOT_PROPAGATED
+    rows = other & out.verdict.isin(["deviates", "matches"]) & out.decided_by.fillna("").eq("")
     out.loc[rows, "decided_by"] = NOMINAL_ONLY
+    return out
+
+
+def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> pd.DataFrame:
+    """Rows whose samples (the scenario's, the nominal included: ``sample_claim_outcome``) are all undetermined within
+    their own margins show no input range: their range cells would hold only the nominal run's outcome on its means,
+    which its margins do not decide.  The verdict does not change (such a range is the nominal value alone)."""
+    if uncertainty is None or "sample_claim_outcome" not in uncertainty:
+        return table
+    out = table.copy()
+    of = np.array([str(x) for x in uncertainty.sample_scenario.values])
+    variants, claim_ids = [str(v) for v in uncertainty.variant.values], [str(c) for c in uncertainty.claim.values]
+    for i, row in out.iterrows():
+        if row.model not in variants or row["id"] not in claim_ids or not (of == row.scenario).any():
+            continue
+        outcomes = uncertainty.sample_claim_outcome.values[of == row.scenario, variants.index(row.model), claim_ids.index(row["id"])]
+        if np.isfinite(row.input_low) and (outcomes == -1).all():
+            out.loc[i, ["input_low", "input_high", "input_source"]] = [np.nan, np.nan, ALL_UNDETERMINED]
     return out
 
 

@@ -211,7 +211,10 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                 sample_diffs.append([r["difference"] for r in verdict["rows"]])
             else:  # a start at the nominal inputs: the nominal runs' judgement
                 at = nominal.isel(start=n)
-                holds.append(at.holds_by_start.values)
+                # in the first start the nominal is one sample of the range: it enters it only where its margins decide
+                # it, as every sample; in another start it is the row's value itself (no range there)
+                decided = at.outcome_by_start.values >= 0 if n == 0 else np.ones(at.outcome_by_start.shape, dtype=bool)
+                holds.append(np.where(decided, at.holds_by_start.values, np.nan))
                 sample_out.append(at.outcome_by_start.values)
                 sample_diffs.append(at.comparison_difference.values)
                 m = at.mean_deviation.values
@@ -249,6 +252,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
     ds.attrs["title"] = "Clearance: assumed joint length, friction thresholds, impact-velocity floor and film cap, propagated; the start as a scenario"
     ds.attrs["sample_rule"] = ("a sample's claim value is its own outcome on its measures (every ordering's difference > 0), its moved scenes settled and "
                                "judged as the nominal runs are, where the sample's margins (its own intervals, the nominal numerical errors) decide it; "
-                               "a sample they leave undetermined enters no claim's range (sample_claim_outcome -1); no sample takes the nominal outcome")
+                               "a sample they leave undetermined enters no claim's range (sample_claim_outcome -1), the first start's nominal sample "
+                               "included; no sample takes the nominal outcome")
     return ds
 
