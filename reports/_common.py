@@ -153,7 +153,9 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
         "ours": [_num(v * scale, digits) for v in rows.reproduced],
         "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
         "error from": rows.numerical_source,
-        "over the assumed inputs": [_range(lo * scale, hi * scale, t * scale) for lo, hi, t in zip(rows.input_low, rows.input_high, rows.tolerance)],
+        # where no range is shown, the input source says why (no assumed input enters, none propagated there, ...)
+        "over the assumed inputs": [_range(lo * scale, hi * scale, t * scale) if pd.notna(lo) else (src if isinstance(src, str) and src else "–")
+                                    for lo, hi, t, src in zip(rows.input_low, rows.input_high, rows.tolerance, rows.get("input_source", [""] * len(rows)))],
         "decided by": rows.decided_by.fillna("").map(key_words),
         "unit": rows.unit,
         "verdict": rows.verdict,

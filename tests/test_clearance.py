@@ -416,15 +416,32 @@ def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
     import pandas as pd
     import xarray as xr
 
-    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, undetermined_ranges
+    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, DECIDED_SAMPLES, undetermined_ranges
 
-    outcome = np.array([[[-1, 0]], [[-1, -1]], [[1, 1]]])  # sample, variant, claim: c1 undetermined at every sample of start a
+    outcome = np.array([[[-1, 0]], [[-1, -1]], [[-1, 1]]])  # sample, variant, claim: c1 undetermined at every sample of both starts
     unc = xr.Dataset({"sample_claim_outcome": (("sample", "variant", "claim"), outcome)},
                      coords={"sample": ["nominal", "x low", "b | nominal"], "sample_scenario": ("sample", ["start a", "start a", "start b"]),
                              "variant": ["decoded"], "claim": ["c1", "c2"]})
     table = pd.DataFrame({"model": ["decoded"] * 4, "scenario": ["start a", "start a", "start b", "start b"], "id": ["c1", "c2", "c1", "c2"],
-                          "input_low": [0.0, 0.0, np.nan, np.nan], "input_high": [0.0, 1.0, np.nan, np.nan], "input_source": ["12 samples"] * 4})
+                          "input_low": [0.0, 0.0, np.nan, np.nan], "input_high": [0.0, 1.0, np.nan, np.nan], "input_source": ["12 samples"] * 4,
+                          "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates"], "decided_by": ["numerical error", np.nan, "", ""]})
     out = undetermined_ranges(table, unc)
     assert np.isnan(out.input_low[0]) and np.isnan(out.input_high[0]) and out.input_source[0] == ALL_UNDETERMINED
     assert out.input_low[1] == 0.0 and out.input_high[1] == 1.0 and out.input_source[1] == "12 samples"
-    assert out.input_source[2:].tolist() == ["12 samples"] * 2
+    # a decided verdict with an undetermined sample holds at the decided ones: 'decided by' names the other
+    assert out.decided_by[1] == f"{DECIDED_SAMPLES}: x (low end)"
+    assert out.input_source[2:].tolist() == ["12 samples"] * 2 and out.decided_by[2:].tolist() == ["", ""]
+
+
+def test_contact_frequency_uses_the_lightest_body_of_its_own_joint():
+    """The linearised contact frequency of a clearance joint: sqrt(1.5 K sqrt(delta) / m) / 2 pi with m the lighter of
+    the two bodies that joint connects (joint 2: coupler and rocker, never the crank), by hand."""
+    from linkwork.papers.clearance.studies import contact_frequency
+
+    p = parameters(SECTION, "decoded", "dry_both")
+    delta = 1e-6
+    for joint, bodies in ((1, (0, 1)), (2, (1, 2))):
+        mass = min(p.masses[b] for b in bodies)
+        expected = np.sqrt(1.5 * p.hertz_stiffness * np.sqrt(delta) / mass) / (2 * np.pi)
+        assert contact_frequency(p, delta, joint) == pytest.approx(expected, rel=1e-12)
+    assert np.isnan(contact_frequency(p, 0.0, 1))

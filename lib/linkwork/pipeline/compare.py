@@ -250,8 +250,15 @@ def _study_at(uncertainty: xr.Dataset | None, n: int, key: str) -> dict[str, Any
         "oat": {name: (float(uncertainty.oat_low.values[n, k, q]), float(uncertainty.oat_high.values[n, k, q])) for k, name in enumerate(inputs)},
         "rounding": {name for name, kind in zip(inputs, kinds, strict=True) if kind == "rounding"},
         "consistent": None if not np.isfinite(consistent) else bool(consistent),
-        "source": f"{int(uncertainty.samples)} samples over {len(inputs)} inputs" + (", then bounded searches" if "low_at" in uncertainty else ""),
+        "source": f"{_scenario_samples(uncertainty, n)} samples over {len(inputs)} inputs" + (", then bounded searches" if "low_at" in uncertainty else ""),
     }
+
+
+def _scenario_samples(uncertainty: xr.Dataset, n: int) -> int:
+    """How many samples the uncertainty study evaluated in scenario ``n`` (all of them where it names no scenarios)."""
+    if "sample_scenario" not in uncertainty or "scenario" not in uncertainty.dims:
+        return int(uncertainty.samples)
+    return int((np.asarray(uncertainty.sample_scenario.values).astype(str) == str(uncertainty.scenario.values[n])).sum())
 
 
 def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, errors: Mapping[str, tuple[float, str]],

@@ -11,7 +11,7 @@ import xarray as xr
 
 from ...pipeline.compare import compare_datasets, count_text, counts_dataset, findings_attrs
 from .validity import elastic_law_validity, penetration_limit
-from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words
+from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
@@ -26,7 +26,8 @@ def numerical_errors(claims: xr.Dataset) -> dict[str, dict[str, dict[int, tuple[
     claim from that start (its difference within the confidence interval or the numerical error of an ordering it is
     made of), else 0."""
     source = (f"{claims.attrs['confidence']:.0%} interval over the judged cycles (states that are not periodic) and the numerical error "
-              f"(the same state at the check tolerances, {claims.attrs.get('tight_settings', 'see the claims')}, and the state the start reaches at the first of them)")
+              f"(the same state at the check tolerances, {claims.attrs.get('tight_settings', 'see the claims')}, and the state the start reaches at the first of them, "
+              "plus the convergence and peak-sampling terms)")
     return {str(v): {str(c): {k: (float(claims.outcome_by_start.sel(variant=v, claim=c).values[k] == -1), source) for k in range(claims.sizes["start"])}
                      for c in claims.claim.values} for v in claims.variant.values}
 
@@ -78,6 +79,8 @@ NOMINAL_ONLY = "the nominal inputs only (the assumed inputs are propagated from 
 
 #: The input source of a row of a start the assumed inputs are not propagated in.
 NOT_PROPAGATED = "none: the assumed inputs are propagated from the first start alone"
+#: What decides a decided verdict some of whose samples its margins leave undetermined.
+DECIDED_SAMPLES = "the nominal inputs and the decided samples; left undetermined within their margins at"
 #: The input source of a row whose samples its margins all leave undetermined.
 ALL_UNDETERMINED = "no range: every sample, the nominal one included, is undetermined within its margins"
 
@@ -96,20 +99,26 @@ def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
 
 
 def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> pd.DataFrame:
-    """Rows whose samples (the scenario's, the nominal included: ``sample_claim_outcome``) are all undetermined within
+    """Rows of the first start whose samples (the nominal included: ``sample_claim_outcome``) are all undetermined within
     their own margins show no input range: their range cells would hold only the nominal run's outcome on its means,
-    which its margins do not decide.  The verdict does not change (such a range is the nominal value alone)."""
+    which its margins do not decide.  The verdict does not change (such a range is the nominal value alone).  A
+    decided verdict ('deviates', 'matches') some of whose samples are undetermined holds at the decided ones only:
+    'decided by' names the others."""
     if uncertainty is None or "sample_claim_outcome" not in uncertainty:
         return table
     out = table.copy()
+    first = out.scenario.iloc[0] if len(out) else None  # the start the inputs are propagated in (the others: ``nominal_only``)
     of = np.array([str(x) for x in uncertainty.sample_scenario.values])
     variants, claim_ids = [str(v) for v in uncertainty.variant.values], [str(c) for c in uncertainty.claim.values]
     for i, row in out.iterrows():
-        if row.model not in variants or row["id"] not in claim_ids or not (of == row.scenario).any():
+        if row.scenario != first or row.model not in variants or row["id"] not in claim_ids or not (of == row.scenario).any():
             continue
         outcomes = uncertainty.sample_claim_outcome.values[of == row.scenario, variants.index(row.model), claim_ids.index(row["id"])]
-        if np.isfinite(row.input_low) and (outcomes == -1).all():
+        if (outcomes == -1).all():
             out.loc[i, ["input_low", "input_high", "input_source"]] = [np.nan, np.nan, ALL_UNDETERMINED]
+        elif (outcomes == -1).any() and row.verdict in ("deviates", "matches") and not (isinstance(row.decided_by, str) and row.decided_by):
+            left = [sample_in_words(str(x)) for x in uncertainty.sample.values[of == row.scenario][outcomes == -1]]
+            out.loc[i, "decided_by"] = f"{DECIDED_SAMPLES}: {', '.join(left)}"
     return out
 
 

@@ -78,14 +78,14 @@ def cycle_deviations(values: Mapping[str, np.ndarray], ideal: Mapping[str, np.nd
     return np.moveaxis(np.array(out), 1, 0)
 
 
-def contact_frequency(p, penetration: float, joints) -> float:
-    """Linearised contact frequency (Hz) of the dry contact at a penetration (m): sqrt(k / m) / 2 pi with the
-    contact stiffness k = 1.5 K delta^0.5 (eq. 9 differentiated) and m the lightest body a clearance joint
-    connects (the highest frequency the joint can ring at); NaN without penetration."""
+def contact_frequency(p, penetration: float, joint: int) -> float:
+    """Linearised contact frequency (Hz) of the dry contact of clearance joint ``joint`` (1 or 2) at a penetration
+    (m): sqrt(k / m) / 2 pi with the contact stiffness k = 1.5 K delta^0.5 (eq. 9 differentiated) and m the lightest
+    of the two bodies the joint connects (the highest frequency the joint can ring at); NaN without penetration."""
     if not np.isfinite(penetration) or penetration <= 0:
         return float("nan")
     bodies = {1: (0, 1), 2: (1, 2)}
-    mass = min(p.masses[b] for j in joints for b in bodies[j])
+    mass = min(p.masses[b] for b in bodies[joint])
     return float(np.sqrt(1.5 * p.hertz_stiffness * np.sqrt(penetration) / mass) / (2 * np.pi))
 
 
@@ -212,7 +212,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     per_joint = np.full((2, 6, t.size), np.nan)
     for k, j in enumerate(joints):
         per_joint[j - 1] = d[:, 4 + 6 * k : 10 + 6 * k].T
-    fc = np.array([contact_frequency(p, window_ext[0, 0, j - 1], joints) if j in joints else np.nan for j in JOINT_IDS])
+    fc = np.array([contact_frequency(p, window_ext[0, 0, j - 1], j) if j in joints else np.nan for j in JOINT_IDS])
     cap = 1.0 - p.e0 / p.clearance if "lubrication" in effects else None
     labels = [s["label"] for s in starts]
     comps = [f"joint {j} {name}" for j in joints for name in ("e_x / c", "e_y / c", "e_x' / (c omega)", "e_y' / (c omega)")]
@@ -630,7 +630,9 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
                     batch_cycles=st["batch_cycles"], settle_rule=first.attrs["settle_rule"],
                     numerical_error_method="per scene and start: the largest |measure at a check integrator - measure at the pipeline's|, over reruns of the same state "
                                            "restarted from the section point at the start of the judged window and a run settled from the start itself at the first "
-                                           "check integrator (which of coexisting states a start reaches can depend on the integrator); of a difference: the sum over its scenes",
+                                           "check integrator (which of coexisting states a start reaches can depend on the integrator), plus the convergence term (a "
+                                           "periodic state still converging: its last per-period change times rho / (1 - rho)) and, for a peak, the sampling term (the "
+                                           "rise of a parabolic refinement of the largest sample); of a difference: the sum over its scenes",
                     tight_settings="; ".join(sorted({f"{runs[(variants[0], n)].attrs['integrator']}: " + ", ".join(str(c) for c in runs[(variants[0], n)].check.values)
                                                      for n in COMPARED})))
     return ds

@@ -158,15 +158,17 @@ def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: 
     return verdict, stats[..., 0]
 
 
-def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per scenario, continuous input, variant and ordering: the smallest and largest difference over the samples that
-    move the input alone and the scenario's nominal one; per claim, whether such a sample decides it otherwise than
-    the nominal (``diffs``: sample, variant, comparison; ``outcomes``: sample, variant, claim)."""
+    move the input alone and the scenario's nominal one; per claim, whether such a sample decides it (outcome 0 or 1)
+    otherwise than the nominal, and whether one leaves it undetermined (-1) where the nominal decides it (``diffs``:
+    sample, variant, comparison; ``outcomes``: sample, variant, claim)."""
     from ...pipeline.uncertainty import continuous, scenarios
 
     scens, ranged = [s.label for s in scenarios(ins)], continuous(ins)
     lo = np.full((len(scens), len(ranged)) + diffs.shape[1:], np.nan)
     hi, changed = np.full_like(lo, np.nan), np.zeros((len(scens), len(ranged)) + outcomes.shape[1:], dtype=int)
+    left = np.zeros_like(changed)
     for n, scen in enumerate(scens):
         rows = [i for i, s in enumerate(design) if s.scenario == scen]
         base = next(i for i in rows if not design[i].moved)
@@ -176,8 +178,10 @@ def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple
                 continue
             idx.append(base)
             lo[n, k], hi[n, k] = diffs[idx].min(axis=0), diffs[idx].max(axis=0)
-            changed[n, k] = (outcomes[idx] != outcomes[base]).any(axis=0)
-    return lo, hi, changed
+            moved = outcomes[idx[:-1]]
+            changed[n, k] = ((moved >= 0) & (moved != outcomes[base])).any(axis=0)
+            left[n, k] = ((moved == -1) & (outcomes[base] >= 0)).any(axis=0)
+    return lo, hi, changed, left
 
 
 def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, published: Mapping[str, Any]):
@@ -228,7 +232,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
     for n in range(1, ds.sizes["scenario"]):  # the inputs are not propagated in the other starts: no range there
         for key in ("low", "high", "oat_low", "oat_high"):
             ds[key][n] = np.nan
-    lo, hi, changed = oat_orderings(design, ins, np.array(diffs), np.array(outcomes, dtype=int))
+    lo, hi, changed, left = oat_orderings(design, ins, np.array(diffs), np.array(outcomes, dtype=int))
     ds["sample_mean_deviation"] = (("sample", "variant", "measure", "response", "scene"), np.array(means),
                                    {"units": "SI of the quantity", "long_name": "the claims' measure on the sample's state (deviation from the ideal curve)"})
     ds["sample_comparison_difference"] = (("sample", "variant", "comparison"), np.array(diffs),
@@ -240,7 +244,8 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                                                                  "nan_meaning": "the input moves no sample in this scenario"})
     ds["oat_comparison_high"] = (oat_dims + ("comparison",), hi, {"units": "SI of the quantity", "long_name": "largest difference of the ordering moving this input alone (with the nominal)",
                                                                   "nan_meaning": "the input moves no sample in this scenario"})
-    ds["oat_claim_changed"] = (oat_dims + ("claim",), changed, {"units": "1", "long_name": "1 if a sample moving this input decides the claim otherwise than the scenario's nominal"})
+    ds["oat_claim_changed"] = (oat_dims + ("claim",), changed, {"units": "1", "long_name": "1 if a sample moving this input decides the claim (holds or fails) otherwise than the scenario's nominal"})
+    ds["oat_claim_left_undetermined"] = (oat_dims + ("claim",), left, {"units": "1", "long_name": "1 if a sample moving this input leaves undetermined, within its margins, a claim the scenario's nominal decides"})
     ds["oat_sign_changes"] = ((), int(np.sum((lo < 0) & (hi > 0))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets whose difference changes sign over the input's range"})
     ds["oat_orderings"] = ((), int(np.sum(np.isfinite(lo))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets propagated"})
     ds = ds.assign_coords(variant=("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),

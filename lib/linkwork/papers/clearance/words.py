@@ -35,3 +35,18 @@ def in_words(text: str) -> str:
 
 #: The two parameter variants (sets of link inertias), as a clause of prose.
 VARIANT_WORDS = {"slender": "with slender-rod inertias (our defensible reading)", "decoded": "with the inertias as decoded from the text"}
+
+
+def sample_in_words(label: str) -> str:
+    """An uncertainty sample's label in words: 'joint length (low end)' for 'assumed.joint_length_m.value low'; another
+    start's 'start off-centre | nominal' as 'nominal (start off-centre)'."""
+    if " | " in label:
+        scenario, rest = label.split(" | ", 1)
+        return f"{sample_in_words(rest)} ({scenario})"
+    key, _, end = label.rpartition(" ")
+    if end not in ("low", "high"):
+        return label
+    name = key.removeprefix("assumed.").removesuffix(".value")
+    for unit in ("_m_s", "_m", "_Pa_s", "_Pa"):
+        name = name.removesuffix(unit)
+    return f"{name.replace('_', ' ')} ({end} end)"
