@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from linkwork.engines.kinematics import (
@@ -19,6 +19,11 @@ PAPER = FourBar(crank=0.015, coupler=0.138, rocker=0.115, ground=0.170, branch=1
 TURN = np.linspace(0.0, 2.0 * np.pi, 3601)
 
 
+#: The crank-rocker strategy rejects most draws by design (Grashof margin, inversion, transmission angle): Hypothesis's
+#: filter health check then fails a run at random (CI, 2026-11-26: 9 kept, 50 rejected); every example kept is checked.
+FILTERED = [HealthCheck.filter_too_much]
+
+
 @st.composite
 def crank_rockers(draw):
     """Random well-conditioned Grashof crank-rockers, either branch, any frame angle."""
@@ -33,7 +38,7 @@ def crank_rockers(draw):
     return lw
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=60, deadline=None, suppress_health_check=FILTERED)
 @given(crank_rockers())
 def test_loop_closure_residual_over_a_full_turn(lw):
     motion = four_bar(lw, TURN)
@@ -61,7 +66,7 @@ def _central_differences(lw, alpha, h):
     return out
 
 
-@settings(max_examples=30, deadline=None)
+@settings(max_examples=30, deadline=None, suppress_health_check=FILTERED)
 @given(crank_rockers())
 def test_rates_match_finite_differences(lw):
     alpha = np.linspace(0.0, 2 * np.pi, 73)

@@ -58,13 +58,13 @@ VERDICTS = ("matches", "matches as printed", "depends on assumptions", "not reco
             "deviates", "not reproducible")
 #: Each class in a few plain words, for legends and the index.
 VERDICT_MEANING = {
-    "matches": "within the tolerance over the whole range of the assumed inputs, with our error bar",
+    "matches": "within the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit, within it), with our error bar",
     "matches as printed": "within the tolerance at the printed values; the last printed digit of an input moves it out",
     "depends on assumptions": "matches under a consistent set of assumptions, fails under others",
     "not reconciled": "matches only under assumptions where other rows of the paper fail",
     "undetermined (numerics)": "our own numerical error bar straddles the tolerance",
     "deviates as printed": "outside the tolerance at the printed values; only the last printed digit moves it in",
-    "deviates": "outside the tolerance whatever the assumed inputs",
+    "deviates": "outside the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit, within it), with our error bar",
     "not reproducible": "the paper lacks what reproducing it needs",
 }
 HALF_DIGIT = "half a unit of the last printed digit"
