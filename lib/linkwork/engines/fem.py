@@ -302,7 +302,7 @@ def newmark_history(step_inverse: FloatArray, k: FloatArray, c: FloatArray, f: F
     (angle index s of step number i is (i + 1) mod n): displacements (m) after each of ``steps`` steps of ``dt`` (s)
     from u0, v0, a0.  ``step_inverse[s]`` is (M + gamma dt C + beta dt^2 K)^-1 at angle s.  Compiled (numba); the
     same operations in the same order as the loop in numpy, so the same numbers to the bit
-    (tests/test_transplanter.py checks both)."""
+    (tests/test_fem.py checks both)."""
     return _newmark_compiled(step_inverse, k, c, f, np.asarray(u0, dtype=float), np.asarray(v0, dtype=float), np.asarray(a0, dtype=float),
                          float(dt), int(steps), float(beta), float(gamma))
 
@@ -320,7 +320,6 @@ def newmark_steps(step_inverse, k, c, f, ud, vd, ad, dt, steps, beta, gamma):
         vd = pred_v + gamma * dt * ad
         history[step] = ud
     return history
-
 
 
 _newmark_compiled = njit(cache=True)(newmark_steps)
