@@ -171,15 +171,6 @@ def film_forces(eps, eps_dot, omega_sum, gamma_dot, coefficient, eps_limit):
 
 
 @njit(cache=True)
-def gauss_solve(a, b):
-    """x with a x = b by Gaussian elimination with partial pivoting (a, b are overwritten): ``gauss_solve_into``
-    with a new x."""
-    x = np.empty(b.size)
-    gauss_solve_into(a, b, x)
-    return x
-
-
-@njit(cache=True)
 def gauss_solve_into(a, b, x):
     """x with a x = b by Gaussian elimination with partial pivoting, into x (a, b are overwritten).
 
