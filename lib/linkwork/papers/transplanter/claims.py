@@ -48,20 +48,26 @@ def governing_elasticity(e: np.ndarray, governing=("arm", "coupler")) -> np.ndar
     return np.abs(np.atleast_2d(e))[:, inside].min(axis=1)
 
 
-def responses(cfg: Mapping[str, Any], diameters, solution: str) -> np.ndarray:
-    """Peak eq. (8) stress (Pa) and largest elastic tip displacement (m) over the report grid."""
-    r = solve(cfg, np.asarray(diameters, dtype=float), solution, report_grid(cfg))
+def response_values(r) -> np.ndarray:
+    """Peak eq. (8) stress (Pa) and largest elastic tip displacement (m) of one solution ``r`` (a KedResult)."""
     return np.array([r.stress.max(), np.hypot(r.tip[:, 0], r.tip[:, 1]).max()])
 
 
-def claim_measures(cfg: Mapping[str, Any], published_m, solution: str) -> dict[str, Any]:
+def responses(cfg: Mapping[str, Any], diameters, solution: str) -> np.ndarray:
+    """Peak eq. (8) stress (Pa) and largest elastic tip displacement (m) over the report grid."""
+    return response_values(solve(cfg, np.asarray(diameters, dtype=float), solution, report_grid(cfg)))
+
+
+def claim_measures(cfg: Mapping[str, Any], published_m, solution: str, at_published=None) -> dict[str, Any]:
     """The claims' measures at the published optimum ``published_m`` (m) against the initial diameters, in the
     ``solution``: masses (kg), distortions (m), their ratios, the elasticities (response, member) and the
-    governing members' smallest |elasticity| per response."""
+    governing members' smallest |elasticity| per response.  ``at_published``: the responses there
+    (``response_values``) where the caller has solved that point already."""
     initial = np.array(cfg["initial_diameters_m"], dtype=float)
     published = np.asarray(published_m, dtype=float)
     lengths, density = member_lengths(cfg), material_of(cfg).density
-    at_published, at_initial = responses(cfg, published, solution), responses(cfg, initial, solution)
+    at_published = responses(cfg, published, solution) if at_published is None else np.asarray(at_published, dtype=float)
+    at_initial = responses(cfg, initial, solution)
     e = elasticities(lambda d: responses(cfg, d, solution), published, float(cfg["claims"]["elasticity_step"]))
     return {
         "mass_initial": bar_mass(lengths, initial, density),

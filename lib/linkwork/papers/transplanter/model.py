@@ -184,7 +184,7 @@ class KedResult:
     rayleigh: tuple[float, float] = (0.0, 0.0)  # dynamic: C = alpha M + beta K, (alpha in s^-1, beta in s)
 
 
-def _element_geometry(mech, disc, motion, diameters):
+def _element_geometry(mech, disc, motion):
     """Per-element lengths, section properties, directions and nodal rigid accelerations."""
     lengths = np.array([mech.crank, mech.coupler, mech.rocker, mech.arm])
     n_el = len(disc.member_of)
@@ -198,6 +198,14 @@ def _element_geometry(mech, disc, motion, diameters):
     node_acc = motion.acc[:, start] * (1 - f) + motion.acc[:, end] * f
     el_dir = np.stack([motion.angle[:, disc.member_of[e]] for e in range(n_el)], axis=1)
     return el_len, node_pos, node_acc, el_dir
+
+
+def element_frames(mech, disc, theta) -> tuple[FloatArray, FloatArray, RigidMotion]:
+    """(element lengths (m), element directions (n, elements; rad), the rigid motion) over crank angles ``theta``
+    (rad): what the stresses and tip displacements are read in, without assembling any matrix."""
+    motion = rigid_motion(mech, theta)
+    el_len, _, _, el_dir = _element_geometry(mech, disc, motion)
+    return el_len, el_dir, motion
 
 
 def tip_dofs(disc: Discretisation) -> list[int]:
@@ -215,7 +223,7 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
     ``mass``: "all" assembles the global M at every crank angle, "first" only at the first (the quasi-static
     solution needs it only for the natural frequencies; the loads use the element matrices)."""
     motion = rigid_motion(mech, theta)
-    el_len, node_pos, node_acc, el_dir = _element_geometry(mech, disc, motion, diameters)
+    el_len, node_pos, node_acc, el_dir = _element_geometry(mech, disc, motion)
     kind = disc.mesh.kind
     per_end = 3 if kind == "frame6" else 4
     k_loc, m_loc = [], []
@@ -300,7 +308,7 @@ def ked(
     elif solution == "dynamic":
         n = theta.size * substeps
         fine = theta[0] + np.arange(n) * (2 * np.pi / n)
-        k, m, f, (el_len_f, el_dir_f, motion_f) = system_matrices(mech, disc, diameters, material, fine, gravity, tip_force=tip_force)
+        k, m, f, _ = system_matrices(mech, disc, diameters, material, fine, gravity, tip_force=tip_force)
         freqs = natural_frequencies(k[0], m[0])
         w1, w2 = freqs[0], freqs[1]
         a0, a1 = rayleigh_coefficients(damping_ratio, w1, w2)
@@ -318,8 +326,7 @@ def ked(
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
         u = last
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
-                                                            tip_force=tip_force)
+        el_len, el_dir, motion = element_frames(mech, disc, theta)
         tip_l, *_ = _postprocess(mech, disc, diameters, material, last, el_len, el_dir, motion)
         tip_p, *_ = _postprocess(mech, disc, diameters, material, prev, el_len, el_dir, motion)
         scale = max(np.ptp(tip_l, axis=0).max(), 1e-30)

@@ -36,7 +36,7 @@ def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Seque
 
     from ...engines.optimize import slsqp
     from .adapter import compared_solution
-    from .claims import RESPONSES, claim_measures
+    from .claims import RESPONSES, claim_measures, response_values
     from .model import MEMBERS
     from .published_point import claim_variables
     from .studies import SUMMARY_ATTRS, optimise_on_report_grid, report_grid, solve, summary
@@ -44,10 +44,11 @@ def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Seque
     run = lambda prob, x: slsqp(prob, x, cfg["optimization"]["slsqp_ftol"])  # noqa: E731
     x = optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)[0] if optimise else np.full(len(MEMBERS), np.nan)
     published_m = np.array(published["optimum_diameters_mm"], dtype=float) / 1e3
-    at = summary(solve(cfg, published_m, compared_solution(cfg), report_grid(cfg)))
+    solved = solve(cfg, published_m, compared_solution(cfg), report_grid(cfg))
+    at = summary(solved)
     data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
     data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
-    data.update(claim_variables(claim_measures(cfg, published_m, compared_solution(cfg))))  # the claims' measures
+    data.update(claim_variables(claim_measures(cfg, published_m, compared_solution(cfg), response_values(solved))))  # the claims' measures
     coords = {"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object)),
               "response": ("response", np.array(RESPONSES, dtype=object))}
     return [xr.Dataset(data, coords=coords)]
