@@ -239,12 +239,22 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a(f"JOINTS = {tuple(clearance_joints)}")
     a(f"EFFECTS = {tuple(effects)}")
     a("")
+    a(f"N_WORK = {15 + nc * (15 + nc)}")
+    a("")
     a("@njit(cache=True)")
     a("def rhs(t, y, p, latched, counts, diag):")
+    a("    \"\"\"dy/dt at (t, y), a new array; the diagnostics into ``diag`` (see rhs_into).\"\"\"")
+    a("    out = np.empty(19)")
+    a("    rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)")
+    a("    return out")
+    a("")
+    a("@njit(cache=True)")
+    a("def rhs_into(t, y, p, latched, counts, diag, w, out):")
+    a("    \"\"\"dy/dt at (t, y) into ``out`` (19), the diagnostics into ``diag``; ``w``: a work array of N_WORK,")
+    a("    cleared here and cut into the pieces below (the integrators pass one, so that a call allocates nothing).\"\"\"")
     a("    q = y[0:9]")
     a("    qd = y[9:18]")
-    a("    # one work array, cut into the pieces below (one allocation, not eleven)")
-    a("    w = np.zeros(15 + NC * (15 + NC))")
+    a("    w[:] = 0.0")
     a("    cs = w[0:6]")
     a("    body_trig(q, cs)")
     a("    g = w[6:15]")
@@ -311,7 +321,6 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a(f"    stiffness = {P('beta')} ** 2")
     a("    for r in range(NC):")
     a("        gamma_b[r] = gamma[r] - damping * phidot[r] - stiffness * phi[r]")
-    a("    out = np.empty(19)")
     a("    out[0:9] = qd")
     a("    qdd = out[9:18]")
     L.extend(schur_source(pattern))
@@ -327,7 +336,6 @@ def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...],
     a("    for r in range(NC):")
     a("        drift += phi[r] * phi[r]")
     a("    diag[3] = np.sqrt(drift)")
-    a("    return out")
     a("")
     a(dop853_coefficients_source())
     a(INTEGRATORS)
@@ -405,13 +413,16 @@ def _start(y0, t0, n_out, p, latched, counts, was):
 def jacobian(t, y, p, latched, counts, scratch):
     """d rhs / d y by forward differences (step sqrt(eps) max(|y_j|, 1)), compiled: for the implicit integrators."""
     n = y.size
-    f0 = rhs(t, y, p, latched, counts, scratch)
+    work = np.empty(N_WORK)
+    f0 = np.empty(n)
+    f1 = np.empty(n)
+    rhs_into(t, y, p, latched, counts, scratch, work, f0)
     jac = np.empty((n, n))
     yy = y.copy()
     for j in range(n):
         h = 1.4901161193847656e-08 * max(abs(y[j]), 1.0)
         yy[j] = y[j] + h
-        f1 = rhs(t, yy, p, latched, counts, scratch)
+        rhs_into(t, yy, p, latched, counts, scratch, work, f1)
         for i in range(n):
             jac[i, j] = (f1[i] - f0[i]) / h
         yy[j] = y[j]
@@ -540,6 +551,8 @@ def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
     h_abs = h0
     J = jacobian(t0, y, p, latched, counts, scratch)
     current_jac = True
+    work = np.empty(N_WORK)
+    fk = np.empty(n)
     eye = np.eye(n)
     minv = np.empty((n, n))
     inv_ok = False
@@ -594,7 +607,7 @@ def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
                 dy_norm_old = -1.0
                 for k in range(4):
                     n_iter = k + 1
-                    fk = rhs(t_new, y_new, p, latched, counts, scratch)
+                    rhs_into(t_new, y_new, p, latched, counts, scratch, work, fk)
                     if not np.all(np.isfinite(fk)):
                         break
                     dy = minv @ (c * fk - psi - d)
@@ -641,17 +654,18 @@ def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
         D[order + 1] = d
         for k in range(order, -1, -1):
             D[k] += D[k + 1]
-        rhs(t, y, p, latched, counts, diag)
+        rhs_into(t, y, p, latched, counts, diag, work, fk)
         _latch(diag, latched, was)
-        while i < n_out and t_out[i] <= t + 1e-15:  # the step's interpolating polynomial
-            yi = D[0].copy()
+        while i < n_out and t_out[i] <= t + 1e-15:  # the step's interpolating polynomial, into ys[i] in place
+            yi = ys[i]
+            for m in range(n):
+                yi[m] = D[0, m]
             prod = 1.0
             for k in range(1, order + 1):
                 prod *= (t_out[i] - (t - h * (k - 1))) / (h * k)
-                yi += D[k] * prod
-            ys[i] = yi
-            rhs(t_out[i], yi, p, latched, counts, scratch)
-            diags[i] = scratch
+                for m in range(n):
+                    yi[m] += D[k, m] * prod
+            rhs_into(t_out[i], yi, p, latched, counts, diags[i], work, fk)
             i += 1
         if n_equal < order + 1:
             continue
@@ -694,6 +708,8 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
     yy = np.empty(n)
     y_new = np.empty(n)
     diag_new = np.zeros(N_DIAG)
+    work = np.empty(N_WORK)
+    f_out = np.empty(n)
     t = t0
     h = h0
     t_end = t_out[-1]
@@ -715,13 +731,13 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
             K[0] = f
             for s in range(1, 12):
                 _d853_stage(y, K, s, s, hh, yy)
-                K[s] = rhs(t + D853_C[s] * hh, yy, p, latched, counts, scratch)
+                rhs_into(t + D853_C[s] * hh, yy, p, latched, counts, scratch, work, K[s])
             for m in range(n):
                 acc = 0.0
                 for j in range(12):
                     acc += D853_B[j] * K[j, m]
                 y_new[m] = y[m] + hh * acc
-            K[12] = rhs(t_new, y_new, p, latched, counts, diag_new)
+            rhs_into(t_new, y_new, p, latched, counts, diag_new, work, K[12])
             e5 = 0.0
             e3 = 0.0
             for m in range(n):
@@ -747,7 +763,7 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
         if i < n_out and t_out[i] < t_new - 1e-15:
             for s in range(13, 16):
                 _d853_stage(y, K, s, s, hh, yy)
-                K[s] = rhs(t + D853_C[s] * hh, yy, p, latched, counts, scratch)
+                rhs_into(t + D853_C[s] * hh, yy, p, latched, counts, scratch, work, K[s])
             for m in range(n):
                 dy = y_new[m] - y[m]
                 F[0, m] = dy
@@ -767,11 +783,11 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
                         v *= x if r % 2 == 0 else 1.0 - x
                     yy[m] = y[m] + v
                 ys[i] = yy
-                rhs(t_out[i], yy, p, latched, counts, diags[i])
+                rhs_into(t_out[i], yy, p, latched, counts, diags[i], work, f_out)
                 i += 1
         t = t_new
         y[:] = y_new
-        f = K[12].copy()
+        f[:] = K[12]
         diag[:] = diag_new
         _latch(diag, latched, was)
         accepted += 1
