@@ -20,7 +20,7 @@ import pandas as pd
 from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
 from linkwork.papers import CITATIONS
-from linkwork.papers.clearance.words import CLAIM_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
+from linkwork.papers.clearance.words import CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
 
 md(f"**Paper.** {esc(CITATIONS['clearance'])}")
 NAMES = QUANTITY_WORDS
@@ -71,7 +71,7 @@ for r, v in enumerate(sorted(variants, key=lambda v: v != fnd.attrs["defensible_
                             capsize=4, color=colour, mfc=colour if valid else "white", label=f"start: {st}" if k == 0 and c == 0 else None)
         ax.set_yscale("log")
         ax.set_xticks(range(len(scene_codes)), [textwrap.fill(SCENE_WORDS[s_], 11) for s_ in scene_codes], fontsize=6.5)
-        measure = "RMS" if m == "rms" else "peak"
+        measure = MEASURE_WORDS[str(m)]
         ax.set_ylabel(f"{measure} deviation from the ideal on the state ({UNITS[str(q)]})")
         ax.set_title(f"{VARIANT_WORDS[v]}:\n{measure} deviation of the {NAMES[str(q)]}", fontsize=9)
         ax.grid(alpha=0.3, which="both", axis="y")
@@ -126,8 +126,8 @@ caption(f"The claims' measures per clearance scene on the state it settles into:
 # %% [markdown]
 # ## Summary: each claim per parameter variant and start
 #
-# A claim holds where every ordering it is made of (RMS and peak deviation from the ideal curve) holds on the measures
-# beyond both the confidence interval (states that are not periodic) and the numerical error; where a margin decides
+# A claim holds where every ordering it is made of (RMS, peak and ripple of the deviation from the ideal curve) holds on
+# the measures beyond both the confidence interval (states that are not periodic) and the numerical error; where a margin decides
 # an ordering, the claim is undetermined, and "decided by" names the margin. The start is a scenario: a claim that
 # holds from one start and fails from another depends on the initial state.
 
@@ -213,12 +213,34 @@ comp = comp.rename(columns={"comparison_difference": "difference", "comparison_s
 table(worded(comp), {"difference": "{:.4g}", "statistical margin": "{:.3g}", "numerical error": "{:.3g}"},
       caption="Every ordering the claims are made of, per start: difference of the measures (> 0 as claimed), its margins, outcome and what leaves it "
               "undetermined (empty margin: a scene's state is in doubt). The thresholds of claim 3 are our reading of 'close to the ideal': "
-              f"a lubricated scene below {claims.attrs['close_to_ideal_ratio']:g} × its dry one, and the {SCENE_WORDS['lubricated_2']} above the "
-              f"{SCENE_WORDS['lubricated_1']} (the ripples the paper sees at joint 2)")
-md("**What claim 3's second part is judged on.** The paper says small fluctuation peaks (ripples) are left at joint 2. Our measures are the RMS "
-   "and the peak of the deviation from the ideal curve over the judged turn: they rank how large the lubricated deviation is, not whether it is "
-   "ripple-like. The second part is therefore judged here on its size ordering only, a weaker reading than the paper's words; the deviation "
-   "curves of the lubricated scenes (the figures of the time series below) show its shape.")
+              f"a lubricated scene below {claims.attrs['close_to_ideal_ratio']:g} × its dry one in RMS, and the {SCENE_WORDS['lubricated_2']} above the "
+              f"{SCENE_WORDS['lubricated_1']} in ripple (the fluctuation peaks the paper sees at joint 2: the content above {claims.attrs['ripple_cutoff_hz']:g} Hz)")
+md(f"**What claim 3's second part is judged on.** The paper says that under lubrication the rocker acceleration follows the ideal curve, "
+   "'only with some small fluctuation peaks where clearance joint 2 is present'. Those are high-frequency fluctuations, not a larger deviation: "
+   "a smooth offset from the ideal curve is not a ripple, however large. So the second part is judged on the **ripple**, the RMS of the "
+   f"deviation's content above {claims.attrs['ripple_cutoff_hz']:g} Hz (the {int(claims.attrs['ripple_harmonic'])}th crank harmonic and above; "
+   "the journal's contact and film ring at kilohertz), per turn: the straight line from the turn's first to its last sample taken off, then the "
+   "discrete Fourier transform's power above the cutoff. It is judged on the state's window like the RMS and the peak, with their interval and "
+   "numerical error bar. The size of the deviation (RMS and peak) is shown beside it in the figure of the measures above: there the lubricated "
+   "joint 1 deviates more than joint 2, smoothly. The table below shows the ripple of each lubricated scene at the pipeline's tolerance and at "
+   "the two check tolerances on the same state: where it shrinks as the tolerance tightens, what the pipeline setting shows is the integrator's "
+   "own noise (the stiff film turns small state errors into acceleration noise), and the ordering is left to the numerical error.")
+ripple_rows = []
+for v in variants:
+    for s_ in ("lubricated_1", "lubricated_2", "lubricated_both"):
+        run_ = scenes[(v, s_)]
+        at = dict(measure="ripple", quantity="rocker_acceleration")
+        base = float(run_.judged_mean.sel(**at).isel(start=0))
+        row = {"variant": v, "scene": SCENE_WORDS[s_], f"pipeline ({in_words(run_.attrs['integrator_method'])}, rtol {run_.attrs['integrator_rtol']:g})": base}
+        for ck in run_.check.values:
+            row[f"check {ck}"] = base + float(run_.check_delta.sel(check=ck, **at).isel(start=0))
+        row["numerical error"] = float(run_.numerical_error.sel(**at).isel(start=0))
+        ripple_rows.append(row)
+ripple_table = pd.DataFrame(ripple_rows)
+table(ripple_table, {c: "{:.2g}" for c in ripple_table.columns if c not in ("variant", "scene")},
+      caption=f"Ripple of the rocker acceleration (RMS of the deviation's content above {claims.attrs['ripple_cutoff_hz']:g} Hz, rad/s²) of each lubricated "
+              "scene on its state, first start, at the pipeline's tolerance and rerun from the state's section point at each check tolerance; the numerical "
+              "error is the error bar the ordering is judged with (the largest change, plus the convergence term).")
 
 # %% [markdown]
 # ## The states: per scene and start

@@ -146,12 +146,37 @@ def test_the_peak_deviation_converges_as_the_sampling_grows():
     assert abs(peaks[pipeline] - finest) < 1e-3 * abs(peaks[3600] - finest)  # the spike is resolved only from the pipeline sampling on
 
 
+@pytest.mark.parametrize("n", [720, 721])
+def test_the_ripple_is_the_content_above_the_cutoff_harmonic(n):
+    """The ripple of one turn (n steps, the end point included): sines at harmonics 3 (below the cutoff 50), 51 and
+    80 (above) on a drift (a turn that does not close) give sqrt((b^2 + c^2) / 2) exactly, the drift and the low
+    sine contributing nothing; by a second route, the RMS of what is left in time after the line and the harmonics
+    up to the cutoff are taken off (the inverse transform), for an even and an odd n (the Nyquist term's weight).
+    Without the line the drift's jump would leak: the same signal's ripple is then over 20 % larger."""
+    from linkwork.papers.clearance.settling import ripple, ripple_harmonic
+
+    k = np.arange(n + 1) / n
+    b, c = 0.3, 0.2
+    x = 5.0 * np.sin(2 * np.pi * 3 * k) + b * np.sin(2 * np.pi * 80 * k) + c * np.cos(2 * np.pi * 51 * k) + 7.0 * k
+    assert ripple(x, 50) == pytest.approx(np.sqrt((b**2 + c**2) / 2), rel=1e-12)
+    line = x[0] + (x[-1] - x[0]) * k[:-1]
+    spectrum = np.fft.rfft(x[:-1] - line)
+    spectrum[51:] = 0.0
+    left = x[:-1] - line - np.fft.irfft(spectrum, n)
+    assert ripple(x, 50) == pytest.approx(np.sqrt(np.mean(left**2)), rel=1e-10)
+    assert ripple(np.stack([x, 2 * x]), 50) == pytest.approx(np.array([1.0, 2.0]) * ripple(x, 50), rel=1e-12)
+    jump = np.fft.rfft(x[:-1])  # no line taken off: the drift's jump at the turn's end leaks into every harmonic
+    assert np.sqrt(2 * np.sum(np.abs(jump[51:]) ** 2)) / n > 1.2 * ripple(x, 50)
+    assert ripple_harmonic(500.0, 20 * np.pi) == 50 and ripple_harmonic(499.0, 20 * np.pi) == 49
+
+
 def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar():
     """A real scene (link inertias as printed, joint 1 dry, one start): its state is a periodic orbit found before
     the cap; the judged window starts after the transient and holds whole periods; the measure is the mean over one
     period; the two check integrators, restarted from the section point, stay on the orbit and move the measure by
     far less than the margins the claims are decided by (1e-4 of it); the start settled again from its initial state
-    at the first check integrator reaches a recorded state, and the error bar holds the largest of all these changes."""
+    at the first check integrator reaches a recorded state, and the error bar holds the largest of all these changes; the
+    ripple the runner took of the last turn is the ripple of the stored time series' last turn."""
     from linkwork.papers.clearance.studies import scene
 
     cfg = copy.deepcopy(SECTION)
@@ -170,13 +195,27 @@ def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar(
     largest = max(float(np.abs(ds.check_delta.sel(**rms)[0]).max()), abs(float(ds.reach_delta.sel(**rms)[0])))
     assert float(ds.numerical_error.sel(**rms)[0]) == pytest.approx(largest + float(ds.convergence_error.sel(**rms)[0]), rel=1e-12)
     assert ds.attrs["sampling_over_contact_frequency"] >= 4.0
+    # the ripple of the last turn run, per cycle as the runner took it and again from the stored time series (the
+    # figures' record: its last turn, the end point included)
+    from linkwork.papers.clearance.settling import ripple
+
+    per = cfg["numerics"]["points_per_cycle"]
+    last = (ds.rocker_acceleration - ds.ideal_rocker_acceleration).values[-(per + 1):]
+    n = int(ds.record_cycles[0])
+    taken = float(ds.cycle_deviation.sel(measure="ripple", quantity="rocker_acceleration").values[0][n - 1])
+    assert ripple(last, int(ds.attrs["ripple_harmonic"])) == pytest.approx(taken, rel=1e-12) and taken > 0
 
 
 class _Scripted:
-    """A stand-in for CycleRunner: per cycle the section point and measures of a scripted orbit after a transient."""
+    """A stand-in for CycleRunner: per cycle the section point and measures of a scripted orbit after a transient
+    (the scripted columns repeated over the measures, as many rows as a CycleRunner gives)."""
 
     def __init__(self, orbit, measures, transient=3):
-        self.orbit, self.measures, self.transient, self.n = np.asarray(orbit, float), np.asarray(measures, float), transient, 0
+        from linkwork.papers.clearance.settling import MEASURE_ROWS
+
+        measures = np.asarray(measures, float)
+        self.orbit, self.transient, self.n = np.asarray(orbit, float), transient, 0
+        self.measures = np.tile(measures, len(MEASURE_ROWS) // measures.shape[1])
 
     def step(self, n):
         k = np.arange(self.n, self.n + n)
@@ -198,9 +237,9 @@ def test_the_state_a_start_reaches_at_the_check_tolerance_is_compared_with_the_p
     found = settle(pipeline.step, 4, 60, 4, 1e-9, 3, 20, 0.95)
     assert found["period"] == 2
     same = reach_state(lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
-    assert same["same"] == 1.0 and same["period"] == 2 and np.allclose(same["delta"], [0.5, 0.0])
+    assert same["same"] == 1.0 and same["period"] == 2 and np.allclose(same["delta"], np.tile([0.5, 0.0], 3))
     other = reach_state(lambda _c, **_: _Scripted([[0.9, -0.9]], [[30.0, 2.0]]), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
-    assert other["same"] == 0.0 and other["period"] == 1 and np.allclose(other["delta"], [30.0 - 11.0, 0.0])
+    assert other["same"] == 0.0 and other["period"] == 1 and np.allclose(other["delta"], np.tile([30.0 - 11.0, 0.0], 3))
 
     class _Failing:
         def step(self, n):

@@ -145,3 +145,24 @@ def test_a_drift_that_never_stops_reaches_the_cap_and_says_so():
     assert found["status"] == CAP and found["points"].shape[0] == n
     assert not thirds_agree(measures.T, 0.95)[0]
     assert thirds_agree(100.0 + np.random.default_rng(4).standard_normal((2, 90)), 0.95)[0]
+
+
+def test_settle_reads_only_the_rows_it_is_given_and_returns_every_row():
+    """``rows`` names the measure rows the transient cut and the stationarity test read: a second row that keeps
+    drifting holds a record at the cap when it is read, and is recorded but not read when ``rows`` leaves it out
+    (the record then settles as stationary on the first row, and the drifting row comes back whole)."""
+    from linkwork.engines.states import CAP, STATIONARY, settle
+
+    n = 120
+    rng = np.random.default_rng(5)
+    steady = 100.0 + rng.standard_normal(n)
+    drifting = np.linspace(100.0, 160.0, n) + 0.1 * rng.standard_normal(n)
+    measures = np.stack([steady, drifting], axis=1)
+    points = rng.standard_normal((n, 2))
+    step, _ = _stepper(points, measures)
+    read_all = settle(step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95)
+    step, _ = _stepper(points, measures)
+    first_only = settle(step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95, rows=(0,))
+    assert read_all["status"] == CAP
+    assert first_only["status"] == STATIONARY and first_only["measures"].shape[1] == 2
+    assert np.array_equal(first_only["measures"], measures[: first_only["measures"].shape[0]])

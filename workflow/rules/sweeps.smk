@@ -25,7 +25,7 @@ def sweep_cfg(name):
         scene = config["clearance"]["scenes"][spec["scene"]]
         keys = clearance_adapter.model_keys(config["clearance"], spec["variant"], spec["scene"])
         keys = [k for k in keys if k != "crank_speed_rad_s" and (k != "joints.journal_radius_m" or "lubrication" in scene["effects"])]
-        return section("clearance", *keys, "numerics.points_per_cycle", f"integrators.{clearance_adapter.integrator_kind(scene)}", "states", "statistics")
+        return section("clearance", *keys, "numerics.points_per_cycle", f"integrators.{clearance_adapter.integrator_kind(scene)}", "states", "statistics", "claims.ripple_cutoff_hz")
     if name == "heald":
         swept = ("clearance_E", "clearance_F", "reaction_E")
         return section("heald", *(f"parameters.{p}" for p in config["heald"]["parameters"] if p not in swept), "excitation", "speeds")

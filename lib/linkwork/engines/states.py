@@ -114,7 +114,7 @@ PERIODIC, STATIONARY, CAP = "periodic", "stationary", "cycle cap reached"
 
 
 def settle(step, chunk: int, max_cycles: int, max_period: int, section_tol: float, periods: int, min_cycles: int,
-           confidence: float) -> dict:
+           confidence: float, rows=None) -> dict:
     """Run a driven system chunk by chunk until its state is found.
 
     ``step(n)`` runs n more drive cycles and returns (section points (n, components) at each cycle's start,
@@ -125,7 +125,8 @@ def settle(step, chunk: int, max_cycles: int, max_period: int, section_tol: floa
     remain, the state is stationary if the remaining
     measures' last third agrees with their middle third (``thirds_agree``); it is judged on the cycles after the cut.
     ``max_cycles`` is a size guard: a record that reaches it ends with status CAP (its last two thirds shown as
-    window, with no interval).
+    window, with no interval).  ``rows``: the measure rows the transient cut and the stationarity test read (all by
+    default); every row is recorded and returned.
 
     Returns {status, period, transient, window (first, stop), points, measures, change}."""
     points, measures = [], []
@@ -140,10 +141,11 @@ def settle(step, chunk: int, max_cycles: int, max_period: int, section_tol: floa
         if period != NOT_PERIODIC:
             first, stop = judged_window(n, period, transient, period)
             return {"status": PERIODIC, "period": period, "transient": transient, "window": (first, stop), "points": x, "measures": m, "change": 0.0}
-        cut = truncation_point(m.T)
+        tested = m if rows is None else m[:, list(rows)]
+        cut = truncation_point(tested.T)
         # a cut beyond a third of the record says the transient may still leave a bias in the window: not yet
-        ok, change = thirds_agree(m[cut:].T, confidence) if n - cut >= min_cycles and cut <= n // 3 else (False, float("inf"))
+        ok, change = thirds_agree(tested[cut:].T, confidence) if n - cut >= min_cycles and cut <= n // 3 else (False, float("inf"))
         if ok or n >= max_cycles:
             cut = cut if ok else n // 3
             return {"status": STATIONARY if ok else CAP, "period": NOT_PERIODIC, "transient": cut, "window": (cut, n), "points": x, "measures": m,
-                    "change": thirds_agree(m[cut:].T, confidence)[1]}
+                    "change": thirds_agree(tested[cut:].T, confidence)[1]}

@@ -341,21 +341,40 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
     close = [i for i, lab in enumerate(labels) if " < " in lab]
     ripples = [i for i, lab in enumerate(labels) if "lubricated_2 > lubricated_1" in lab]
     out = claims.comparison_outcome.values
+    at = dict(measure="ripple", quantity="rocker_acceleration", scene="lubricated_2")
+    ratio = claims.numerical_error.sel(**at) / claims.mean_deviation.sel(**at)
     return xr.Dataset({"claim3_close_holds": (("variant", "start"), (out[..., close] == 1).all(axis=-1).astype(int),
                                               {"units": "1", "long_name": "1 if every lubricated scene is decidedly below the threshold times its dry one"}),
                        "claim3_ripples_holds": (("variant", "start"), (out[..., ripples] == 1).all(axis=-1).astype(int),
-                                                {"units": "1", "long_name": "1 if joint 2's lubricated rocker-acceleration deviation is decidedly above joint 1's"})},
+                                                {"units": "1", "long_name": "1 if joint 2's lubricated rocker-acceleration ripple (content above the cutoff) is decidedly above joint 1's"}),
+                       "claim3_ripples_outcome": (("variant", "start"), out[..., ripples].min(axis=-1).astype(int),
+                                                  {"units": "1", "long_name": "the ripple ordering of claim 3: 1 holds, 0 fails, -1 undetermined"}),
+                       "ripple_error_ratio": (("variant", "start"), ratio.transpose("variant", "start").values,
+                                              {"units": "1", "long_name": "numerical error of the lubricated joint 2's rocker-acceleration ripple over the ripple"})},
                       coords={"variant": claims.variant, "start": claims.start})
 
 
 def ripples_text(findings: xr.Dataset) -> str:
-    """Where claim 3 fails on its ripples alone, one sentence (from the first start)."""
+    """Where claim 3's first part holds and its ripple part alone fails or is undetermined, one sentence each (from the
+    first start)."""
     if "claim3_close_holds" not in findings:
         return ""
-    only = [str(v) for v in findings.variant.values
-            if int(findings.claim3_close_holds.sel(variant=v).isel(start=0)) and not int(findings.claim3_ripples_holds.sel(variant=v).isel(start=0))]
-    return (f" Claim 3 is made of two parts ({', '.join(only)}): lubrication brings every scene close to the ideal, which holds, while the "
-            "ripples left at joint 2 are not larger than at joint 1 at the nominal inputs." if only else "")
+    first = findings.isel(start=0)
+    close = [str(v) for v in findings.variant.values if int(first.claim3_close_holds.sel(variant=v))]
+    fails = [v for v in close if int(first.claim3_ripples_outcome.sel(variant=v)) == 0]
+    open_ = [v for v in close if int(first.claim3_ripples_outcome.sel(variant=v)) == -1]
+    text = ""
+    if fails:
+        text += (f" Claim 3 is made of two parts ({', '.join(fails)}): lubrication brings every scene close to the ideal, which holds, while the "
+                 "ripples left at joint 2 (the rocker acceleration's content above the ripple cutoff) are not larger than at joint 1 at the nominal inputs.")
+    if open_:
+        ratio = first.ripple_error_ratio.sel(variant=open_)
+        text += (f" Claim 3 is made of two parts ({', '.join(open_)}): lubrication brings every scene close to the ideal, which holds, while whether "
+                 "ripples are left at joint 2 (the rocker acceleration's content above the ripple cutoff) is undetermined by the numerics: the "
+                 f"ripple of the lubricated joint 2 carries a numerical error bar of {' and '.join(f'{float(ratio.sel(variant=v)):.2g}' for v in open_)} "
+                 "times itself (it shrinks at the tighter check tolerances: at the pipeline's tolerance most of it is the integrator's own noise, "
+                 "which the stiff film amplifies in the accelerations).")
+    return text
 
 
 def film_cap_text(findings: xr.Dataset) -> str:

@@ -41,13 +41,13 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
     """Rule study: the compared scenes with contact under ``law`` from every start's nominal state, and the dry
     scenes' states with the other start's contact memory (the judged measure per scene and direction)."""
 
-    from .studies import QUANTITIES, scene
+    from .studies import MEASURES, QUANTITIES, scene
 
     runs = {str(r.attrs["scene"]): r for r in nominal}
     starts = [str(x) for x in next(iter(runs.values())).start.values]
     ds = batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal, all_starts=True)
     names = [n for n in SWAPPED if n in runs]
-    swap = np.full((len(names), 2, 2, len(QUANTITIES)), np.nan)
+    swap = np.full((len(names), 2, len(MEASURES), len(QUANTITIES)), np.nan)
     latched = np.full((len(names), 2, 2), np.nan)  # scene, start, joint
     if len(starts) > 1:
         for k, name in enumerate(names):

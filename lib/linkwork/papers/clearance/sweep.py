@@ -64,7 +64,7 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
     ppc = cfg["numerics"]["points_per_cycle"]
     period = 2 * np.pi / p.crank_speed
     ideal = inverse_dynamics(p, np.arange(ppc + 1) * period / ppc, "gravity" in effects)  # one cycle: the ideal response is periodic
-    runner = CycleRunner(p, joints, effects, cfg["integrators"][integrator_kind(cfg["scenes"][name])], ideal, ppc, 1,
+    runner = CycleRunner(p, joints, effects, cfg["integrators"][integrator_kind(cfg["scenes"][name])], ideal, ppc, 1, cfg["claims"]["ripple_cutoff_hz"],
                          y0=start_state(p, joints, cfg["states"]["starts"][0]))
     found = settle_start(runner, cfg["states"], cfg["statistics"]["confidence"])
     first, stop = found["window"]

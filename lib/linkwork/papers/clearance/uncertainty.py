@@ -87,11 +87,11 @@ def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], varia
     import xarray as xr
 
     from .adapter import EFFECT_KEYS
-    from .studies import COMPARED, QUANTITIES, scene
+    from .studies import COMPARED, MEASURES, QUANTITIES, scene
 
     runs = {str(r.attrs["scene"]): r for r in nominal}
     contact_only = set(EFFECT_KEYS["contact"]) | set(EFFECT_KEYS["friction"])
-    stats = np.full((len(samples), 1, 2, len(QUANTITIES), len(COMPARED), len(SAMPLE_STATISTICS)), np.nan)
+    stats = np.full((len(samples), 1, len(MEASURES), len(QUANTITIES), len(COMPARED), len(SAMPLE_STATISTICS)), np.nan)
     state = np.full((len(samples), 1, len(COMPARED), len(SAMPLE_STATE)), np.nan)
     status = np.full((len(samples), 1, len(COMPARED)), "", dtype=object)
     held = np.zeros((len(samples), 1, len(COMPARED)))
@@ -123,7 +123,7 @@ def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], varia
         coords={
             "sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "sample"}),
             "variant": ("variant", np.array([variant], dtype=object), {"units": "1", "long_name": "parameter variant"}),
-            "measure": ("measure", np.array(["rms", "peak"], dtype=object), {"units": "1", "long_name": "deviation measure"}),
+            "measure": ("measure", np.array(MEASURES, dtype=object), {"units": "1", "long_name": "deviation measure"}),
             "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
             "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
             "statistic": ("statistic", np.array(SAMPLE_STATISTICS, dtype=object), {"units": "1", "long_name": "statistic"}),

@@ -16,6 +16,8 @@ SCENE_WORDS = {"ideal": "ideal joints", **{f"{kind}_{joint}": f"{kw} at {jw}"
 CLAIM_WORDS = {"acceleration_order": "claim 1 (rocker-acceleration order)",
                "torque_order": "claim 2 (crank-torque order)",
                "lubrication_close": "claim 3 (lubrication close to the ideal)"}
+#: Deviation measure -> its short name in words (titles, labels).
+MEASURE_WORDS = {"rms": "RMS", "peak": "peak", "ripple": "ripple"}
 #: Compared response -> words.
 QUANTITY_WORDS = {"rocker_acceleration": "rocker acceleration", "crank_torque": "crank torque"}
 #: Symbols of the interval's description -> words.
