@@ -276,12 +276,22 @@ def assemble(mesh: BeamMesh, element_matrices: list[FloatArray], angles: FloatAr
     element_matrices: one local matrix per element; angles: (n_config, n_elements) element directions.
     Returns (n_config, n_dof, n_dof).
     """
-    n_dof, table = mesh.dof_indices()
+    return scatter(mesh, rotated(mesh, element_matrices, angles))
+
+
+def rotated(mesh: BeamMesh, element_matrices: list[FloatArray], angles: FloatArray) -> list[FloatArray]:
+    """Each element's matrix in the global frame, T^T m T over configurations: one (n_config, size, size) per element
+    (angles: (n_config, n_elements), rad)."""
     angles = np.atleast_2d(angles)
-    out = np.zeros((angles.shape[0], n_dof, n_dof))
-    for e, m_loc in enumerate(element_matrices):
-        t = local_to_global(mesh.kind, angles[:, e])
-        m_glob = rotate(t, m_loc)
+    return [rotate(local_to_global(mesh.kind, angles[:, e]), m_loc) for e, m_loc in enumerate(element_matrices)]
+
+
+def scatter(mesh: BeamMesh, element_globals: list[FloatArray]) -> FloatArray:
+    """Global matrices (n_config, n_dof, n_dof): the elements' global-frame matrices (``rotated``) summed by the dof
+    table, element by element."""
+    n_dof, table = mesh.dof_indices()
+    out = np.zeros((element_globals[0].shape[0], n_dof, n_dof))
+    for e, m_glob in enumerate(element_globals):
         idx = table[e]
         keep = np.flatnonzero(idx >= 0)
         gi = idx[keep]

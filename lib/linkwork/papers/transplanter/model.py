@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate
+from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate, rotated, scatter
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
 FloatArray = NDArray[np.float64]
@@ -233,7 +233,8 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
         k_loc.append(k_e)
         m_loc.append(m_e)
     k = assemble(disc.mesh, k_loc, el_dir)
-    m = assemble(disc.mesh, m_loc, el_dir if mass == "all" else el_dir[:1])
+    m_all = rotated(disc.mesh, m_loc, el_dir) if mass == "all" else None  # every angle's: the loads reuse them
+    m = scatter(disc.mesh, m_all) if m_all is not None else assemble(disc.mesh, m_loc, el_dir[:1])
     # element loads
     n_dof, table = disc.mesh.dof_indices()
     f = np.zeros((len(motion.theta), n_dof))
@@ -244,8 +245,8 @@ def system_matrices(mech: Transplanter, disc: Discretisation, diameters, materia
             rig[:, o] = node_acc[:, node, 0]
             rig[:, o + 1] = node_acc[:, node, 1] + gravity
             rig[:, o + 2] = motion.alpha[:, member]
-        t = local_to_global(kind, el_dir[:, e])
-        f_e = -(rotate(t, m_loc[e]) @ rig[..., None])[..., 0]
+        m_e = m_all[e] if m_all is not None else rotate(local_to_global(kind, el_dir[:, e]), m_loc[e])
+        f_e = -(m_e @ rig[..., None])[..., 0]
         idx = table[e]
         keep = np.flatnonzero(idx >= 0)
         np.add.at(f, (slice(None), idx[keep]), f_e[:, keep])
