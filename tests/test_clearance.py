@@ -353,6 +353,32 @@ def test_an_undetermined_ordering_names_the_margin_that_decides_it():
     assert claim_reason(["", "numerical error", "statistical margin", "numerical error"]) == "numerical error; statistical margin"
 
 
+def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
+    """ripples_text on hand-made findings: where the first part holds and the ripple orderings are undetermined, the
+    sentence gives the check reruns' change (read, not typed), the convergence term where it is the larger, the
+    outcome at the tightest tolerance per variant, the ripples' size against the ideal, and the cutoffs that decide;
+    where the ripple orderings fail decidedly, it says they are not larger; no sentence where the ripple part holds."""
+    import xarray as xr
+
+    from linkwork.papers.clearance.findings import ripples_text
+    from prose import leaks
+
+    vs = ("variant", "start")
+    findings = xr.Dataset({"claim3_close_holds": (vs, [[1, 1], [1, 1]]), "claim3_ripples_outcome": (vs, [[-1, -1], [-1, -1]]),
+                           "ripple_check_ratio": (vs, [[0.86, 0.8], [0.96, 0.9]]), "ripple_convergence_ratio": (vs, [[37.0, 1.0], [0.01, 0.0]]),
+                           "ripple_tight_holds": (vs, [[1, 1], [0, 0]]), "ripple_over_ideal": ("variant", [4.2e-6, 6.1e-6]),
+                           "lubricated_deviation_over_ideal": ("variant", [0.0031, 0.00052]),
+                           "ripple_cutoff_holds": (("variant", "ripple_cutoff"), [[0, 1, 1], [1, 1, 1]])},
+                          coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "ripple_cutoff": [150.0, 500.0, 2000.0]})
+    text = ripples_text(findings)
+    for part in ("undetermined by the numerics", "0.86 (decoded) and 0.96 (slender)", "makes the error bar 37 times", "hold in decoded",
+                 "fail in slender", "4e-06 (decoded) and 6e-06 (slender)", "holds at 500, 2000 Hz and not at 150 Hz"):
+        assert part in text, (part, text)
+    assert "slender (each" not in text and not leaks(text)
+    assert "are not larger than at joint 1" in ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[0, 0], [0, 0]])))
+    assert ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[1, 1], [1, 1]]))) == ""
+
+
 def test_the_answer_is_plain_sentences_read_from_the_results():
     """answer() on a hand-made comparison table (two starts) and findings: a few sentences, no code name, the
     verdicts per variant from the first start, the claim the start decides, the penetration numbers and the law's
@@ -372,7 +398,8 @@ def test_the_answer_is_plain_sentences_read_from_the_results():
     survives = [[[1, 1, 1], [0, 1, 1]], [[1, 1, 1], [1, 1, 1]]]  # decoded, start b: claim 1 changes with the law
     findings = xr.Dataset({"dry_penetration_max": ("variant", [1.37, 0.61]), "physically_consistent": ("variant", [0, 0]),
                            "sphere_law_valid": ("variant", [0, 0]), "law_survives": (("variant", "start", "claim"), survives),
-                           "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]), "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]])},
+                           "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]), "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]]),
+                           "claim3_ripples_outcome": (("variant", "start"), [[0, 0], [0, 0]])},
                           coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "claim": ["acceleration_order", "torque_order", "lubrication_close"]},
                           attrs={"sphere_law_limit_over_clearance": 0.0635})
     text = answer(table, findings)

@@ -194,6 +194,8 @@ def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar(
     assert str(ds.reach_status.values[0]) in ("periodic", "stationary") and np.isfinite(ds.reach_same_state.values[0])
     largest = max(float(np.abs(ds.check_delta.sel(**rms)[0]).max()), abs(float(ds.reach_delta.sel(**rms)[0])))
     assert float(ds.numerical_error.sel(**rms)[0]) == pytest.approx(largest + float(ds.convergence_error.sel(**rms)[0]), rel=1e-12)
+    # on a periodic state a check's own measure is the pipeline's judged measure plus its change, for every measure
+    assert np.allclose(ds.check_mean.values[0], ds.judged_mean.values[0][None] + ds.check_delta.values[0], rtol=1e-12, atol=0.0)
     assert ds.attrs["sampling_over_contact_frequency"] >= 4.0
     # the ripple of the last turn run, per cycle as the runner took it and again from the stored time series (the
     # figures' record: its last turn, the end point included)

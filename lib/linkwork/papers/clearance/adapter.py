@@ -34,7 +34,7 @@ ELASTIC_LAW_KEYS: dict[str, tuple[str, ...]] = {"hertz-sphere": (), "pereira": (
 LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
 WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
 #: What a scene with clearance joints reads to find its states and judge the claims' measures on them.
-SETTLE_KEYS = ("states", "statistics.batch_cycles", "statistics.confidence", "claims.ripple_cutoff_hz")
+SETTLE_KEYS = ("states", "statistics.batch_cycles", "statistics.confidence", "claims.ripple_cutoff_hz", "claims.ripple_cutoff_sensitivity_hz")
 #: What a scene with clearance joints reads besides its effects.
 DYNAMIC_KEYS = ("joints.journal_radius_m", "joints.bearing_radius_m", "numerics.baumgarte")
 

@@ -169,7 +169,7 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     start of the last judged period (a periodic state) or of the judged window (else), run ``check_cycles`` cycles
     (at least two periods).  Per check: the mean of each measure row over its last period (periodic state) or over
     all its cycles (else), against the pipeline's mean over its judged period or the same cycles of the window
-    (any drift left in the state is counted with the error); whether the rerun keeps the state (its last section point within
+    (any drift left in the state is counted with the error) and that mean itself; whether the rerun keeps the state (its last section point within
     ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the state is not periodic: not testable); the
     period its section shows over the rerun (0 where the rerun is too short to show one: a report, not a test; -1
     where the check integrator failed, its delta then NaN).
@@ -180,6 +180,7 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     n = max(st["check_cycles"], 2 * period) if period != NOT_PERIODIC else st["check_cycles"]
     measures = found["measures"]
     deltas = np.full((len(checks), measures.shape[1]), np.nan)
+    means = np.full((len(checks), measures.shape[1]), np.nan)
     kept, periods, distances = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int), np.full(len(checks), np.nan)
     orbit = found["points"][stop - period : stop] if period != NOT_PERIODIC else None
     restart = stop - period if period != NOT_PERIODIC else first
@@ -201,8 +202,8 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
         else:
             ours = meas.mean(axis=0)
             base = measures[first : min(first + n, stop)].mean(axis=0)
-        deltas[i] = ours - base
-    return {"delta": deltas, "kept": kept, "period": periods, "distance": distances}
+        deltas[i], means[i] = ours - base, ours
+    return {"delta": deltas, "mean": means, "kept": kept, "period": periods, "distance": distances}
 
 
 def reach_state(make_runner, found: Mapping[str, Any], start_runner_args: Mapping[str, Any], check, st: Mapping[str, Any], batch: int,

@@ -160,6 +160,14 @@ def _dynamic_scene(cfg, p, variant, scene, joints, effects, per, shown, first_st
                           reached)
 
 
+def ripple_by_cutoff(turn: np.ndarray, cutoffs_hz: np.ndarray, crank_speed: float) -> np.ndarray:
+    """The ripple (``settling.ripple``) of one turn ``turn`` (rows x (n + 1) samples, the end point included) at each
+    cutoff (Hz) at ``crank_speed`` (rad/s): rows x cutoffs."""
+    from .settling import ripple, ripple_harmonic
+
+    return np.stack([ripple(turn, ripple_harmonic(c, crank_speed)) for c in cutoffs_hz], axis=-1)
+
+
 def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, starts, found, runners, checked, ideal_cycle, per, shown, extremes_names, judged_statistics,
                    reached=()):
     """The scene's result Dataset (see ``scene``); ``reached``: per start, ``settling.reach_state``'s record (empty:
@@ -175,6 +183,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     judged = np.full((ns, len(MEASURES), len(QUANTITIES), 5), np.nan)
     window_ext = np.full((ns, len(extremes_names), 2), np.nan)
     delta = np.full((ns, len(checks), len(MEASURES), len(QUANTITIES)), np.nan)
+    check_mean = np.full_like(delta, np.nan)
     kept, check_period = np.full((ns, len(checks)), np.nan), np.zeros((ns, len(checks)), dtype=int)
     check_distance = np.full((ns, len(checks)), np.nan)
     for i, (f, r, c) in enumerate(zip(found, runners, checked, strict=True)):
@@ -187,6 +196,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
         for k, j in enumerate(joints):
             window_ext[i, :, j - 1] = np.nanmax(ext[:, k, :], axis=0)
         delta[i] = c["delta"].reshape(len(checks), len(MEASURES), len(QUANTITIES))
+        check_mean[i] = c["mean"].reshape(len(checks), len(MEASURES), len(QUANTITIES))
         kept[i], check_period[i], check_distance[i] = c["kept"], c["period"], c["distance"]
     reach_delta = np.full((ns, len(MEASURES), len(QUANTITIES)), np.nan)
     reach_same, reach_period = np.full(ns, np.nan), np.full(ns, -1)
@@ -210,6 +220,8 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
     t = np.concatenate([runners[0].last[0][0]] + [x[0][1:] for x in runners[0].last[1:]])
     d = np.concatenate([runners[0].last[0][1]] + [x[1][1:] for x in runners[0].last[1:]])
     ideal = {k: np.r_[np.tile(v[:-1], len(runners[0].last)), v[-1:]] for k, v in ideal_cycle.items()}
+    cutoffs = np.array(cfg["claims"]["ripple_cutoff_sensitivity_hz"], dtype=float)
+    by_cutoff = ripple_by_cutoff(np.stack([d[-(per + 1):, col] - ideal[q][-(per + 1):] for col, q in enumerate(QUANTITIES)]), cutoffs, p.crank_speed)
     per_joint = np.full((2, 6, t.size), np.nan)
     for k, j in enumerate(joints):
         per_joint[j - 1] = d[:, 4 + 6 * k : 10 + 6 * k].T
@@ -251,6 +263,12 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             "judged_cycles": (sd, judged[..., 4], {"units": "1", "long_name": "cycles the measure is taken over"}),
             "check_delta": (("start", "check", "measure", "quantity"), delta, {"units": "SI of the quantity", "long_name": "measure at the check integrator - measure at the pipeline's, on the same state",
                                                                   "nan_meaning": "the check integrator failed (gave up on a step)"}),
+            "ripple_by_cutoff": (("quantity", "ripple_cutoff"), by_cutoff, {"units": "SI of the quantity", "long_name": "ripple of the first start's last turn "
+                                                                                                               "run, at each cutoff of the sensitivity list"}),
+            "check_mean": (("start", "check", "measure", "quantity"), check_mean,
+                           {"units": "SI of the quantity", "long_name": "measure at the check integrator on the same state: over its last period (periodic), or over all its "
+                                                                     "cycles (a state that is not periodic: a few cycles, against the same cycles of the window in check_delta)",
+                            "nan_meaning": "the check integrator failed (gave up on a step)"}),
             "check_kept_state": (("start", "check"), kept, {"units": "1", "long_name": "1 if the check run stays on the pipeline's periodic orbit (its period, within the state tolerance)",
                                                           "nan_meaning": "the state is not periodic: not testable"}),
             "check_distance": (("start", "check"), check_distance, {"units": "1", "long_name": "largest section component's distance of the check run's last point "
@@ -292,6 +310,7 @@ def _scene_dataset(p, variant, scene, joints, effects, integ, checks, cfg, start
             "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
             "time": ("time", t - t[0], {"units": "s", "long_name": "time from the start of the cycles shown"}),
             "joint": ("joint", np.array(JOINT_IDS), {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
+            "ripple_cutoff": ("ripple_cutoff", cutoffs, {"units": "Hz", "long_name": "ripple cutoff (the sensitivity list)"}),
         },
     )
     steps = sum(r.run.steps for r in runners)
@@ -351,8 +370,9 @@ def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[floa
     """Every ordering the claims are made of: (claim, label, measure, quantity, terms (coefficient, scene)); an
     ordering holds where sum of coefficient x mean > 0.  The order claims use the RMS and the peak deviation;
     'lubrication close to ideal' the RMS: each lubricated scene below ``ratio`` times its dry one (both responses),
-    and joint 2's lubricated ripple of the rocker acceleration above joint 1's (the "small fluctuation peaks" the paper
-    sees left at joint 2: the content above the ripple cutoff, not the size of the deviation)."""
+    and the ripple of the rocker acceleration with joint 2 lubricated (alone, and with joint 1) above joint 1's alone (the
+    "small fluctuation peaks" the paper sees where joint 2 has clearance, Figs. 6 and 7: the content above the ripple
+    cutoff, not the size of the deviation)."""
     out = []
     for claim, quantity, first in (("acceleration_order", "rocker_acceleration", ("dry_2", "dry_1")), ("torque_order", "crank_torque", ("dry_1", "dry_2"))):
         for measure in ("rms", "peak"):
@@ -363,7 +383,8 @@ def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[floa
             out.append(("lubrication_close", f"rms {quantity}: {lub} < {ratio:g} x {dry}", "rms", quantity, ((ratio, dry), (-1.0, lub))))
     # the ripples the paper sees left at joint 2 (Fig. 6, the rocker acceleration; it says nothing of them in the torque): its
     # "small fluctuation peaks" are high-frequency content, which the ripple measures and a size does not
-    out.append(("lubrication_close", "ripple rocker_acceleration: lubricated_2 > lubricated_1", "ripple", "rocker_acceleration", ((1.0, "lubricated_2"), (-1.0, "lubricated_1"))))
+    for joint_2 in ("lubricated_2", "lubricated_both"):  # joint 2 lubricated, alone (Fig. 6) and with joint 1 (Fig. 7)
+        out.append(("lubrication_close", f"ripple rocker_acceleration: {joint_2} > lubricated_1", "ripple", "rocker_acceleration", ((1.0, joint_2), (-1.0, "lubricated_1"))))
     return out
 
 
@@ -606,11 +627,18 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
         data[f"scene_{key}"] = (("variant", "scene", "start", "check"), arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
     reach = np.array([[runs[(v, n)].reach_delta.values for n in COMPARED] for v in variants])  # variant, scene, start, measure, quantity
     data["scene_reach_delta"] = (("variant", "scene", "start", "measure", "quantity"), reach, dict(runs[(variants[0], COMPARED[0])].reach_delta.attrs))
+    for key in ("check_delta", "check_mean", "convergence_error"):  # the error bar's parts (variant, scene, start, [check,] measure, quantity)
+        arr = np.array([[runs[(v, n)][key].values for n in COMPARED] for v in variants])
+        data[f"scene_{key}"] = (("variant", "scene") + runs[(variants[0], COMPARED[0])][key].dims, arr, dict(runs[(variants[0], COMPARED[0])][key].attrs))
+    by_cutoff = np.array([[runs[(v, n)].ripple_by_cutoff.values for n in COMPARED] for v in variants])  # variant, scene, quantity, cutoff
+    data["scene_ripple_by_cutoff"] = (("variant", "scene", "quantity", "ripple_cutoff"), by_cutoff, dict(runs[(variants[0], COMPARED[0])].ripple_by_cutoff.attrs))
     dist = data["scene_check_distance"][1]
     largest = np.max(np.where(np.isfinite(dist), dist, -np.inf), axis=-1)
     data["scene_check_distance_max"] = (("variant", "scene", "start"), np.where(np.isfinite(largest), largest, np.nan),
                                         {"units": "1", "long_name": "largest distance of a check rerun from the pipeline orbit", "nan_meaning": "not periodic, or every check failed"})
     data["scene_states_differ"] = (("variant", "scene"), states_differ(stats, num), {"units": "1", "long_name": "1 if two starts' measures differ beyond their intervals and numerical errors (different states)"})
+    ideal_rms = np.array([[np.sqrt(np.mean(runs[(v, "ideal")][q].values[:-1] ** 2)) for q in QUANTITIES] for v in variants])
+    data["ideal_rms"] = (("variant", "quantity"), ideal_rms, {"units": "SI of the quantity", "long_name": "RMS of the ideal linkage's response over its record"})
     for key, arr in summary.items():
         unit, long_name = SUMMARY_ATTRS[key]
         data[f"summary_{key}"] = (("variant", "run") + (("joint",) if arr.ndim == 3 else ()), arr,
@@ -627,6 +655,7 @@ def claims(cfg: Mapping[str, Any], scenes: Sequence[xr.Dataset]) -> xr.Dataset:
         "claim": ("claim", np.array(CLAIMS, dtype=object), {"units": "1", "long_name": "claim"}),
         "comparison": ("comparison", np.array(labels, dtype=object), {"units": "1", "long_name": "ordering a claim is made of"}),
         "comparison_claim": ("comparison", np.array([c[0] for c in comparisons(ratio)], dtype=object), {"units": "1", "long_name": "claim of the ordering"}),
+        "ripple_cutoff": ("ripple_cutoff", runs[(variants[0], COMPARED[0])].ripple_cutoff.values, dict(runs[(variants[0], COMPARED[0])].ripple_cutoff.attrs)),
     }
     ds = xr.Dataset(data, coords=coords)
     first = runs[(variants[0], "dry_2")]
