@@ -355,8 +355,9 @@ def test_an_undetermined_ordering_names_the_margin_that_decides_it():
 
 def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
     """ripples_text on hand-made findings: where the first part holds and the ripple orderings are undetermined, the
-    sentence gives the check reruns' change (read, not typed), the convergence term where it is the larger, the
-    outcome at the tightest tolerance per variant, the ripples' size against the ideal, and the cutoffs that decide;
+    sentence gives the check reruns' change (read, not typed), the convergence term and the whole bar where the term is
+    the larger, which side of joint 1's joint 2's ripple lies at the tightest tolerance and how far it still moves, the
+    ripples' size against the ideal, and the cutoffs that decide;
     where the ripple orderings fail decidedly, it says they are not larger; no sentence where the ripple part holds."""
     import xarray as xr
 
@@ -366,13 +367,16 @@ def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
     vs = ("variant", "start")
     findings = xr.Dataset({"claim3_close_holds": (vs, [[1, 1], [1, 1]]), "claim3_ripples_outcome": (vs, [[-1, -1], [-1, -1]]),
                            "ripple_check_ratio": (vs, [[0.86, 0.8], [0.96, 0.9]]), "ripple_convergence_ratio": (vs, [[37.0, 1.0], [0.01, 0.0]]),
-                           "ripple_tight_holds": (vs, [[1, 1], [0, 0]]), "ripple_over_ideal": ("variant", [4.2e-6, 6.1e-6]),
+                           "ripple_error_ratio": (vs, [[38.0, 2.0], [0.97, 1.0]]), "ripple_tight_above": (vs, [[1, 1], [0, 0]]),
+                           "ripple_tight_joint_1": (vs, [[3.6e-5, 4e-5], [0.002, 0.0018]]), "ripple_tight_joint_2": (vs, [[7e-4, 8e-4], [6e-4, 1e-3]]),
+                           "ripple_tight_change": (vs, [[0.54, 0.5], [0.38, 0.4]]), "ripple_over_ideal": ("variant", [3.7e-6, 6.3e-6]),
                            "lubricated_deviation_over_ideal": ("variant", [0.0031, 0.00052]),
                            "ripple_cutoff_holds": (("variant", "ripple_cutoff"), [[0, 1, 1], [1, 1, 1]])},
                           coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "ripple_cutoff": [150.0, 500.0, 2000.0]})
     text = ripples_text(findings)
-    for part in ("undetermined by the numerics", "0.86 (decoded) and 0.96 (slender)", "makes the error bar 37 times", "hold in decoded",
-                 "fail in slender", "4e-06 (decoded) and 6e-06 (slender)", "holds at 500, 2000 Hz and not at 150 Hz"):
+    for part in ("is undetermined", "0.86 (decoded) and 0.96 (slender)", "is 37 times it, and the error bar 38 times", "above joint 1's in decoded (0.0007 against 3.6e-05",
+                 "below joint 1's in slender (0.0006 against 0.002", "factor of 0.54 and 0.38", "3.7e-06 (decoded) and 6.3e-06 (slender)",
+                 "holds at 500, 2000 Hz and not at 150 Hz"):
         assert part in text, (part, text)
     assert "slender (each" not in text and not leaks(text)
     assert "are not larger than at joint 1" in ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[0, 0], [0, 0]])))

@@ -249,3 +249,21 @@ def test_the_state_a_start_reaches_at_the_check_tolerance_is_compared_with_the_p
 
     failed = reach_state(lambda _c, **_: _Failing(), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
     assert failed["status"] == "failed" and np.isnan(failed["delta"]).all() and np.isnan(failed["same"])
+
+
+def test_a_row_that_drifts_over_a_stationary_window_has_no_interval():
+    """``judged_statistics`` on a state that is not periodic: a row the settling rule did not read (the ripple) that
+    drifts over the window gets no interval (infinite half-width, as a record at the cap); the steady rows keep a
+    finite batch-means interval; on a periodic state every row is exact."""
+    from linkwork.papers.clearance.settling import judged_statistics
+
+    rng = np.random.default_rng(1)  # a seed whose noise passes the thirds test (one in twenty does not, at 95 %)
+    n = 60
+    steady = 10.0 + rng.standard_normal(n)
+    drifting = np.linspace(0.004, 0.016, n) + 1e-4 * rng.standard_normal(n)
+    measures = np.stack([steady, steady + 1.0, drifting], axis=1)
+    out = judged_statistics(measures, {"status": "stationary", "window": (0, n), "period": 0}, 5, 0.95)
+    assert np.isfinite(out[:2, 1]).all() and np.isinf(out[2, 1]) and np.isinf(out[2, 2])
+    assert out[2, 0] == pytest.approx(drifting.mean())
+    periodic = judged_statistics(measures, {"status": "periodic", "window": (0, n), "period": 1}, 5, 0.95)
+    assert (periodic[:, 1] == 0.0).all()

@@ -24,7 +24,7 @@ import numpy as np
 
 from ...engines.multibody.model import initial_state, journal_offsets, offset_start
 from ...engines.multibody.simulate import Run
-from ...engines.states import NOT_PERIODIC, PERIODIC, section_period, settle
+from ...engines.states import NOT_PERIODIC, PERIODIC, section_period, settle, thirds_agree
 
 #: The claims' measures of one turn's deviation from the ideal curve: its RMS, its peak |.|, and its ripple (the RMS of
 #: its content above ``claims.ripple_cutoff_hz``: the paper's "small fluctuation peaks" of claim 3, which a size does not measure).
@@ -146,8 +146,10 @@ def convergence_error(measures: np.ndarray, found: Mapping[str, Any]) -> np.ndar
 def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int, confidence: float) -> np.ndarray:
     """Per measure row: (mean, confidence half-width, standard error, degrees of freedom, cycles judged) over the
     judged window.  A periodic state: the mean over its last period (the most settled), exact (half-width 0: the
-    orbit repeats to the section tolerance).  A stationary one: batch means over the window.  A record that reached the cap: its mean
-    drifts, no interval (infinite half-width)."""
+    orbit repeats to the section tolerance).  A stationary one: batch means over the window, where that row is itself
+    stationary over the window (its last third agrees with its middle third, ``thirds_agree``: the settling rule reads
+    only some rows, and a row it did not read can still drift); a row that drifts has no interval (infinite
+    half-width).  A record that reached the cap: its mean drifts, no interval (infinite half-width)."""
     from .statistics import mean_ci
 
     first, stop = found["window"]
@@ -158,7 +160,7 @@ def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int
             out[r] = (x[-found["period"]:, r].mean(), 0.0, 0.0, float("inf"), found["period"])
         else:
             mean, half, se, dof = mean_ci(x[:, r], batch, confidence)
-            if found["status"] != "stationary":
+            if found["status"] != "stationary" or not thirds_agree(x[:, r], confidence)[0]:
                 half, se = float("inf"), float("inf")
             out[r] = (mean, half, se, dof, x.shape[0])
     return out
