@@ -130,6 +130,20 @@ def clearance_turns(f: dict) -> list[str]:
     ]
 
 
+def formulation(f: dict) -> list[str]:
+    a, c = f["agreement"], f["cost"]
+    return [
+        f"`python benchmarks/formulation.py` on {_machine(f['machine'])} (issue 24's formulation study, first scene: {f['scene']}). Method: {f['method']}", "",
+        "| what | engine (absolute coordinates, Baumgarte) | joint coordinates, loop cut at the clearance joint |", "|---|---|---|",
+        f"| a turn at the pipeline's setting (median of {f['timed_turns']}) | {1e3 * c['engine']['s_per_turn']:.1f} ms | {1e3 * c['joint']['s_per_turn']:.1f} ms "
+        f"({c['speedup']:.2f}× faster) |",
+        f"| steps a turn | {c['engine']['steps_per_turn']:.0f} | {c['joint']['steps_per_turn']:.0f} |",
+        f"| first impacts at rtol 1e-11: max \\|Δe\\| / c | {a['engine_floor_over_c']:.1e} (against its own rtol 1e-12 run) | "
+        f"{a['eccentricity_vs_engine_over_c']:.1e} (against the engine) |",
+        f"| same window: rocker acceleration, crank torque (max difference / range) | | {a['rocker_acceleration_vs_engine']:.1e}, {a['crank_torque_vs_engine']:.1e} |",
+    ]
+
+
 def transplanter(f: dict) -> list[str]:
     t = f["targets"]
     return [
@@ -189,7 +203,7 @@ def job_resources(f: dict) -> list[str]:
     ]
 
 
-SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "transplanter": transplanter, "chains": chains, "tests": tests}
+SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "formulation": formulation, "transplanter": transplanter, "chains": chains, "tests": tests}
 
 
 def render(measured: Path = MEASURED) -> str:
