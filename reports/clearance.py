@@ -56,7 +56,7 @@ START_MARK = dict(zip(starts, ("o", "s", "^", "D", "v", "P")))
 scene_codes = [str(s) for s in claims.scene.values]
 panels = [(q, m) for q in claims.quantity.values for m in claims.measure.values]
 # per variant a row of panels and, under it, a row of boxes naming the orderings each claim needs on that measure
-fig, axes = plt.subplots(2 * len(variants), len(panels), figsize=(18, 7.4 * len(variants)), constrained_layout=True, squeeze=False,
+fig, axes = plt.subplots(2 * len(variants), len(panels), figsize=(3.2 * len(panels), 7.4 * len(variants)), constrained_layout=True, squeeze=False,
                          height_ratios=[3.2, 1.3] * len(variants))
 for r, v in enumerate(sorted(variants, key=lambda v: v != fnd.attrs["defensible_model"])):  # the defensible variant first
     for c, (q, m) in enumerate(panels):
@@ -73,7 +73,7 @@ for r, v in enumerate(sorted(variants, key=lambda v: v != fnd.attrs["defensible_
         ax.set_xticks(range(len(scene_codes)), [textwrap.fill(SCENE_WORDS[s_], 11) for s_ in scene_codes], fontsize=6.5)
         measure = MEASURE_WORDS[str(m)]
         ax.set_ylabel(f"{measure} deviation from the ideal on the state ({UNITS[str(q)]})")
-        ax.set_title(f"{VARIANT_WORDS[v]}:\n{measure} deviation of the {NAMES[str(q)]}", fontsize=9)
+        ax.set_title(textwrap.fill(f"{VARIANT_WORDS[v]}:", 40) + f"\n{measure} deviation of the {NAMES[str(q)]}", fontsize=9)
         ax.grid(alpha=0.3, which="both", axis="y")
         if c == 0:
             ax.legend(fontsize=7)
@@ -83,7 +83,8 @@ for r, v in enumerate(sorted(variants, key=lambda v: v != fnd.attrs["defensible_
             for label, claim, o in zip(claims.comparison.values, claims.comparison_claim.values, outcome):
                 if str(label).startswith(f"{m} {q}:"):
                     needs.setdefault(str(claim), {}).setdefault(in_words(str(label).split(": ", 1)[1]), []).append(OUTCOME[int(o)])
-        text = "\n".join(f"{CLAIM_WORDS[k]} needs\n" + "\n".join(f"  {lab}: {' / '.join(outs)}" for lab, outs in rows.items()) for k, rows in needs.items())
+        text = "\n".join(f"{CLAIM_WORDS[k]} needs\n" + "\n".join(textwrap.fill(f"{lab}: {' / '.join(outs)}", 46, initial_indent="  ", subsequent_indent="    ")
+                                                               for lab, outs in rows.items()) for k, rows in needs.items())
         box = axes[2 * r + 1, c]
         box.axis("off")
         box.text(0.0, 1.0, text, transform=box.transAxes, fontsize=6.5, va="top", ha="left", wrap=True, bbox={"facecolor": "white", "edgecolor": "0.7"})
