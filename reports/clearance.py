@@ -92,7 +92,8 @@ plt.show()
 caption(f"The claims' measures per clearance scene on the state it settles into: for each variant (rows) and each response and measure (columns), "
         f"the deviation from the ideal curve over one period of a periodic state, or its mean over the judged cycles of a state that is not periodic "
         f"(orange: dry, green: lubricated), one marker per start ({', '.join(starts)}), with its {claims.attrs['confidence']:.0%} confidence interval "
-        "where the state is not periodic; an open marker is a state in doubt (not settled by the cycle cap, or changed by the tolerance). "
+        "where the state is not periodic; an open marker is a state in doubt (not settled by the cycle cap, or changed by the tolerance) or, "
+        "for the ripple, a ripple that drifts over the judged window of a state that is not periodic (no interval). "
         "The box under each panel lists the orderings each claim needs on that measure and, per start in that order, whether each holds beyond "
         "both the interval and the numerical error, fails, or stays undetermined. Logarithmic scale.")
 

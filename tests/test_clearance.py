@@ -369,13 +369,14 @@ def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
                            "ripple_check_ratio": (vs, [[0.86, 0.8], [0.96, 0.9]]), "ripple_convergence_ratio": (vs, [[37.0, 1.0], [0.01, 0.0]]),
                            "ripple_error_ratio": (vs, [[38.0, 2.0], [0.97, 1.0]]), "ripple_tight_above": (vs, [[1, 1], [0, 0]]),
                            "ripple_tight_joint_1": (vs, [[3.6e-5, 4e-5], [0.002, 0.0018]]), "ripple_tight_joint_2": (vs, [[7e-4, 8e-4], [6e-4, 1e-3]]),
-                           "ripple_tight_change": (vs, [[0.54, 0.5], [0.38, 0.4]]), "ripple_over_ideal": ("variant", [3.7e-6, 6.3e-6]),
+                           "ripple_tight_change": (vs, [[0.54, 0.5], [0.38, 0.4]]), "ripple_tight_change_joint_1": (vs, [[0.33, 0.3], [1.0, 1.01]]),
+                           "ripple_over_ideal": ("variant", [3.7e-6, 6.3e-6]),
                            "lubricated_deviation_over_ideal": ("variant", [0.0031, 0.00052]),
                            "ripple_cutoff_holds": (("variant", "ripple_cutoff"), [[0, 1, 1], [1, 1, 1]])},
                           coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "ripple_cutoff": [150.0, 500.0, 2000.0]})
     text = ripples_text(findings)
     for part in ("is undetermined", "0.86 (decoded) and 0.96 (slender)", "is 37 times it, and the error bar 38 times", "above joint 1's in decoded (0.0007 against 3.6e-05",
-                 "below joint 1's in slender (0.0006 against 0.002", "factor of 0.54 and 0.38", "3.7e-06 (decoded) and 6.3e-06 (slender)",
+                 "below joint 1's in slender (0.0006 against 0.002", "factors of 0.54 and 0.33", "points against the ordering", "3.7e-06 (decoded) and 6.3e-06 (slender)",
                  "holds at 500, 2000 Hz and not at 150 Hz"):
         assert part in text, (part, text)
     assert "slender (each" not in text and not leaks(text)
@@ -444,26 +445,29 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
 
 def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
     """``undetermined_ranges``: a first-start row whose samples (the nominal one included) its margins all leave
-    undetermined loses its range cells and says why; a row with one decided sample keeps them, and so does another
-    start's row (no samples of its own there)."""
+    undetermined loses its range cells and says why; so does an undetermined row with only some samples decided (how
+    many, in the cell); a decided row with one undetermined sample keeps them, and so does another start's row (no
+    samples of its own there)."""
     import pandas as pd
     import xarray as xr
 
-    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, DECIDED_SAMPLES, undetermined_ranges
+    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, DECIDED_SAMPLES, PARTLY_UNDETERMINED, undetermined_ranges
 
-    outcome = np.array([[[-1, 0]], [[-1, -1]], [[-1, 1]]])  # sample, variant, claim: c1 undetermined at every sample of both starts
+    outcome = np.array([[[-1, 0, -1]], [[-1, -1, 1]], [[-1, 1, -1]]])  # sample, variant, claim: c1 undetermined at every sample of both starts
     unc = xr.Dataset({"sample_claim_outcome": (("sample", "variant", "claim"), outcome)},
                      coords={"sample": ["nominal", "x low", "b | nominal"], "sample_scenario": ("sample", ["start a", "start a", "start b"]),
-                             "variant": ["decoded"], "claim": ["c1", "c2"]})
-    table = pd.DataFrame({"model": ["decoded"] * 4, "scenario": ["start a", "start a", "start b", "start b"], "id": ["c1", "c2", "c1", "c2"],
-                          "input_low": [0.0, 0.0, np.nan, np.nan], "input_high": [0.0, 1.0, np.nan, np.nan], "input_source": ["12 samples"] * 4,
-                          "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates"], "decided_by": ["numerical error", np.nan, "", ""]})
+                             "variant": ["decoded"], "claim": ["c1", "c2", "c3"]})
+    table = pd.DataFrame({"model": ["decoded"] * 5, "scenario": ["start a", "start a", "start b", "start b", "start a"], "id": ["c1", "c2", "c1", "c2", "c3"],
+                          "input_low": [0.0, 0.0, np.nan, np.nan, 1.0], "input_high": [0.0, 1.0, np.nan, np.nan, 1.0], "input_source": ["12 samples"] * 5,
+                          "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates", "undetermined (numerics)"],
+                          "decided_by": ["numerical error", np.nan, "", "", "numerical error"]})
     out = undetermined_ranges(table, unc)
+    assert np.isnan(out.input_low[4]) and out.input_source[4] == f"{PARTLY_UNDETERMINED} 1 of 2 samples only"
     assert np.isnan(out.input_low[0]) and np.isnan(out.input_high[0]) and out.input_source[0] == ALL_UNDETERMINED
     assert out.input_low[1] == 0.0 and out.input_high[1] == 1.0 and out.input_source[1] == "12 samples"
     # a decided verdict with an undetermined sample holds at the decided ones: 'decided by' names the other
     assert out.decided_by[1] == f"{DECIDED_SAMPLES}: x (low end)"
-    assert out.input_source[2:].tolist() == ["12 samples"] * 2 and out.decided_by[2:].tolist() == ["", ""]
+    assert out.input_source[2:4].tolist() == ["12 samples"] * 2 and out.decided_by[2:4].tolist() == ["", ""]
 
 
 def test_contact_frequency_uses_the_lightest_body_of_its_own_joint():

@@ -83,6 +83,8 @@ NOT_PROPAGATED = "none: the assumed inputs are propagated from the first start a
 DECIDED_SAMPLES = "the nominal inputs and the decided samples; left undetermined within their margins at"
 #: The input source of a row whose samples its margins all leave undetermined.
 ALL_UNDETERMINED = "no range: every sample, the nominal one included, is undetermined within its margins"
+#: The input source of an undetermined row some of whose samples are decided: their outcomes span no range of the inputs.
+PARTLY_UNDETERMINED = "no range: the claim is undetermined, and its margins decide it at"
 
 
 def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
@@ -101,9 +103,10 @@ def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
 def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> pd.DataFrame:
     """Rows of the first start whose samples (the nominal included: ``sample_claim_outcome``) are all undetermined within
     their own margins show no input range: their range cells would hold only the nominal run's outcome on its means,
-    which its margins do not decide.  The verdict does not change (such a range is the nominal value alone).  A
-    decided verdict ('deviates', 'matches') some of whose samples are undetermined holds at the decided ones only:
-    'decided by' names the others."""
+    which its margins do not decide.  The verdict does not change (such a range is the nominal value alone).  An
+    undetermined row some of whose samples are decided shows no range either: the decided few span no range of the
+    inputs (the cell says how many).  A decided verdict ('deviates', 'matches') some of whose samples are undetermined
+    holds at the decided ones only: 'decided by' names the others."""
     if uncertainty is None or "sample_claim_outcome" not in uncertainty:
         return table
     out = table.copy()
@@ -116,6 +119,9 @@ def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> 
         outcomes = uncertainty.sample_claim_outcome.values[of == row.scenario, variants.index(row.model), claim_ids.index(row["id"])]
         if (outcomes == -1).all():
             out.loc[i, ["input_low", "input_high", "input_source"]] = [np.nan, np.nan, ALL_UNDETERMINED]
+        elif (outcomes == -1).any() and "undetermined" in str(row.verdict):
+            decided = int((outcomes != -1).sum())
+            out.loc[i, ["input_low", "input_high", "input_source"]] = [np.nan, np.nan, f"{PARTLY_UNDETERMINED} {decided} of {outcomes.size} samples only"]
         elif (outcomes == -1).any() and row.verdict in ("deviates", "matches") and not (isinstance(row.decided_by, str) and row.decided_by):
             left = [sample_in_words(str(x)) for x in uncertainty.sample.values[of == row.scenario][outcomes == -1]]
             out.loc[i, "decided_by"] = f"{DECIDED_SAMPLES}: {', '.join(left)}"
@@ -128,9 +134,13 @@ def with_reasons(table: pd.DataFrame, claims: xr.Dataset) -> pd.DataFrame:
     if "claim_decided_by" not in claims:
         return table
     out = table.copy()
+    starts = [str(s) for s in claims.start.values] if "claim_decided_by_start" in claims else []
     for i, row in out.iterrows():
         if row.verdict == "undetermined (numerics)" and row.model in claims.variant.values and row["id"] in claims.claim.values:
-            out.at[i, "decided_by"] = in_words(claims.claim_decided_by.sel(variant=row.model, claim=row["id"]).item())
+            start = str(row.scenario).removeprefix("start ")
+            reason = (claims.claim_decided_by_start.sel(variant=row.model, claim=row["id"], start=start) if start in starts
+                      else claims.claim_decided_by.sel(variant=row.model, claim=row["id"]))  # the row's own start
+            out.at[i, "decided_by"] = in_words(reason.item())
     return out
 
 
@@ -385,6 +395,8 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                                                 {"units": "rad s-2", "long_name": "joint 2 lubricated's ripple at the tightest check tolerance"}),
                        "ripple_tight_change": (vs, (checked.sel(scene="lubricated_2").isel(check=-1) / checked.sel(scene="lubricated_2").isel(check=0)).transpose(*vs).values,
                                                {"units": "1", "long_name": "joint 2 lubricated's ripple at the tightest check tolerance over that at the first"}),
+                       "ripple_tight_change_joint_1": (vs, (checked.sel(scene="lubricated_1").isel(check=-1) / checked.sel(scene="lubricated_1").isel(check=0)).transpose(*vs).values,
+                                                       {"units": "1", "long_name": "joint 1 lubricated's ripple at the tightest check tolerance over that at the first"}),
                        "ripple_over_ideal": ("variant", (lubricated.sel(measure="ripple").max(("start", "scene")) / ideal).values,
                                              {"units": "1", "long_name": "largest lubricated ripple of the rocker acceleration over the ideal's RMS"}),
                        "lubricated_deviation_over_ideal": ("variant", (lubricated.sel(measure="rms").max(("start", "scene")) / ideal).values,
@@ -392,6 +404,22 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                        "ripple_cutoff_holds": (("variant", "ripple_cutoff"), cut_holds.transpose("variant", "ripple_cutoff").values.astype(int),
                                                {"units": "1", "long_name": "1 if the ripple orderings hold on each scene's last turn at this cutoff"})},
                       coords={"variant": claims.variant, "start": claims.start, "ripple_cutoff": claims.ripple_cutoff})
+
+
+#: A ripple that changes by less than this fraction between the two check tolerances is called the same at both.
+SAME_AT_BOTH = 0.05
+
+
+def _tight_words(first: xr.Dataset, variant: str, side: str) -> str:
+    """Which side of joint 1's joint 2's ripple lies at the tightest check tolerance in ``variant`` (first start's
+    values), and where the two are heading from the first check tolerance to the tightest."""
+    two, one = float(first.ripple_tight_change.sel(variant=variant)), float(first.ripple_tight_change_joint_1.sel(variant=variant))
+    where = (f"{side} joint 1's in {variant} ({float(first.ripple_tight_joint_2.sel(variant=variant)):.2g} against "
+             f"{float(first.ripple_tight_joint_1.sel(variant=variant)):.2g} rad/s², first start)")
+    if side == "below" and abs(one - 1.0) <= SAME_AT_BOTH and two < 1.0:
+        return (f"{where}, and while joint 1's is the same at both check tolerances joint 2's keeps falling (by a factor of {two:.2g}): "
+                "the trend at tighter tolerances points against the ordering")
+    return f"{where}, both still moving (by factors of {two:.2g} and {one:.2g}): not converged"
 
 
 def _cutoffs(values) -> str:
@@ -427,13 +455,8 @@ def ripples_text(findings: xr.Dataset) -> str:
         side = {v: "above" if above[v] == {1} else "below" if above[v] == {0} else "" for v in open_}
         said = [v for v in open_ if side[v]]
         if said:
-            text += (" At the tightest check tolerance joint 2's ripple is "
-                     + "; ".join(f"{side[v]} joint 1's in {v} ({float(first.ripple_tight_joint_2.sel(variant=v)):.2g} against "
-                                 f"{float(first.ripple_tight_joint_1.sel(variant=v)):.2g} rad/s², first start)" for v in said)
-                     + " from every start, and still moving (joint 2's changes by a factor of "
-                     + " and ".join(f"{float(first.ripple_tight_change.sel(variant=v)):.2g}" for v in said)
-                     + " from the first check tolerance to the tightest): not converged either way.")
-        text += (" Either way the ripples are at most about "
+            text += " At the tightest check tolerance, from every start, joint 2's ripple is " + "; ".join(_tight_words(first, v, side[v]) for v in said) + "."
+        text += (" Either way the ripples (means over the judged windows) are at most about "
                  + " and ".join(f"{float(findings.ripple_over_ideal.sel(variant=v)):.2g} ({v})" for v in open_)
                  + " of the ideal rocker acceleration's RMS, and the whole lubricated deviation at most about "
                  + " and ".join(f"{float(findings.lubricated_deviation_over_ideal.sel(variant=v)):.2g}" for v in open_)

@@ -400,7 +400,7 @@ def judge(scene_stats: Mapping[tuple[str, str, str], tuple[float, float, float, 
         outcome = decide(d, stat, num)
         unsteady = [name for _, name in terms if not np.isfinite(scene_stats[(measure, quantity, name)][1])]
         rows.append({"claim": claim, "label": label, "difference": d, "statistical": stat, "numerical": num, "outcome": outcome,
-                     "reason": undecided_reason(d, stat, num, unsteady) if outcome == UNDETERMINED else ""})
+                     "reason": undecided_reason(d, stat, num, unsteady, measure) if outcome == UNDETERMINED else ""})
     point = [float(all(r["difference"] > 0 for r in rows if r["claim"] == c)) for c in CLAIMS]
     outcome = [conjunction([r["outcome"] for r in rows if r["claim"] == c]) for c in CLAIMS]
     reasons = [claim_reason([r["reason"] for r in rows if r["claim"] == c]) if o == UNDETERMINED else "" for c, o in zip(CLAIMS, outcome, strict=True)]
@@ -408,11 +408,13 @@ def judge(scene_stats: Mapping[tuple[str, str, str], tuple[float, float, float, 
             "reason": reasons}
 
 
-def undecided_reason(diff: float, stat_margin: float, numerical_error: float, unsteady: Sequence[str]) -> str:
+def undecided_reason(diff: float, stat_margin: float, numerical_error: float, unsteady: Sequence[str], measure: str = "rms") -> str:
     """Which margin leaves an ordering undetermined: a scene without a valid interval (not settled or not
-    stationary), the statistical margin, or the numerical error (the larger one where both exceed |diff|)."""
+    stationary; for the ripple, also a ripple that drifts over a window the settling rule found stationary), the
+    statistical margin, or the numerical error (the larger one where both exceed |diff|)."""
     if unsteady:
-        return f"statistics (not settled / not stationary: {', '.join(unsteady)})"
+        what = "not settled, or its ripple not stationary" if measure == "ripple" else "not settled / not stationary"
+        return f"statistics ({what}: {', '.join(unsteady)})"
     if abs(diff) <= stat_margin and (abs(diff) > numerical_error or stat_margin >= numerical_error):
         return "statistical margin"
     return "numerical error"
