@@ -1,5 +1,6 @@
-"""The formulation study of issue 24, first measurement: joint coordinates with the loop cut at the clearance joint,
-against the engine's absolute coordinates with Baumgarte stabilisation, on one scene (joint 2 dry, slender links).
+"""The formulation study of issue 24, first measurement: joint coordinates with the loop cut at the clearance joints,
+against the engine's absolute coordinates with Baumgarte stabilisation, on two scenes (slender links: joint 2 dry,
+and both joints dry; with both, the coupler is a free body (x3, y3, theta3) and the rocker turns about its pin).
 
 With joint 2 in clearance the four-bar has no closed loop: the crank is driven, the coupler turns about the crank
 pin (its angle theta3) and the rocker about its ground pin (theta4).  The state is (theta3, theta4, their rates, the
@@ -13,7 +14,7 @@ compiled DOP853 (the same source).
 
 Method (time.perf_counter; one process, numba-compiled, compile excluded):
 1. agreement: both formulations from the dead point with the journal centred, DOP853 at rtol 1e-11, sampled at 720
-   points a turn over the first 0.02 turn (the first two impacts): max |e_joint - e_engine| / c, against the engine's
+   points a turn over the first 0.02 turn (the first impacts): max |e_joint - e_engine| / c over the clearance joints, against the engine's
    own difference between rtol 1e-11 and 1e-12 (its floor); and the rocker acceleration and crank torque over the
    same window (max difference over the engine's range);
 2. cost: each formulation from the same start, after --warm turns, --turns turns each timed alone at the pipeline's
@@ -151,9 +152,112 @@ def rhs_into(t, y, p, latched, counts, diag, w, out):
     return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
 
 
-def compile_joint(lengths):
-    """The joint-coordinate scene module (cached like the engine's scenes)."""
-    source = joint_source(lengths)
+def joint_source_both(lengths) -> str:
+    """Source of the joint-coordinate scene with both joints in clearance (contact, friction, gravity): the coupler is
+    free (x3, y3, theta3), the rocker turns about its ground pin (theta4); state (x3, y3, theta3, theta4, their rates,
+    the driver's work)."""
+    _, idx = model.pack(model._dummy_parameters(lengths), 0.0)
+
+    def P(name, k=0):
+        return f"p[{idx[name] + k}]"
+
+    law = model.CONTACT_LAWS["lankarani-nikravesh"]
+
+    def contact(k, bj, jx, bb, bx):
+        o = model.DIAG_FIXED + model.DIAG_PER_JOINT * k
+        return f'''
+    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, 0.0, {bb}, {bx}, 0.0, {P('clearance')}, {P('r_journal')}, {P('r_bearing')})
+    fn = 0.0
+    ft = 0.0
+    if delta > 0.0:
+        counts[0] += 1
+        vimp = latched[{k}] if latched[{k}] > {P('floor')} else {P('floor')}
+        fe, ue = elastic_contact(int({P('elastic_law')}), {P('elastic_stiffness')}, {P('elastic_exponent')}, delta)
+        fn = fe * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)
+        potential += ue
+        counts[1] += 1
+        ft = friction_coefficient(vt, {P('friction')}, {P('v0')}, {P('v1')}) * fn
+    fx = -fn * nx - ft * ny
+    fy = -fn * ny + ft * nx
+    apply_force(q, cs, g, {bj}, {jx}, 0.0, fx, fy)
+    apply_force(q, cs, g, {bb}, {bx}, 0.0, -fx, -fy)
+    g[{3 * bj + 2}] += {P('r_journal')} * ft
+    g[{3 * bb + 2}] -= {P('r_bearing')} * ft
+    diag[{o}] = e
+    diag[{o + 1}] = delta
+    diag[{o + 2}] = ddot
+    diag[{o + 3}] = fn
+    diag[{o + 4}] = 0.0
+    diag[{o + 5}] = 0.0
+'''
+
+    body = f'''
+import numpy as np
+from numba import njit
+from linkwork.engines.multibody.kernels import clearance_state, hertz_damping_factor, friction_coefficient, elastic_contact, apply_force, body_trig
+NC = 0
+N_DIAG = {model.DIAG_FIXED + 2 * model.DIAG_PER_JOINT}
+JOINTS = (1, 2)
+N_WORK = 40
+
+
+@njit(cache=True)
+def rhs(t, y, p, latched, counts, diag):
+    out = np.empty(9)
+    rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)
+    return out
+
+
+@njit(cache=True)
+def rhs_into(t, y, p, latched, counts, diag, w, out):
+    w[:] = 0.0
+    q = w[0:9]
+    qd = w[9:18]
+    g = w[18:27]
+    cs = w[27:33]
+    l2, l3, l4 = {P('l')}, {P('l', 1)}, {P('l', 2)}
+    om = {P('omega')}
+    th2 = {P('phi0')} + om * t
+    th4, w4 = y[3], y[7]
+    c2, s2, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th4), np.sin(th4)
+    q[0], q[1], q[2] = 0.5 * l2 * c2, 0.5 * l2 * s2, th2
+    q[3], q[4], q[5] = y[0], y[1], y[2]
+    q[6], q[7], q[8] = {P('ground')} + 0.5 * l4 * c4, 0.5 * l4 * s4, th4
+    qd[0], qd[1], qd[2] = -0.5 * l2 * s2 * om, 0.5 * l2 * c2 * om, om
+    qd[3], qd[4], qd[5] = y[4], y[5], y[6]
+    qd[6], qd[7], qd[8] = -0.5 * l4 * s4 * w4, 0.5 * l4 * c4 * w4, w4
+    body_trig(q, cs)
+    mass = p[{idx['mass']}:{idx['mass'] + 9}]
+    potential = 0.0
+    counts[3] += 1
+    for b in range(3):
+        g[3 * b + 1] -= mass[3 * b] * {P('gravity')}
+        potential += mass[3 * b] * {P('gravity')} * q[3 * b + 1]
+{contact(0, 0, "0.5 * l2", 1, "-0.5 * l3")}
+{contact(1, 1, "0.5 * l3", 2, "0.5 * l4")}
+    gx1, gy1 = -0.5 * l2 * c2 * om * om, -0.5 * l2 * s2 * om * om
+    gx3, gy3 = -0.5 * l4 * c4 * w4 * w4, -0.5 * l4 * s4 * w4 * w4
+    b4x, b4y = -0.5 * l4 * s4, 0.5 * l4 * c4
+    m3, j3 = mass[6], mass[8]
+    a4 = ((g[6] - m3 * gx3) * b4x + (g[7] - m3 * gy3) * b4y + g[8]) / (m3 * (b4x * b4x + b4y * b4y) + j3)
+    torque = (mass[0] * gx1 - g[0]) * (-0.5 * l2 * s2) + (mass[1] * gy1 - g[1]) * (0.5 * l2 * c2) - g[2]
+    out[0], out[1], out[2], out[3] = y[4], y[5], y[6], w4
+    out[4], out[5], out[6], out[7] = g[3] / mass[3], g[4] / mass[4], g[5] / mass[5], a4
+    out[8] = torque * om
+    kinetic = 0.0
+    for k in range(9):
+        kinetic += 0.5 * mass[k] * qd[k] * qd[k]
+    diag[0] = a4
+    diag[1] = torque
+    diag[2] = kinetic + potential
+    diag[3] = 0.0
+'''
+    return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
+
+
+def compile_joint(lengths, both: bool = False):
+    """The joint-coordinate scene module (cached like the engine's scenes): joint 2 in clearance, or both."""
+    source = joint_source_both(lengths) if both else joint_source(lengths)
     name = "linkwork_joint_" + hashlib.sha256(source.encode()).hexdigest()[:16]
     folder = model.cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
@@ -170,10 +274,11 @@ def compile_joint(lengths):
 class JointRun(Run):
     """A run of the joint-coordinate scene with the engine's Run interface (its state: the reduced one)."""
 
-    def __init__(self, p, integrator, y_engine):
-        super().__init__(p, (2,), ("contact", "friction", "gravity"), integrator, y0=y_engine)
-        self.module = compile_joint(p.lengths)
-        self.y = reduced(y_engine)
+    def __init__(self, p, integrator, y_engine, joints=(2,)):
+        super().__init__(p, joints, ("contact", "friction", "gravity"), integrator, y0=y_engine)
+        both = tuple(joints) == (1, 2)
+        self.module = compile_joint(p.lengths, both)
+        self.y = reduced_both(y_engine) if both else reduced(y_engine)
 
 
 def reduced(y_engine: np.ndarray) -> np.ndarray:
@@ -181,9 +286,53 @@ def reduced(y_engine: np.ndarray) -> np.ndarray:
     return np.array([y_engine[5], y_engine[8], y_engine[14], y_engine[17], y_engine[18]])
 
 
+def reduced_both(y_engine: np.ndarray) -> np.ndarray:
+    """The state of the both-joints topology from an engine state: the coupler's (x, y, phi), theta4, their rates,
+    the work."""
+    return np.array([*y_engine[3:6], y_engine[8], *y_engine[12:15], y_engine[17], y_engine[18]])
+
+
 def eccentricity(module_diags: np.ndarray) -> np.ndarray:
     """|e| (m) of joint 2 from a run's diagnostics."""
     return module_diags[:, 4]
+
+
+def measure(section, scene: str, warm: int, turns: int) -> dict[str, object]:
+    """Agreement over the first impacts and the cost of a turn, engine against joint coordinates, for one scene."""
+    p = parameters(section, "slender", scene)
+    joints, effects = scene_effects(section, scene)
+    y0 = model.initial_state(p)[0]
+    period = 2 * np.pi / p.crank_speed
+    tight = {"method": "dop853", "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-7, "max_step_s": 1e-3}
+    tighter = {**tight, "rtol": 1e-12, "atol": 1e-15}
+    t = np.linspace(0.0, 0.02 * period, int(0.02 * 720) + 1)
+    _, d_engine = Run(p, joints, effects, tight, y0=y0).advance(t)
+    _, d_engine2 = Run(p, joints, effects, tighter, y0=y0).advance(t)
+    _, d_joint = JointRun(p, tight, y0, joints).advance(t)
+    c = p.clearance
+    ecc = [4 + model.DIAG_PER_JOINT * k for k in range(len(joints))]  # |e| of each clearance joint
+    agreement = {
+        "eccentricity_vs_engine_over_c": float(np.max(np.abs(d_joint[:, ecc] - d_engine[:, ecc])) / c),
+        "engine_floor_over_c": float(np.max(np.abs(d_engine2[:, ecc] - d_engine[:, ecc])) / c),
+        "rocker_acceleration_vs_engine": float(np.max(np.abs(d_joint[:, 0] - d_engine[:, 0])) / np.ptp(d_engine[:, 0])),
+        "crank_torque_vs_engine": float(np.max(np.abs(d_joint[:, 1] - d_engine[:, 1])) / np.ptp(d_engine[:, 1])),
+    }
+    print(scene, agreement, flush=True)
+    integ = section["integrators"]["explicit"]
+    per = section["numerics"]["points_per_cycle"]
+    cost = {}
+    for name, run in (("engine", Run(p, joints, effects, integ, y0=y0)), ("joint", JointRun(p, integ, y0, joints))):
+        for _ in range(warm):
+            run.advance(run.t + np.arange(per + 1) * period / per)
+        seconds, steps = [], run.steps
+        for _ in range(turns):
+            t0 = time.perf_counter()
+            run.advance(run.t + np.arange(per + 1) * period / per)
+            seconds.append(time.perf_counter() - t0)
+        cost[name] = {"s_per_turn": statistics.median(seconds), "steps_per_turn": (run.steps - steps) / turns}
+        print(scene, name, cost[name], flush=True)
+    cost["speedup"] = cost["engine"]["s_per_turn"] / cost["joint"]["s_per_turn"]
+    return {"agreement": agreement, "cost": cost, "states": {"engine": 19, "joint": int(JointRun(p, integ, y0, joints).y.size)}}
 
 
 def main() -> None:
@@ -192,39 +341,8 @@ def main() -> None:
     parser.add_argument("--turns", type=int, default=5)
     args = parser.parse_args()
     section = yaml.safe_load((PROJECT / "config" / "config.yaml").read_text())["clearance"]
-    p = parameters(section, "slender", "dry_2")
-    joints, effects = scene_effects(section, "dry_2")
-    y0 = model.initial_state(p)[0]
-    period = 2 * np.pi / p.crank_speed
-    tight = {"method": "dop853", "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-7, "max_step_s": 1e-3}
-    tighter = {**tight, "rtol": 1e-12, "atol": 1e-15}
-    t = np.linspace(0.0, 0.02 * period, int(0.02 * 720) + 1)
-    _, d_engine = Run(p, joints, effects, tight, y0=y0).advance(t)
-    _, d_engine2 = Run(p, joints, effects, tighter, y0=y0).advance(t)
-    _, d_joint = JointRun(p, tight, y0).advance(t)
-    c = p.clearance
-    agreement = {
-        "eccentricity_vs_engine_over_c": float(np.max(np.abs(eccentricity(d_joint) - eccentricity(d_engine))) / c),
-        "engine_floor_over_c": float(np.max(np.abs(eccentricity(d_engine2) - eccentricity(d_engine))) / c),
-        "rocker_acceleration_vs_engine": float(np.max(np.abs(d_joint[:, 0] - d_engine[:, 0])) / np.ptp(d_engine[:, 0])),
-        "crank_torque_vs_engine": float(np.max(np.abs(d_joint[:, 1] - d_engine[:, 1])) / np.ptp(d_engine[:, 1])),
-    }
-    print(agreement, flush=True)
-    integ = section["integrators"]["explicit"]
-    per = section["numerics"]["points_per_cycle"]
-    cost = {}
-    for name, run in (("engine", Run(p, joints, effects, integ, y0=y0)), ("joint", JointRun(p, integ, y0))):
-        for _ in range(args.warm):
-            run.advance(run.t + np.arange(per + 1) * period / per)
-        seconds, steps = [], run.steps
-        for _ in range(args.turns):
-            t0 = time.perf_counter()
-            run.advance(run.t + np.arange(per + 1) * period / per)
-            seconds.append(time.perf_counter() - t0)
-        cost[name] = {"s_per_turn": statistics.median(seconds), "steps_per_turn": (run.steps - steps) / args.turns}
-        print(name, cost[name], flush=True)
-    cost["speedup"] = cost["engine"]["s_per_turn"] / cost["joint"]["s_per_turn"]
-    write_figures("formulation", {"scene": "slender/dry_2", "agreement": agreement, "cost": cost, "warm_turns": args.warm, "timed_turns": args.turns},
+    scenes = {f"slender/{s}": measure(section, s, args.warm, args.turns) for s in ("dry_2", "dry_both")}
+    write_figures("formulation", {"scenes": scenes, "warm_turns": args.warm, "timed_turns": args.turns},
                   __doc__.split("Method", 1)[1].split("Figures go")[0])
 
 

@@ -131,16 +131,18 @@ def clearance_turns(f: dict) -> list[str]:
 
 
 def formulation(f: dict) -> list[str]:
-    a, c = f["agreement"], f["cost"]
+    rows = []
+    for name, v in f["scenes"].items():
+        a, c = v["agreement"], v["cost"]
+        rows.append(f"| `{name}` | {v['states']['engine']} / {v['states']['joint']} | {1e3 * c['engine']['s_per_turn']:.1f} ms | {1e3 * c['joint']['s_per_turn']:.1f} ms "
+                    f"({c['speedup']:.2f}× faster) | {c['engine']['steps_per_turn']:.0f} / {c['joint']['steps_per_turn']:.0f} | "
+                    f"{a['engine_floor_over_c']:.1e} | {a['eccentricity_vs_engine_over_c']:.1e} | {a['rocker_acceleration_vs_engine']:.1e}, {a['crank_torque_vs_engine']:.1e} |")
     return [
-        f"`python benchmarks/formulation.py` on {_machine(f['machine'])} (issue 24's formulation study, first scene: {f['scene']}). Method: {f['method']}", "",
-        "| what | engine (absolute coordinates, Baumgarte) | joint coordinates, loop cut at the clearance joint |", "|---|---|---|",
-        f"| a turn at the pipeline's setting (median of {f['timed_turns']}) | {1e3 * c['engine']['s_per_turn']:.1f} ms | {1e3 * c['joint']['s_per_turn']:.1f} ms "
-        f"({c['speedup']:.2f}× faster) |",
-        f"| steps a turn | {c['engine']['steps_per_turn']:.0f} | {c['joint']['steps_per_turn']:.0f} |",
-        f"| first impacts at rtol 1e-11: max \\|Δe\\| / c | {a['engine_floor_over_c']:.1e} (against its own rtol 1e-12 run) | "
-        f"{a['eccentricity_vs_engine_over_c']:.1e} (against the engine) |",
-        f"| same window: rocker acceleration, crank torque (max difference / range) | | {a['rocker_acceleration_vs_engine']:.1e}, {a['crank_torque_vs_engine']:.1e} |",
+        f"`python benchmarks/formulation.py` on {_machine(f['machine'])} (issue 24's formulation study: joint coordinates with the loop cut at the "
+        f"clearance joints against the engine's absolute coordinates). Method: {f['method']}", "",
+        f"| scene | states (engine / joint) | engine, a turn (median of {f['timed_turns']}) | joint coordinates, a turn | steps a turn (engine / joint) | "
+        "engine's own \\|Δe\\| / c, rtol 1e-11 vs 1e-12 | joint vs engine, \\|Δe\\| / c | rocker acceleration, crank torque (max difference / range) |",
+        "|---|---|---|---|---|---|---|---|", *rows,
     ]
 
 
