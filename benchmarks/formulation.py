@@ -49,28 +49,31 @@ from linkwork.papers.clearance.adapter import parameters, scene_effects  # noqa:
 N_REDUCED = 5  # theta3, theta4, their rates, the driver's work
 
 
-def joint_source(lengths) -> str:
-    """Source of the joint-coordinate scene (joint 2 in clearance, contact, friction and gravity): rhs, rhs_into and
-    the engine's integrators, with the engine's parameter layout (``model.pack``)."""
+def _names(lengths):
+    """(P: a parameter's source expression by name, the contact law's code) in the engine's layout (``model.pack``)."""
     _, idx = model.pack(model._dummy_parameters(lengths), 0.0)
 
     def P(name, k=0):
         return f"p[{idx[name] + k}]"
 
-    law = model.CONTACT_LAWS["lankarani-nikravesh"]
-    body = f'''
+    return P, idx, model.CONTACT_LAWS["lankarani-nikravesh"]
+
+
+def _head(joints: tuple[int, ...], n_state: int, P, idx) -> str:
+    """Imports, constants, ``rhs`` and the start of ``rhs_into`` up to the bodies' absolute coordinates."""
+    return f'''
 import numpy as np
 from numba import njit
 from linkwork.engines.multibody.kernels import clearance_state, hertz_damping_factor, friction_coefficient, elastic_contact, apply_force, body_trig
 NC = 0
-N_DIAG = {model.DIAG_FIXED + model.DIAG_PER_JOINT}
-JOINTS = (2,)
+N_DIAG = {model.DIAG_FIXED + model.DIAG_PER_JOINT * len(joints)}
+JOINTS = {tuple(joints)}
 N_WORK = 40
 
 
 @njit(cache=True)
 def rhs(t, y, p, latched, counts, diag):
-    out = np.empty({N_REDUCED})
+    out = np.empty({n_state})
     rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)
     return out
 
@@ -85,87 +88,24 @@ def rhs_into(t, y, p, latched, counts, diag, w, out):
     l2, l3, l4 = {P('l')}, {P('l', 1)}, {P('l', 2)}
     om = {P('omega')}
     th2 = {P('phi0')} + om * t
-    th3, th4, w3, w4 = y[0], y[1], y[2], y[3]
-    c2, s2, c3, s3, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th3), np.sin(th3), np.cos(th4), np.sin(th4)
-    # absolute coordinates of the three bodies (centres of mass at mid-link)
-    q[0], q[1], q[2] = 0.5 * l2 * c2, 0.5 * l2 * s2, th2
-    q[3], q[4], q[5] = l2 * c2 + 0.5 * l3 * c3, l2 * s2 + 0.5 * l3 * s3, th3
-    q[6], q[7], q[8] = {P('ground')} + 0.5 * l4 * c4, 0.5 * l4 * s4, th4
-    qd[0], qd[1], qd[2] = -0.5 * l2 * s2 * om, 0.5 * l2 * c2 * om, om
-    qd[3], qd[4], qd[5] = -l2 * s2 * om - 0.5 * l3 * s3 * w3, l2 * c2 * om + 0.5 * l3 * c3 * w3, w3
-    qd[6], qd[7], qd[8] = -0.5 * l4 * s4 * w4, 0.5 * l4 * c4 * w4, w4
-    body_trig(q, cs)
     mass = p[{idx['mass']}:{idx['mass'] + 9}]
     potential = 0.0
+'''
+
+
+def _forces(P, law, contacts) -> str:
+    """Gravity and each clearance joint's contact and friction (``contacts``: (k, journal body, its point's x, bearing
+    body, its point's x)), into g, with the joints' diagnostics; after the bodies' q and qd are set."""
+    out = f'''
+    body_trig(q, cs)
     counts[3] += 1
     for b in range(3):
         g[3 * b + 1] -= mass[3 * b] * {P('gravity')}
         potential += mass[3 * b] * {P('gravity')} * q[3 * b + 1]
-    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, {P('clearance')}, {P('r_journal')}, {P('r_bearing')})
-    fn = 0.0
-    ft = 0.0
-    if delta > 0.0:
-        counts[0] += 1
-        vimp = latched[0] if latched[0] > {P('floor')} else {P('floor')}
-        fe, ue = elastic_contact(int({P('elastic_law')}), {P('elastic_stiffness')}, {P('elastic_exponent')}, delta)
-        fn = fe * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)
-        potential += ue
-        counts[1] += 1
-        ft = friction_coefficient(vt, {P('friction')}, {P('v0')}, {P('v1')}) * fn
-    tx, ty = -ny, nx
-    fx = -fn * nx + ft * tx
-    fy = -fn * ny + ft * ty
-    apply_force(q, cs, g, 1, 0.5 * l3, 0.0, fx, fy)
-    apply_force(q, cs, g, 2, 0.5 * l4, 0.0, -fx, -fy)
-    g[5] += {P('r_journal')} * ft
-    g[8] -= {P('r_bearing')} * ft
-    # the bodies' accelerations at zero angular accelerations of theta3, theta4 (gamma), and their columns (B)
-    gx1, gy1 = -0.5 * l2 * c2 * om * om, -0.5 * l2 * s2 * om * om
-    gx2, gy2 = -l2 * c2 * om * om - 0.5 * l3 * c3 * w3 * w3, -l2 * s2 * om * om - 0.5 * l3 * s3 * w3 * w3
-    gx3, gy3 = -0.5 * l4 * c4 * w4 * w4, -0.5 * l4 * s4 * w4 * w4
-    b3x, b3y = -0.5 * l3 * s3, 0.5 * l3 * c3
-    b4x, b4y = -0.5 * l4 * s4, 0.5 * l4 * c4
-    m2, j2, m3, j3 = mass[3], mass[5], mass[6], mass[8]
-    # theta3 moves only the coupler, theta4 only the rocker: B^T M B is diagonal
-    a3 = ((g[3] - m2 * gx2) * b3x + (g[4] - m2 * gy2) * b3y + g[5]) / (m2 * (b3x * b3x + b3y * b3y) + j2)
-    a4 = ((g[6] - m3 * gx3) * b4x + (g[7] - m3 * gy3) * b4y + g[8]) / (m3 * (b4x * b4x + b4y * b4y) + j3)
-    # the crank torque: the virtual work of (M qdd - g) along the crank angle (theta3, theta4 held)
-    ax2, ay2 = gx2 + b3x * a3, gy2 + b3y * a3
-    torque = (mass[0] * gx1 - g[0]) * (-0.5 * l2 * s2) + (mass[1] * gy1 - g[1]) * (0.5 * l2 * c2) - g[2] \\
-        + (m2 * ax2 - g[3]) * (-l2 * s2) + (m2 * ay2 - g[4]) * (l2 * c2)
-    out[0], out[1], out[2], out[3] = w3, w4, a3, a4
-    out[4] = torque * om
-    kinetic = 0.0
-    for k in range(9):
-        kinetic += 0.5 * mass[k] * qd[k] * qd[k]
-    diag[0] = a4
-    diag[1] = torque
-    diag[2] = kinetic + potential
-    diag[3] = 0.0
-    diag[4] = e
-    diag[5] = delta
-    diag[6] = ddot
-    diag[7] = fn
-    diag[8] = 0.0
-    diag[9] = 0.0
 '''
-    return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
-
-
-def joint_source_both(lengths) -> str:
-    """Source of the joint-coordinate scene with both joints in clearance (contact, friction, gravity): the coupler is
-    free (x3, y3, theta3), the rocker turns about its ground pin (theta4); state (x3, y3, theta3, theta4, their rates,
-    the driver's work)."""
-    _, idx = model.pack(model._dummy_parameters(lengths), 0.0)
-
-    def P(name, k=0):
-        return f"p[{idx[name] + k}]"
-
-    law = model.CONTACT_LAWS["lankarani-nikravesh"]
-
-    def contact(k, bj, jx, bb, bx):
+    for k, bj, jx, bb, bx in contacts:
         o = model.DIAG_FIXED + model.DIAG_PER_JOINT * k
-        return f'''
+        out += f'''
     e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, 0.0, {bb}, {bx}, 0.0, {P('clearance')}, {P('r_journal')}, {P('r_bearing')})
     fn = 0.0
     ft = 0.0
@@ -190,34 +130,65 @@ def joint_source_both(lengths) -> str:
     diag[{o + 4}] = 0.0
     diag[{o + 5}] = 0.0
 '''
-
-    body = f'''
-import numpy as np
-from numba import njit
-from linkwork.engines.multibody.kernels import clearance_state, hertz_damping_factor, friction_coefficient, elastic_contact, apply_force, body_trig
-NC = 0
-N_DIAG = {model.DIAG_FIXED + 2 * model.DIAG_PER_JOINT}
-JOINTS = (1, 2)
-N_WORK = 40
-
-
-@njit(cache=True)
-def rhs(t, y, p, latched, counts, diag):
-    out = np.empty(9)
-    rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)
     return out
 
 
-@njit(cache=True)
-def rhs_into(t, y, p, latched, counts, diag, w, out):
-    w[:] = 0.0
-    q = w[0:9]
-    qd = w[9:18]
-    g = w[18:27]
-    cs = w[27:33]
-    l2, l3, l4 = {P('l')}, {P('l', 1)}, {P('l', 2)}
-    om = {P('omega')}
-    th2 = {P('phi0')} + om * t
+#: The tail of ``rhs_into``: energy and the fixed diagnostics (a4 and torque set before it).
+_TAIL = '''
+    kinetic = 0.0
+    for k in range(9):
+        kinetic += 0.5 * mass[k] * qd[k] * qd[k]
+    diag[0] = a4
+    diag[1] = torque
+    diag[2] = kinetic + potential
+    diag[3] = 0.0
+'''
+
+
+def _module(body: str) -> str:
+    return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
+
+
+def joint_source(lengths) -> str:
+    """Source of the joint-coordinate scene (joint 2 in clearance, contact, friction and gravity): rhs, rhs_into and
+    the engine's integrators, with the engine's parameter layout (``model.pack``)."""
+    P, idx, law = _names(lengths)
+    return _module(_head((2,), N_REDUCED, P, idx) + f'''
+    th3, th4, w3, w4 = y[0], y[1], y[2], y[3]
+    c2, s2, c3, s3, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th3), np.sin(th3), np.cos(th4), np.sin(th4)
+    # absolute coordinates of the three bodies (centres of mass at mid-link)
+    q[0], q[1], q[2] = 0.5 * l2 * c2, 0.5 * l2 * s2, th2
+    q[3], q[4], q[5] = l2 * c2 + 0.5 * l3 * c3, l2 * s2 + 0.5 * l3 * s3, th3
+    q[6], q[7], q[8] = {P('ground')} + 0.5 * l4 * c4, 0.5 * l4 * s4, th4
+    qd[0], qd[1], qd[2] = -0.5 * l2 * s2 * om, 0.5 * l2 * c2 * om, om
+    qd[3], qd[4], qd[5] = -l2 * s2 * om - 0.5 * l3 * s3 * w3, l2 * c2 * om + 0.5 * l3 * c3 * w3, w3
+    qd[6], qd[7], qd[8] = -0.5 * l4 * s4 * w4, 0.5 * l4 * c4 * w4, w4
+''' + _forces(P, law, [(0, 1, "0.5 * l3", 2, "0.5 * l4")]) + '''
+    # the bodies' accelerations at zero angular accelerations of theta3, theta4 (gamma), and their columns (B)
+    gx1, gy1 = -0.5 * l2 * c2 * om * om, -0.5 * l2 * s2 * om * om
+    gx2, gy2 = -l2 * c2 * om * om - 0.5 * l3 * c3 * w3 * w3, -l2 * s2 * om * om - 0.5 * l3 * s3 * w3 * w3
+    gx3, gy3 = -0.5 * l4 * c4 * w4 * w4, -0.5 * l4 * s4 * w4 * w4
+    b3x, b3y = -0.5 * l3 * s3, 0.5 * l3 * c3
+    b4x, b4y = -0.5 * l4 * s4, 0.5 * l4 * c4
+    m2, j2, m3, j3 = mass[3], mass[5], mass[6], mass[8]
+    # theta3 moves only the coupler, theta4 only the rocker: B^T M B is diagonal
+    a3 = ((g[3] - m2 * gx2) * b3x + (g[4] - m2 * gy2) * b3y + g[5]) / (m2 * (b3x * b3x + b3y * b3y) + j2)
+    a4 = ((g[6] - m3 * gx3) * b4x + (g[7] - m3 * gy3) * b4y + g[8]) / (m3 * (b4x * b4x + b4y * b4y) + j3)
+    # the crank torque: the virtual work of (M qdd - g) along the crank angle (theta3, theta4 held)
+    ax2, ay2 = gx2 + b3x * a3, gy2 + b3y * a3
+    torque = (mass[0] * gx1 - g[0]) * (-0.5 * l2 * s2) + (mass[1] * gy1 - g[1]) * (0.5 * l2 * c2) - g[2] \\
+        + (m2 * ax2 - g[3]) * (-l2 * s2) + (m2 * ay2 - g[4]) * (l2 * c2)
+    out[0], out[1], out[2], out[3] = w3, w4, a3, a4
+    out[4] = torque * om
+''' + _TAIL)
+
+
+def joint_source_both(lengths) -> str:
+    """Source of the joint-coordinate scene with both joints in clearance (contact, friction, gravity): the coupler is
+    free (x3, y3, theta3), the rocker turns about its ground pin (theta4); state (x3, y3, theta3, theta4, their rates,
+    the driver's work)."""
+    P, idx, law = _names(lengths)
+    return _module(_head((1, 2), 9, P, idx) + f'''
     th4, w4 = y[3], y[7]
     c2, s2, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th4), np.sin(th4)
     q[0], q[1], q[2] = 0.5 * l2 * c2, 0.5 * l2 * s2, th2
@@ -226,15 +197,7 @@ def rhs_into(t, y, p, latched, counts, diag, w, out):
     qd[0], qd[1], qd[2] = -0.5 * l2 * s2 * om, 0.5 * l2 * c2 * om, om
     qd[3], qd[4], qd[5] = y[4], y[5], y[6]
     qd[6], qd[7], qd[8] = -0.5 * l4 * s4 * w4, 0.5 * l4 * c4 * w4, w4
-    body_trig(q, cs)
-    mass = p[{idx['mass']}:{idx['mass'] + 9}]
-    potential = 0.0
-    counts[3] += 1
-    for b in range(3):
-        g[3 * b + 1] -= mass[3 * b] * {P('gravity')}
-        potential += mass[3 * b] * {P('gravity')} * q[3 * b + 1]
-{contact(0, 0, "0.5 * l2", 1, "-0.5 * l3")}
-{contact(1, 1, "0.5 * l3", 2, "0.5 * l4")}
+''' + _forces(P, law, [(0, 0, "0.5 * l2", 1, "-0.5 * l3"), (1, 1, "0.5 * l3", 2, "0.5 * l4")]) + '''
     gx1, gy1 = -0.5 * l2 * c2 * om * om, -0.5 * l2 * s2 * om * om
     gx3, gy3 = -0.5 * l4 * c4 * w4 * w4, -0.5 * l4 * s4 * w4 * w4
     b4x, b4y = -0.5 * l4 * s4, 0.5 * l4 * c4
@@ -244,15 +207,7 @@ def rhs_into(t, y, p, latched, counts, diag, w, out):
     out[0], out[1], out[2], out[3] = y[4], y[5], y[6], w4
     out[4], out[5], out[6], out[7] = g[3] / mass[3], g[4] / mass[4], g[5] / mass[5], a4
     out[8] = torque * om
-    kinetic = 0.0
-    for k in range(9):
-        kinetic += 0.5 * mass[k] * qd[k] * qd[k]
-    diag[0] = a4
-    diag[1] = torque
-    diag[2] = kinetic + potential
-    diag[3] = 0.0
-'''
-    return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
+''' + _TAIL)
 
 
 def compile_joint(lengths, both: bool = False):
