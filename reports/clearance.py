@@ -95,7 +95,8 @@ caption(f"The claims' measures per clearance scene on the state it settles into:
         "where the state is not periodic; an open marker is a state in doubt (not settled by the cycle cap, or changed by the tolerance) or, "
         "for the ripple, a ripple that drifts over the judged window of a state that is not periodic (no interval). "
         "The box under each panel lists the orderings each claim needs on that measure and, per start in that order, whether each holds beyond "
-        "both the interval and the numerical error, fails, or stays undetermined. Logarithmic scale.")
+        "both the interval and the numerical error, fails, or stays undetermined. Logarithmic scale. The peaks are tested converged at this "
+        "sampling on a dry scene only; the lubricated scenes' peaks are not, and no verdict uses them.")
 
 # %% [markdown]
 # **What the paper does.** It models a four-bar (ground, crank, coupler, rocker) as a planar multibody system with
