@@ -29,9 +29,7 @@ from __future__ import annotations
 import argparse
 import hashlib
 import importlib.util
-import statistics
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
@@ -41,6 +39,7 @@ PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _project import write_figures  # noqa: E402
+from clearance_turns import timed_turns  # noqa: E402
 
 from linkwork.engines.multibody import model  # noqa: E402
 from linkwork.engines.multibody.simulate import Run  # noqa: E402
@@ -277,14 +276,8 @@ def measure(section, scene: str, warm: int, turns: int) -> dict[str, object]:
     per = section["numerics"]["points_per_cycle"]
     cost = {}
     for name, run in (("engine", Run(p, joints, effects, integ, y0=y0)), ("joint", JointRun(p, integ, y0, joints))):
-        for _ in range(warm):
-            run.advance(run.t + np.arange(per + 1) * period / per)
-        seconds, steps = [], run.steps
-        for _ in range(turns):
-            t0 = time.perf_counter()
-            run.advance(run.t + np.arange(per + 1) * period / per)
-            seconds.append(time.perf_counter() - t0)
-        cost[name] = {"s_per_turn": statistics.median(seconds), "steps_per_turn": (run.steps - steps) / turns}
+        timed_turns(run, period, per, warm)
+        cost[name] = timed_turns(run, period, per, turns)
         print(scene, name, cost[name], flush=True)
     cost["speedup"] = cost["engine"]["s_per_turn"] / cost["joint"]["s_per_turn"]
     return {"agreement": agreement, "cost": cost, "states": {"engine": 19, "joint": int(JointRun(p, integ, y0, joints).y.size)}}
