@@ -36,6 +36,45 @@ def test_forward_integration_of_the_ideal_linkage_equals_inverse_dynamics():
     assert np.abs(diags[:, 1] - ideal["crank_torque"]).max() < 1e-6 * np.abs(ideal["crank_torque"]).max()
 
 
+def test_the_stacked_inverse_dynamics_equals_a_solve_per_instant():
+    """Regression of the stacked route against the per-instant one it replaced (the same kernels, one Jacobian and one
+    solve per instant): equal to the bit, with gravity."""
+    from linkwork.engines.multibody.kernels import body_trig, driver, revolute
+    from linkwork.engines.multibody.model import kinematic_state, pack, start_angle
+
+    p = SLENDER
+    t = np.linspace(0.0, 2 * np.pi / p.crank_speed, 37)
+    ideal = inverse_dynamics(p, t, gravity=True)
+    phi0 = start_angle(p)
+    q, qd, qdd = kinematic_state(p, phi0 + p.crank_speed * t)
+    params, idx = pack(p, phi0)
+    mass = params[idx["mass"] : idx["mass"] + 9]
+    l2, l3, l4 = p.lengths
+    g = np.zeros(9)
+    g[1::3] -= mass[0::3] * p.gravity
+    for i in range(t.size):
+        phi, phiq, gamma, phidot, cs = np.zeros(9), np.zeros((9, 9)), np.zeros(9), np.zeros(9), np.empty(6)
+        body_trig(q[i], cs)
+        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
+        driver(q[i], qd[i], t[i], 0, phi0, p.crank_speed, 2, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
+        lam = np.linalg.solve(phiq.T, g - mass * qdd[i])
+        assert ideal["crank_torque"][i] == -lam[2]
+        assert ideal["force_A"][i] == np.hypot(lam[5], lam[6]) and ideal["force_B"][i] == np.hypot(lam[7], lam[8])
+
+
+def test_the_dop853_tableau_held_as_data_is_scipys_to_the_bit():
+    from scipy.integrate._ivp import dop853_coefficients as scipy_table
+
+    from linkwork.engines.multibody import dop853_tableau as ours
+
+    for name in ("A", "B", "C", "E3", "E5", "D"):
+        theirs = np.asarray(getattr(scipy_table, name), dtype=float)
+        assert np.asarray(getattr(ours, name)).shape == theirs.shape and np.array_equal(np.asarray(getattr(ours, name)), theirs), name
+
+
 def test_an_effect_left_out_is_never_evaluated():
     _, _, _, dry = run(SLENDER, (1, 2), ("contact", "friction", "gravity"), cycles=0.5)
     assert dry[2] == 0 and dry[0] > 0 and dry[1] > 0  # no lubrication evaluation in a dry scene

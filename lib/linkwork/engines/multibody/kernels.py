@@ -197,3 +197,21 @@ def gauss_solve_into(a, b, x):
         for k in range(row + 1, n):
             acc -= a[row, k] * x[k]
         x[row] = acc / a[row, row]
+
+
+@njit(cache=True)
+def ideal_jacobians(q, qd, t, nc, phi0, omega, l2, l3, l4, ground):
+    """Phi_q (n, nc, 9) of the ideal four-bar (ground pin of the crank, driver, ground pin of the rocker, the two
+    coupler pins) at each of the n states ``q``, ``qd`` (n, 9) at times ``t`` (s), by the scenes' own kernels."""
+    n = q.shape[0]
+    out = np.zeros((n, nc, 9))
+    phi, gamma, phidot, cs = np.zeros(nc), np.zeros(nc), np.zeros(nc), np.empty(6)
+    for i in range(n):
+        phiq = out[i]
+        body_trig(q[i], cs)
+        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
+        driver(q[i], qd[i], t[i], 0, phi0, omega, 2, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, ground, 0.0, 3, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
+        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
+    return out

@@ -373,8 +373,9 @@ def schur_source(pattern: list[list[int]]) -> list[str]:
 
 def dop853_coefficients_source() -> str:
     """The DOP853 tableau (Hairer, Norsett and Wanner; as tabulated in scipy.integrate) as module constants of a
-    generated scene: stages A, C, weights B, error weights E3, E5, dense-output weights D (extra stages 13-15)."""
-    from scipy.integrate._ivp import dop853_coefficients as c
+    generated scene: stages A, C, weights B, error weights E3, E5, dense-output weights D (extra stages 13-15), from
+    ``dop853_tableau`` (no import of scipy.integrate)."""
+    from . import dop853_tableau as c
 
     def arr(x) -> str:
         return "np.array(" + repr(np.asarray(x, dtype=float).tolist()) + ")"
@@ -875,39 +876,30 @@ def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict
     """The ideal scene: kinematics, then Phi_q^T lambda = g - M q'' (no time integration).
 
     Returns rocker angular acceleration, crank torque, joint reaction magnitudes at A and B and the
-    mechanical energy, at the times t (s).
+    mechanical energy, at the times t (s).  The constraint Jacobians are assembled by the compiled kernels in one
+    compiled loop (``kernels.ideal_jacobians``) and the systems solved as one stack (the same numbers as a loop of single
+    solves: tests/test_multibody.py).
     """
+    from .kernels import ideal_jacobians
+
     module = compile_scene((), ("gravity",) if gravity else ())
     phi0 = start_angle(p)
-    theta = phi0 + p.crank_speed * np.asarray(t, dtype=float)
+    t = np.asarray(t, dtype=float)
+    theta = phi0 + p.crank_speed * t
     q, qd, qdd = kinematic_state(p, theta)
     params, idx = pack(p, phi0)
-    from .kernels import body_trig, driver, revolute
-
     mass = params[idx["mass"] : idx["mass"] + 9]
     l2, l3, l4 = p.lengths
-    torque = np.empty(theta.size)
-    force_a = np.empty(theta.size)
-    force_b = np.empty(theta.size)
-    energy = np.empty(theta.size)
-    for i in range(theta.size):
-        nc = module.NC
-        phi, phiq, gamma, phidot, cs = np.zeros(nc), np.zeros((nc, 9)), np.zeros(nc), np.zeros(nc), np.empty(6)
-        body_trig(q[i], cs)
-        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
-        driver(q[i], qd[i], t[i], 0, phi0, p.crank_speed, 2, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
-        g = np.zeros(9)
-        if gravity:
-            g[1::3] -= mass[0::3] * p.gravity
-        lam = np.linalg.solve(phiq.T, g - mass * qdd[i])
-        torque[i] = -lam[2]
-        force_a[i] = np.hypot(lam[5], lam[6])
-        force_b[i] = np.hypot(lam[7], lam[8])
-        energy[i] = 0.5 * np.sum(mass * qd[i] ** 2) + (np.sum(mass[0::3] * p.gravity * q[i, 1::3]) if gravity else 0.0)
-    return {"rocker_acceleration": qdd[:, 8], "crank_torque": torque, "force_A": force_a, "force_B": force_b, "energy": energy}
+    phiq = ideal_jacobians(q, qd, t, module.NC, phi0, p.crank_speed, float(l2), float(l3), float(l4), float(p.ground))
+    g = np.zeros(9)
+    if gravity:
+        g[1::3] -= mass[0::3] * p.gravity
+    lam = np.linalg.solve(np.swapaxes(phiq, 1, 2), (g - mass * qdd)[..., None])[..., 0]
+    energy = 0.5 * np.sum(mass * qd**2, axis=-1)
+    if gravity:
+        energy = energy + np.sum(mass[0::3] * p.gravity * q[:, 1::3], axis=-1)
+    return {"rocker_acceleration": qdd[:, 8], "crank_torque": -lam[:, 2], "force_A": np.hypot(lam[:, 5], lam[:, 6]),
+            "force_B": np.hypot(lam[:, 7], lam[:, 8]), "energy": energy}
 
 
 def initial_state(p: FourBarParameters, offset: tuple[float, float] = (0.0, 0.0), joint: int = 0) -> tuple[np.ndarray, float]:
