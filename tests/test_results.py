@@ -78,3 +78,29 @@ def test_ctrl_c_during_a_write_is_held_until_the_file_is_complete(tmp_path, monk
     with xr.open_dataset(tmp_path / "out.nc") as back:
         assert back.k.values.tolist() == [0.0, 1.0, 2.0]
     assert signal.getsignal(signal.SIGINT) is before  # the handler the write found is back
+
+
+def test_finish_job_runs_the_exit_handlers_flushes_and_leaves_a_written_result_whole(tmp_path):
+    """A rule script's last line: its netCDF output reads back whole, buffered output is printed, the exit handlers
+    (the resource recorder of benchmarks/job_resources.py is one) run, and the exit status is 0."""
+    import subprocess
+    import sys
+    import textwrap
+
+    script = textwrap.dedent(f"""
+        import atexit, sys
+        import numpy as np, xarray as xr
+        from linkwork.pipeline import results
+        atexit.register(lambda: open({str(tmp_path / "handler")!r}, "w").write("ran"))
+        ds = xr.Dataset({{"k": ("x", np.arange(1000.0), {{"units": "1", "long_name": "k"}})}},
+                        coords={{"x": ("x", np.arange(1000.0), {{"units": "1", "long_name": "x"}})}})
+        results.write(ds, {str(tmp_path / "out.nc")!r})
+        sys.stdout.write("buffered line")
+        results.finish_job()
+        print("never reached")
+    """)
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=False)
+    assert done.returncode == 0, done.stderr
+    assert done.stdout == "buffered line"
+    assert (tmp_path / "handler").read_text() == "ran"
+    assert float(xr.load_dataset(tmp_path / "out.nc").k.sum()) == 499500.0

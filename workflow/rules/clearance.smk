@@ -38,6 +38,7 @@ rule clearance_scene:
 
 
 rule clearance_claims:
+    priority: GATE_PRIORITY
     input:
         scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
         code=code("linkwork.papers.clearance.studies"),
@@ -51,7 +52,7 @@ rule clearance_claims:
 
 
 rule clearance_work_precision:
-    priority: LONG_JOB_PRIORITY
+    priority: CHAIN_HEAD_PRIORITY  # the clearance report waits for it: before the sweep points, not after them
     input:
         code=code("linkwork.papers.clearance.accuracy"),
     output:
@@ -87,6 +88,7 @@ rule clearance_contact_law:
 
 
 rule clearance_compare:
+    priority: GATE_PRIORITY
     input:
         published="config/published/clearance.yaml",
         claims="results/clearance/claims.nc",

@@ -20,6 +20,11 @@ LONG_JOB_PRIORITY = 10
 # the uncertainty batches (the transplanter gather, one 63-s job, waits for them), and each gather as soon as its
 # batches are in.  Behind the sweep points, the sensitivity and the transplanter gather ran alone at the end.
 CHAIN_HEAD_PRIORITY = 20
+# Before everything the short links that gate the longest report (the clearance one, 10 s, waits for its paper's
+# assumptions, the claims, the comparison, the work-precision study and the gathered sweep), and that report itself:
+# at priority 0 they waited behind every sweep point and the small jobs, and the clearance report then ran alone at
+# the end (benchmarks/job_resources.py's per-job times).
+GATE_PRIORITY = CHAIN_HEAD_PRIORITY + 2
 # The interpreter Snakemake runs on: shell rules use it, so an unactivated .venv/bin/snakemake works.
 PYTHON = sys.executable
 

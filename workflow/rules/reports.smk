@@ -12,6 +12,7 @@ def paper_report(paper, **results):
 
 rule assumptions:
     # the one rule that reads the reasons: an edit of a reason reruns this step and its paper's report, nothing else
+    priority: GATE_PRIORITY
     input:
         code=code("linkwork.pipeline.assumptions"),
     output:
@@ -64,6 +65,7 @@ def report_inputs(wildcards):
 
 
 rule report:
+    priority: lambda wildcards: GATE_PRIORITY if wildcards.report == "clearance" else 0  # the longest report: out of the tail
     input:
         unpack(report_inputs),
     output:

@@ -76,6 +76,7 @@ rule sweep_point:
 
 
 rule sweep_gather:
+    priority: GATE_PRIORITY
     input:
         unpack(sweep_gather_inputs),
     output:

@@ -154,5 +154,8 @@ def _cli() -> None:
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
     render(Path(sm.input.notebook), Path(sm.output[0]), {k: v for k, v in sm.input.items() if k not in SKIPPED}, Path(sm.input.template))
+    from linkwork.pipeline.results import finish_job
+
+    finish_job()  # no interpreter teardown: the page is written and closed
 elif __name__ == "__main__":
     _cli()

@@ -50,3 +50,4 @@ for obj, path in zip(outputs, sm.output):
     else:
         results.write_text(json.dumps(obj, indent=2, sort_keys=True), path)
 print(f"{label}: wrote {', '.join(sm.output)} in {time.perf_counter() - start:.1f} s", flush=True)
+results.finish_job()  # no interpreter teardown: the outputs are written and closed

@@ -179,3 +179,20 @@ def load(path: str | os.PathLike[str]) -> Any:
             f"rebuild it with: snakemake --force {target}"
         ) from None
     raise ValueError(f"no reader for {target}")
+
+
+def finish_job() -> None:
+    """End a rule's process once its outputs are written (atomically, files closed): flush the streams, run the
+    exit handlers, and leave without the interpreter's teardown (freeing every module and the compiled code: 0.1-0.2 s a
+    job, measured with and without numba and xarray loaded, about 15 core-seconds over the full reproduction's jobs).
+    Only for the rule scripts' last line; a failing job exits through ``sys.exit`` as before."""
+    import atexit
+    import sys
+
+    sys.stdout.flush()
+    sys.stderr.flush()
+    atexit._run_exitfuncs()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(0)
+
