@@ -173,7 +173,9 @@ def test_a_clearance_batch_moves_only_the_scenes_that_read_its_input():
 
     found = batch_jobs(SECTION)
     jobs = {(s["label"], j["variant"]): j["scenes"] for j in found for s in j["samples"]}
-    assert len(jobs) == len(found) == 10 * len(SECTION["variants"])  # five inputs at two ends, one batch each; nominal points rerun nothing
+    # five inputs at two ends, one batch per input (both ends share its process); nominal points rerun nothing
+    assert len(jobs) == 2 * len(found) == 10 * len(SECTION["variants"])
+    assert all(len({s["label"].rsplit(" ", 1)[0] for s in j["samples"]}) == 1 for j in found)
     for variant in SECTION["variants"]:
         assert jobs[("assumed.e0_m.value low", variant)] == ["lubricated_1", "lubricated_2", "lubricated_both"]
         # v1 and the impact-velocity floor enter every scene with contact: the dry ones and the lubricated ones (their dry contact)

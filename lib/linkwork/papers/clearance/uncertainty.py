@@ -2,7 +2,7 @@
 film cap, and the initial state of the journals (a scenario).
 
 Each assumed input is moved alone to both ends of its range, in the first start (the initial state is a scenario;
-the other starts are judged at the nominal inputs).  A batch is one sample of one parameter variant; it reruns only
+the other starts are judged at the nominal inputs).  A batch is one input's samples in one parameter variant; it reruns only
 the scenes the sample's input enters, from the first start's nominal state, each settled and judged as the nominal run is (the same settling rule from the same start: the
 state, its judged window, the measure on it and its interval), without the check reruns: a sample takes the nominal
 run's numerical error bar.  A sample continues from the nominal state (the run state at the start of the nominal
@@ -49,22 +49,24 @@ def _moved_values(sample) -> dict[str, Any]:
 
 
 def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
-    """The batches of the whole clearance section ``cfg``: one per parameter variant and sample (but the nominal
-    ones), with the sample's label and moved values and the compared scenes whose model reads a moved input (a
-    batch's config holds only those scenes' keys)."""
+    """The batches of the whole clearance section ``cfg``: one per parameter variant and moved input (its samples,
+    both ends of its range, share one process: its imports, compiled code and nominal runs), with the samples'
+    labels and moved values and the compared scenes whose model reads the moved input (a batch's config holds only
+    those scenes' keys)."""
     from .adapter import model_keys
     from .studies import COMPARED
 
-    jobs = []
+    jobs: dict[tuple[str, tuple[str, ...]], dict[str, Any]] = {}
     design = _design(cfg)
     for variant in cfg["variants"]:
         for sample in design[1:]:
             if not sample.moved or sample.scenario != design[0].scenario:
                 continue  # a start's nominal point (the nominal runs hold it), or another start's sample (the same batch computes it)
-            moved = [path.removesuffix(".value") for path in _moved_values(sample)]
+            moved = tuple(path.removesuffix(".value") for path in _moved_values(sample))
             scenes = [name for name in COMPARED if any(m in model_keys(cfg, variant, name) for m in moved)]
-            jobs.append({"variant": variant, "scenes": scenes, "samples": [{"label": sample.label, "values": _moved_values(sample)}]})
-    return jobs
+            job = jobs.setdefault((variant, moved), {"variant": variant, "scenes": scenes, "samples": []})
+            job["samples"].append({"label": sample.label, "values": _moved_values(sample)})
+    return list(jobs.values())
 
 
 def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), all_starts: bool = False):
