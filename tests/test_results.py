@@ -104,3 +104,16 @@ def test_finish_job_runs_the_exit_handlers_flushes_and_leaves_a_written_result_w
     assert done.stdout == "buffered line"
     assert (tmp_path / "handler").read_text() == "ran"
     assert float(xr.load_dataset(tmp_path / "out.nc").k.sum()) == 499500.0
+
+
+def test_strings_concatenated_from_files_of_different_widths_are_written_whole(tmp_path):
+    """Two results whose labels have different lengths, read back and concatenated (as a gather step does), then
+    written: no label is cut to the first file's width (it was: the heald study's second scenario counted no samples)."""
+    def labelled(labels):
+        return xr.Dataset({"k": ("sample", np.arange(len(labels), dtype=float), {"units": "1", "long_name": "k"})},
+                          coords={"sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "label"})})
+
+    short, long = ["drive at the shaft"] * 2, ["drive at half the shaft frequency"] * 2
+    parts = [xr.load_dataset(results.write(labelled(x), tmp_path / f"{k}.nc")) for k, x in enumerate((short, long))]
+    results.write(xr.concat(parts, dim="sample"), tmp_path / "gathered.nc")
+    assert [str(x) for x in xr.load_dataset(tmp_path / "gathered.nc").sample.values] == short + long

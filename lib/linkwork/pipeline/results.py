@@ -114,11 +114,24 @@ def _uninterrupted():
         raise KeyboardInterrupt
 
 
+def without_string_widths(ds):
+    """``ds`` (a shallow copy) without the string widths its text variables were read with: a variable read from a file
+    keeps the width of its longest string as its encoding, and xarray writes with it, so strings concatenated from
+    files of different widths were cut to the first file's (the heald study's scenario labels were, and its second
+    scenario then counted no samples)."""
+    out = ds.copy()
+    for var in out.variables.values():
+        if var.dtype.kind in "OUS" and "dtype" in var.encoding:
+            var.encoding = {k: v for k, v in var.encoding.items() if k != "dtype"}
+    return out
+
+
 def write(ds, path: str | os.PathLike[str]) -> Path:
     """Write ``ds`` to netCDF atomically (a temporary file beside it, then rename), after checking units and
     that it is finite where it must be."""
     check_units(ds)
     check_finite(ds, str(path))
+    ds = without_string_widths(ds)
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(target.name + ".tmp")
