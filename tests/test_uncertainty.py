@@ -209,7 +209,7 @@ def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_
     assert np.isnan(moved.sel(scene=dry)).all()  # e0 does not enter a dry scene
     gathered = uncertainty.gather(cfg, [part], nominal, PUBLISHED)
     means = gathered.sample_mean_deviation.sel(sample=label, variant="decoded")
-    at = apply(cfg, job["samples"][0]["values"])
+    at = apply(cfg, next(s for s in job["samples"] if s["label"] == label)["values"])
     for k, name in enumerate(COMPARED):
         if name in lubricated:  # the direct route: the scene rerun at the moved film cap, from the nominal state
             direct = scene(at, "decoded", name, first_start_only=True, check=False, memory=nominal_runs[name].window_memory.values[0])

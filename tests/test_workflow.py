@@ -47,7 +47,7 @@ ALL_JOBS = {
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_contact_law": 2, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
     "accuracy_summary": 1, "sweep_point": 6, "sweep_gather": 2, "report": 8,
-    "uncertainty_batch": 35, "uncertainty_gather": 4, "readme_findings": 1,  # 2 + 4 + 9 + 20 (clearance: one per variant and sample)
+    "uncertainty_batch": 17, "uncertainty_gather": 4, "readme_findings": 1,  # 1 + 2 + 4 + 10 (clearance: one per variant and input)
     "assumptions": 5,  # one per paper: the labelled entries, whole (the reports' reasons)
 }
 
