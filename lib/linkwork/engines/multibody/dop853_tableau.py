@@ -3,11 +3,8 @@ Equations I, 2nd ed., Springer 1993, Sec. II.10; the values as scipy.integrate t
 stages A and C, weights B, error weights E3 and E5, dense-output weights D (extra stages 13-15), as data.
 
 Held here so that generating a scene's source does not import scipy.integrate (a quarter of a second in every
-job); tests/test_multibody.py checks every value against scipy's own table to the bit.
+job); tests/test_clearance.py checks every value against scipy's own table to the bit.
 """
-
-#: The scipy version the values were read from (the test compares with the installed one).
-SCIPY_VERSION = "1.17.1"
 
 A = [
     [0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],

@@ -878,7 +878,7 @@ def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict
     Returns rocker angular acceleration, crank torque, joint reaction magnitudes at A and B and the
     mechanical energy, at the times t (s).  The constraint Jacobians are assembled by the compiled kernels in one
     compiled loop (``kernels.ideal_jacobians``) and the systems solved as one stack (the same numbers as a loop of single
-    solves: tests/test_multibody.py).
+    solves: tests/test_clearance.py).
     """
     from .kernels import ideal_jacobians
 
