@@ -32,6 +32,7 @@ include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/uncertainty.smk"
 include: "workflow/rules/reports.smk"
+include: "workflow/rules/linkages.smk"
 
 
 # Every report (together they read every result) and the README's findings: the whole reproduction.
@@ -39,3 +40,4 @@ rule all:
     input:
         expand("results/reports/{report}.html", report=REPORT_INPUTS),
         "results/readme_findings.md",
+        expand("results/linkages/{name}.nc", name=LINKAGES),

@@ -29,8 +29,8 @@ PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.configformat import pick  # noqa: E402
 from linkwork.engines.multibody import kernels  # noqa: E402
-from linkwork.engines.multibody.model import compile_scene, generate_source, initial_state, pack  # noqa: E402
-from linkwork.engines.multibody.simulate import integrate  # noqa: E402
+from linkwork.engines.multibody.model import compile_scene, generate_source, pack  # noqa: E402
+from linkwork.papers.clearance.fourbar import initial_state, integrate, scene  # noqa: E402
 from linkwork.papers.clearance.adapter import parameters, scene_keys  # noqa: E402
 from linkwork.papers.clearance.studies import output_times  # noqa: E402
 from linkwork.papers.clearance.studies import scene as scene_dataset  # noqa: E402
@@ -40,14 +40,14 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _project import write_figures  # noqa: E402
 
 
-def pure_python_rhs(joints, effects, law):
+def pure_python_rhs(linkage, gravity):
     """The scene's right-hand side with every function executed by the Python interpreter."""
     identity = lambda *a, **k: (lambda f: f)  # noqa: E731
     ns: dict = {"np": np, "njit": identity}
     kernel_src = Path(kernels.__file__).read_text().replace("from numba import njit", "")
     exec(compile(kernel_src, "kernels_py", "exec"), ns)
-    scene_src = generate_source(joints, effects, law, (1.0, 1.0, 1.0))
-    scene_src = "\n".join(line for line in scene_src.splitlines() if not line.startswith(("from numba", "from linkwork", "    friction_coefficient, film")))
+    scene_src = generate_source(linkage, gravity)
+    scene_src = "\n".join(line for line in scene_src.splitlines() if not line.startswith(("from numba", "from linkwork", "    hertz_damping_factor, friction_coefficient, film")))
     exec(compile(scene_src, "scene_py", "exec"), ns)
     return ns["rhs"], ns["N_DIAG"]
 
@@ -97,15 +97,16 @@ def main() -> None:
     setting = {**section["integrators"]["explicit"], **BENCH_SETTING}
     ref = integrate(p, joints, effects, t, {**setting, "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-8})[1][early, 0]
     scale = np.abs(ref).max()
-    compile_scene(joints, effects, p.contact_law)
+    lk, gravity = scene(p, joints, effects)
+    compile_scene(lk, gravity)
     ours = integrate(p, joints, effects, t, setting)[1][:, 0]
     ours_err = np.abs(ours[early] - ref).max() / scale
     ours_time = median_time(lambda: integrate(p, joints, effects, t, setting), 5)
     print(f"ours (compiled dopri5, rtol={setting['rtol']:g}): {ours_time:.3f} s; error over the first half cycle {ours_err:.2e}", flush=True)
 
-    rhs_py, n_diag = pure_python_rhs(joints, effects, p.contact_law)
-    y0, phi0 = initial_state(p)
-    params, _ = pack(p, phi0)
+    rhs_py, n_diag = pure_python_rhs(lk, gravity)
+    y0 = initial_state(p, joints)
+    params, _ = pack(lk)
     t0 = time.perf_counter()
     base, nfev = baseline_run(rhs_py, n_diag, joints, y0, params, t, setting)
     base_time = time.perf_counter() - t0

@@ -26,6 +26,7 @@ import yaml
 PROJECT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.engines.multibody.simulate import Run  # noqa: E402
+from linkwork.papers.clearance.fourbar import run as scene_run  # noqa: E402
 from linkwork.papers.clearance.adapter import integrator_kind, parameters, scene_effects  # noqa: E402
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -52,12 +53,12 @@ def scene_figures(section, variant: str, scene: str, warm: int, turns: int) -> d
     per = section["numerics"]["points_per_cycle"]
     period = 2 * np.pi / p.crank_speed
     out: dict[str, object] = {"integrator": f"{integ['method']} rtol={integ['rtol']:g}"}
-    run = Run(p, joints, effects, integ)
+    run = scene_run(p, joints, effects, integ)
     timed_turns(run, period, per, warm)
     out["pipeline"] = timed_turns(run, period, per, turns)
     out["coarse"] = timed_turns(run, period, COARSE, turns)
     if integ["method"] == "dop853":
-        before = Run(p, joints, effects, {**integ, "method": "dopri5"})
+        before = scene_run(p, joints, effects, {**integ, "method": "dopri5"})
         timed_turns(before, period, per, warm)
         out["dopri5"] = timed_turns(before, period, per, turns)
     return out

@@ -43,14 +43,38 @@ from clearance_turns import timed_turns  # noqa: E402
 
 from linkwork.engines.multibody import model  # noqa: E402
 from linkwork.engines.multibody.simulate import Run  # noqa: E402
+from linkwork.papers.clearance.fourbar import initial_state, start_angle  # noqa: E402
+from linkwork.papers.clearance.fourbar import scene as scene_of  # noqa: E402
 from linkwork.papers.clearance.adapter import parameters, scene_effects  # noqa: E402
 
 N_REDUCED = 5  # theta3, theta4, their rates, the driver's work
 
 
+#: The benchmark's own parameter layout (name, length): the four-bar's data the joint-coordinate sources read.
+LAYOUT = (("mass", 9), ("ground", 1), ("l", 3), ("omega", 1), ("phi0", 1), ("gravity", 1), ("clearance", 1), ("r_journal", 1),
+          ("r_bearing", 1), ("restitution", 1), ("friction", 1), ("v0", 1), ("v1", 1), ("floor", 1), ("elastic_law", 1),
+          ("elastic_stiffness", 1), ("elastic_exponent", 1))
+
+
+def bench_pack(p) -> np.ndarray:
+    """The four-bar's data in LAYOUT (SI, the start angle at the dead point)."""
+    from linkwork.engines.multibody.linkage import ELASTIC_LAWS
+
+    m, j = p.masses, p.inertias
+    values = {"mass": [m[0], m[0], j[0], m[1], m[1], j[1], m[2], m[2], j[2]], "ground": [p.ground], "l": list(p.lengths),
+              "omega": [p.crank_speed], "phi0": [start_angle(p)], "gravity": [p.gravity], "clearance": [p.clearance],
+              "r_journal": [p.journal_radius], "r_bearing": [p.bearing_radius], "restitution": [p.restitution],
+              "friction": [p.friction], "v0": [p.v0], "v1": [p.v1], "floor": [p.impact_velocity_floor],
+              "elastic_law": [float(ELASTIC_LAWS[p.elastic_law])], "elastic_stiffness": [p.elastic_stiffness],
+              "elastic_exponent": [p.elastic_exponent]}
+    return np.array([v for name, _ in LAYOUT for v in values[name]], dtype=float)
+
+
 def _names(lengths):
-    """(P: a parameter's source expression by name, the contact law's code) in the engine's layout (``model.pack``)."""
-    _, idx = model.pack(model._dummy_parameters(lengths), 0.0)
+    """(P: a parameter's source expression by name, the contact law's code) in LAYOUT."""
+    idx, at = {}, 0
+    for name, n in LAYOUT:
+        idx[name], at = at, at + n
 
     def P(name, k=0):
         return f"p[{idx[name] + k}]"
@@ -150,7 +174,7 @@ def _module(body: str) -> str:
 
 def joint_source(lengths) -> str:
     """Source of the joint-coordinate scene (joint 2 in clearance, contact, friction and gravity): rhs, rhs_into and
-    the engine's integrators, with the engine's parameter layout (``model.pack``)."""
+    the engine's integrators, with the benchmark's parameter layout (LAYOUT)."""
     P, idx, law = _names(lengths)
     return _module(_head((2,), N_REDUCED, P, idx) + f'''
     th3, th4, w3, w4 = y[0], y[1], y[2], y[3]
@@ -229,9 +253,10 @@ class JointRun(Run):
     """A run of the joint-coordinate scene with the engine's Run interface (its state: the reduced one)."""
 
     def __init__(self, p, integrator, y_engine, joints=(2,)):
-        super().__init__(p, joints, ("contact", "friction", "gravity"), integrator, y0=y_engine)
+        super().__init__(*scene_of(p, joints, ("contact", "friction", "gravity")), integrator, y0=y_engine)
         both = tuple(joints) == (1, 2)
         self.module = compile_joint(p.lengths, both)
+        self.params = bench_pack(p)
         self.y = reduced_both(y_engine) if both else reduced(y_engine)
 
 
@@ -255,13 +280,13 @@ def measure(section, scene: str, warm: int, turns: int) -> dict[str, object]:
     """Agreement over the first impacts and the cost of a turn, engine against joint coordinates, for one scene."""
     p = parameters(section, "slender", scene)
     joints, effects = scene_effects(section, scene)
-    y0 = model.initial_state(p)[0]
+    y0 = initial_state(p, joints)
     period = 2 * np.pi / p.crank_speed
     tight = {"method": "dop853", "rtol": 1e-11, "atol": 1e-14, "first_step_s": 1e-7, "max_step_s": 1e-3}
     tighter = {**tight, "rtol": 1e-12, "atol": 1e-15}
     t = np.linspace(0.0, 0.02 * period, int(0.02 * 720) + 1)
-    _, d_engine = Run(p, joints, effects, tight, y0=y0).advance(t)
-    _, d_engine2 = Run(p, joints, effects, tighter, y0=y0).advance(t)
+    _, d_engine = Run(*scene_of(p, joints, effects), tight, y0=y0).advance(t)
+    _, d_engine2 = Run(*scene_of(p, joints, effects), tighter, y0=y0).advance(t)
     _, d_joint = JointRun(p, tight, y0, joints).advance(t)
     c = p.clearance
     ecc = [4 + model.DIAG_PER_JOINT * k for k in range(len(joints))]  # |e| of each clearance joint
@@ -275,7 +300,7 @@ def measure(section, scene: str, warm: int, turns: int) -> dict[str, object]:
     integ = section["integrators"]["explicit"]
     per = section["numerics"]["points_per_cycle"]
     cost = {}
-    for name, run in (("engine", Run(p, joints, effects, integ, y0=y0)), ("joint", JointRun(p, integ, y0, joints))):
+    for name, run in (("engine", Run(*scene_of(p, joints, effects), integ, y0=y0)), ("joint", JointRun(p, integ, y0, joints))):
         timed_turns(run, period, per, warm)
         cost[name] = timed_turns(run, period, per, turns)
         print(scene, name, cost[name], flush=True)

@@ -146,6 +146,20 @@ def formulation(f: dict) -> list[str]:
     ]
 
 
+def start_rounding(f: dict) -> list[str]:
+    rows = [f"| {r['variant']} | `{r['scene']}` | {', '.join(map(str, r['period_paper_start']))} / {', '.join(map(str, r['period_generic_start']))} | "
+            f"{r['measures_beyond_bar']} of {r['measures']} | {r['largest_move_over_bar']:.2f} |" for r in f["scenes"]]
+    return [
+        f"`python benchmarks/start_rounding.py` on {_machine(f['machine'])} (the clearance scenes from starts that differ by rounding alone, "
+        f"at most {f['start_gap']:.1e} in any state component). Method: {f['method']}", "",
+        "| variant | scene | state period per start (0: not periodic), paper's start / engine's | measures beyond their combined error bar | "
+        "largest move / combined error bar |",
+        "|---|---|---|---|---|", *rows, "",
+        f"In all, {f['measures_beyond_bar']} of {f['measures']} judged measures move beyond their combined error bars and "
+        f"{f['starts_with_another_period']} of {f['starts']} starts settle into a state of another period.",
+    ]
+
+
 def transplanter(f: dict) -> list[str]:
     t = f["targets"]
     return [
@@ -205,7 +219,7 @@ def job_resources(f: dict) -> list[str]:
     ]
 
 
-SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "formulation": formulation, "transplanter": transplanter, "chains": chains, "tests": tests}
+SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "formulation": formulation, "start_rounding": start_rounding, "transplanter": transplanter, "chains": chains, "tests": tests}
 
 
 def render(measured: Path = MEASURED) -> str:

@@ -118,6 +118,6 @@ if "crosscheck_wp" in files:
        "of single settings does not fall monotonically with the tolerance in a scene with impacts).*")
     medians = ", ".join(f"{m}: {v:.1f}×" for m, v in zip(xw.compared_method.values, xw.median_time_ratio.values))
     md(f"**Decision: {xw.attrs['decision']}** (median over linkwork's error levels; {medians}). scipy steps from Python, so every "
-       "step pays the interpreter around the compiled right-hand side; Exudyn's clearance force is a Python user function.")
+       "step pays the interpreter around the compiled right-hand side; Exudyn's clearance joint is its own compiled contact.")
 else:
     md("This render ran without the cross-check: run `make crosscheck` to add the side-by-side study.")

@@ -793,9 +793,13 @@ else:
 # %% [markdown]
 # ### The dry scenes in both engines (with the cross-check only)
 #
-# In Exudyn each dry clearance joint is a force element whose user function applies the same contact law as ours
-# (Hertz stiffness, Lankarani–Nikravesh damping on the latched impact velocity, Ambrosio's friction with its moment).
-# The ideal joints and the driver are exact constraints there, while ours are Baumgarte-stabilised as in the paper.
+# In Exudyn each dry clearance joint is Exudyn's own compiled contact, a sphere inside a hollow sphere, with parameters
+# mapped from the same joint description: the Hertz stiffness and exponent, Hunt–Crossley damping whose restitution is
+# chosen so that it equals our Lankarani–Nikravesh damping on the impact velocity latched at contact (floored as
+# ours; tests/test_crosscheck.py checks the force of a single impact against our kernels for every contact law).
+# Friction differs below the full-slip speed: Exudyn's is proportional to the slip up to it, ours (Ambrosio's) is zero
+# below a threshold and linear above it. The ideal joints and the driver are exact constraints there, while ours are
+# Baumgarte-stabilised as in the paper.
 # Both start from the same state and settle for the same cycles; the response does not repeat, so each recorded
 # cycle gives one value of the claims' measure and the engines are compared by the mean over the cycles. The
 # margin of a comparison is our change from the pipeline to the tight tolerance, plus Exudyn's change between its

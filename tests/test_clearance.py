@@ -8,8 +8,8 @@ import pytest
 
 from conftest import load_yaml
 from linkwork.engines.multibody.kernels import film_forces, friction_coefficient
-from linkwork.engines.multibody.model import generate_source, initial_state, inverse_dynamics
-from linkwork.engines.multibody.simulate import integrate
+from linkwork.engines.multibody.model import generate_source
+from linkwork.papers.clearance.fourbar import initial_state, integrate, inverse_dynamics, linkage
 from linkwork.papers.clearance.adapter import parameters
 from linkwork.papers.clearance.studies import scene as scene_dataset
 
@@ -36,33 +36,69 @@ def test_forward_integration_of_the_ideal_linkage_equals_inverse_dynamics():
     assert np.abs(diags[:, 1] - ideal["crank_torque"]).max() < 1e-6 * np.abs(ideal["crank_torque"]).max()
 
 
-def test_the_stacked_inverse_dynamics_equals_a_solve_per_instant():
-    """Regression of the stacked route against the per-instant one it replaced (the same kernels, one Jacobian and one
-    solve per instant): equal to the bit, with gravity."""
+def test_inverse_dynamics_equals_the_closed_form_four_bar_route():
+    """The engine's inverse dynamics (Newton's method on the description's constraints, stacked solves) against an
+    independent route: the four-bar's closed-form kinematics (engines.kinematics.four_bar) and a solve per instant of
+    the constraint rows the compiled scenes' own kernels assemble, with gravity; to 1e-9 of each response's range."""
+    from linkwork.engines.kinematics import four_bar
     from linkwork.engines.multibody.kernels import body_trig, driver, revolute
-    from linkwork.engines.multibody.model import kinematic_state, pack, start_angle
+    from linkwork.papers.clearance.fourbar import start_angle
 
     p = SLENDER
-    t = np.linspace(0.0, 2 * np.pi / p.crank_speed, 37)
+    t = np.linspace(0.0, 3 * np.pi / p.crank_speed, 55)
     ideal = inverse_dynamics(p, t, gravity=True)
     phi0 = start_angle(p)
-    q, qd, qdd = kinematic_state(p, phi0 + p.crank_speed * t)
-    params, idx = pack(p, phi0)
-    mass = params[idx["mass"] : idx["mass"] + 9]
-    l2, l3, l4 = p.lengths
+    m = four_bar(p.four_bar(), phi0 + p.crank_speed * t)
+    w, (l2, l3, l4) = p.crank_speed, p.lengths
+    ang = np.stack([m.crank_angle, m.coupler_angle, m.rocker_angle], axis=-1)
+    rate = np.stack([np.ones_like(t), m.coupler_rate, m.rocker_rate], axis=-1) * w
+    acc = np.stack([np.zeros_like(t), m.coupler_accel, m.rocker_accel], axis=-1) * w**2
+    mass = np.repeat(np.array(p.masses), 3)
+    mass[2::3] = p.inertias
     g = np.zeros(9)
     g[1::3] -= mass[0::3] * p.gravity
+    torque, rocker = np.empty(t.size), np.empty(t.size)
     for i in range(t.size):
+        e = np.stack([np.cos(ang[i]), np.sin(ang[i])], axis=-1)
+        perp = np.stack([-e[:, 1], e[:, 0]], axis=-1)
+        starts = [np.zeros(2), l2 * e[0], np.array([p.ground, 0.0])]
+        start_acc = [np.zeros(2), -l2 * w**2 * e[0], np.zeros(2)]
+        q, qd, qdd = np.empty(9), np.empty(9), np.empty(9)
+        for b, half in enumerate((l2 / 2, l3 / 2, l4 / 2)):
+            start_vel = l2 * w * perp[0] if b == 1 else np.zeros(2)
+            q[3 * b : 3 * b + 2], q[3 * b + 2] = starts[b] + half * e[b], ang[i, b]
+            qd[3 * b : 3 * b + 2], qd[3 * b + 2] = start_vel + half * rate[i, b] * perp[b], rate[i, b]
+            qdd[3 * b : 3 * b + 2] = start_acc[b] + half * (acc[i, b] * perp[b] - rate[i, b] ** 2 * e[b])
+            qdd[3 * b + 2] = acc[i, b]
         phi, phiq, gamma, phidot, cs = np.zeros(9), np.zeros((9, 9)), np.zeros(9), np.zeros(9), np.empty(6)
-        body_trig(q[i], cs)
-        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
-        driver(q[i], qd[i], t[i], 0, phi0, p.crank_speed, 2, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
-        lam = np.linalg.solve(phiq.T, g - mass * qdd[i])
-        assert ideal["crank_torque"][i] == -lam[2]
-        assert ideal["force_A"][i] == np.hypot(lam[5], lam[6]) and ideal["force_B"][i] == np.hypot(lam[7], lam[8])
+        body_trig(q, cs)
+        revolute(q, qd, cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
+        driver(q, qd, t[i], 0, phi0, w, 2, phi, phiq, gamma, phidot)
+        revolute(q, qd, cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, p.ground, 0.0, 3, phi, phiq, gamma, phidot)
+        revolute(q, qd, cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
+        revolute(q, qd, cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
+        torque[i] = -np.linalg.solve(phiq.T, g - mass * qdd)[2]
+        rocker[i] = qdd[8]
+    for ours, theirs in ((ideal["crank_torque"], torque), (ideal["rocker_acceleration"], rocker)):
+        assert np.abs(ours - theirs).max() < 1e-9 * np.abs(theirs).max()
+
+
+def test_the_engines_assembly_gives_the_papers_starts_to_rounding():
+    """The paper's starts (closed-form kinematics at the dead point; Newton's method on the four-bar's own nine
+    equations with complex-step Jacobians for the off-centre start) against the engine's assembly from the linkage
+    description (Newton's method on the generic constraints): equal to 1e-13 of the state's scale, centred and
+    off-centre, for each set of clearance joints."""
+    from linkwork.engines.multibody import assembly
+    from linkwork.papers.clearance.fourbar import JOINT_NAMES, offset_start
+
+    p = SLENDER
+    scale = np.abs(initial_state(p)).max()
+    assert np.abs(initial_state(p) - assembly.start_state(linkage(p))).max() < 1e-13 * scale
+    ecc, rate = np.array([0.6, -0.6]) * p.clearance, np.array([0.5, 0.5]) * p.clearance * p.crank_speed
+    for joints in ((1,), (2,), (1, 2)):
+        names = [JOINT_NAMES[j] for j in joints]
+        ours = assembly.start_state(linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(ecc)), dict.fromkeys(names, tuple(rate)))
+        assert np.abs(offset_start(p, joints, ecc, rate) - ours).max() < 1e-13 * scale
 
 
 def test_the_dop853_tableau_held_as_data_is_scipys_to_the_bit():
@@ -80,7 +116,7 @@ def test_an_effect_left_out_is_never_evaluated():
     assert dry[2] == 0 and dry[0] > 0 and dry[1] > 0  # no lubrication evaluation in a dry scene
     _, _, _, lub = run(SLENDER, (2,), ("lubrication", "contact"), cycles=0.5, integ=STIFF)
     assert lub[1] == 0 and lub[3] == 0 and lub[2] > 0  # no friction, no gravity
-    src = generate_source((1,), ("contact",), "lankarani-nikravesh", (1.0, 1.0, 1.0))
+    src = generate_source(linkage(SLENDER, (1,), ("contact",)), gravity=False)
     assert "film_forces(" not in src and "friction_coefficient(" not in src.split("def rhs")[1]
 
 
@@ -159,8 +195,7 @@ def test_friction_at_zero_slip():
 @pytest.mark.hard
 def test_journal_starting_in_contact():
     """Rotate the coupler about B (its ideal joint with the rocker) until the bushing at A touches the journal."""
-    y0, _ = initial_state(SLENDER)
-    y0 = y0.copy()
+    y0 = initial_state(SLENDER)
     l3 = SLENDER.lengths[1]
     x3, y3, phi3 = y0[3:6]
     bx, by = x3 + 0.5 * l3 * np.cos(phi3), y3 + 0.5 * l3 * np.sin(phi3)
@@ -231,7 +266,7 @@ def test_sparse_schur_source_solves_the_saddle_point_system():
         mass, g, gamma_b = rng.uniform(0.1, 2.0, 9), rng.normal(size=9), rng.normal(size=nc)
         scope = {"phiq": phiq, "mass": mass, "g": g, "gamma_b": gamma_b, "schur": np.zeros((nc, nc)), "schur_rhs": np.zeros(nc),
                  "lam": np.zeros(nc), "qdd": np.zeros(9), "gauss_solve_into": gauss_solve_into}
-        exec("\n".join(line[4:] for line in schur_source(pattern)), scope)
+        exec("\n".join(line[4:] for line in schur_source(pattern, 9)), scope)
         kkt = np.block([[np.diag(mass), phiq.T], [phiq, np.zeros((nc, nc))]])
         expected = np.linalg.solve(kkt, np.r_[g, gamma_b])
         assert np.allclose(scope["qdd"], expected[:9], rtol=1e-10, atol=1e-12)

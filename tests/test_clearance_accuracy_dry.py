@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 from conftest import load_yaml
-from linkwork.engines.multibody.model import initial_state
-from linkwork.engines.multibody.simulate import integrate
+from linkwork.papers.clearance.fourbar import initial_state, integrate
 from linkwork.papers.clearance.accuracy import _setting, contact_error, eccentricity, is_dry, setting_label, work_precision
 from linkwork.papers.clearance.adapter import parameters, scene_effects
 from linkwork.papers.clearance.studies import cycle
@@ -30,7 +29,7 @@ REF = WP["reference"][DRY]
 @lru_cache(maxsize=None)
 def states(method: str, value: float, offset: tuple[float, float] = (0.0, 0.0)) -> np.ndarray:
     """The dry scene's states at the study's samples (the start's coupler moved by ``offset``, m)."""
-    y0 = initial_state(P, offset=offset, joint=1)[0] if any(offset) else None
+    y0 = initial_state(P, JOINTS, offset=offset) if any(offset) else None
     return integrate(P, JOINTS, EFFECTS, T, _setting(method, value, WP), y0=y0)[0]
 
 

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 from conftest import load_yaml
-from linkwork.engines.multibody.model import initial_state, inverse_dynamics, journal_offsets, offset_start
-from linkwork.engines.multibody.simulate import Run, integrate
+from linkwork.papers.clearance.fourbar import initial_state, integrate, inverse_dynamics, journal_offsets, offset_start
+from linkwork.papers.clearance.fourbar import run as Run
 from linkwork.papers.clearance.adapter import parameters, scene_effects
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
@@ -78,7 +78,7 @@ def test_an_off_centre_start_puts_every_journal_where_asked_and_keeps_the_ideal_
     assert np.abs(got[:, 2:] - rate).max() < 1e-9 * c * w
     _, diags, *_ = integrate(p, joints, effects, np.array([0.0]), DRY, y0=y0)
     assert diags[0, 3] < 1e-12  # |Phi| of the ideal constraints at the start
-    assert np.allclose(offset_start(p, joints, (0.0, 0.0), (0.0, 0.0))[:9], initial_state(p)[0][:9], atol=1e-12)
+    assert np.allclose(offset_start(p, joints, (0.0, 0.0), (0.0, 0.0))[:9], initial_state(p, joints)[:9], atol=1e-12)
 
 
 def test_the_compiled_ndf_agrees_with_scipys_bdf_and_with_inverse_dynamics():

@@ -103,6 +103,24 @@ CASES = [
     ("bool-for-number", "restitution: 0.9", "restitution: true", ["clearance.joints.restitution", "True"]),
     ("python-tag", "restitution: 0.9", "restitution: !!python/object/apply:os.system ['true']", ["line", "not valid YAML"]),
     ("empty-scenes", "  scenes:\n    ideal:", "  scenes: {}\n  unused:\n    ideal:", ["clearance"]),
+    # a linkage of your own (config linkages): bad descriptions stop before any job with the key named
+    ("linkage-unknown-point", "C: {journal: bellcrank.C, bearing: link.C}", "C: {journal: bellcrank.C, bearing: link.X}",
+     ["linkages.watt_six_bar_worn_pin.linkage.joints.C.bearing", "unknown point 'X'"]),
+    ("linkage-not-connected", "      ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.3]}",
+     "        weight: {mass_kg: 1.0, inertia_kg_m2: 0.1, points: {P: [0.0, 0.0]}}\n      ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.3]}",
+     ["linkages.watt_six_bar_worn_pin.linkage.bodies.weight", "not connected to the ground"]),
+    ("linkage-driver-not-grounded", "driver: {body: crank, speed_rad_s: 31.41592653589793", "driver: {body: coupler, speed_rad_s: 31.41592653589793",
+     ["linkages.watt_six_bar_worn_pin.linkage.driver.body", "not pinned to the ground"]),
+    ("linkage-cannot-assemble", "ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.3]}", "ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.9]}",
+     ["linkages.watt_six_bar_worn_pin.linkage.driver", "does not assemble"]),
+    ("linkage-locks-up", "coupler: {mass_kg: 1.2, inertia_kg_m2: 9.0e-3, points: {A: [-0.15, 0.0], B: [0.15, 0.0]}",
+     "coupler: {mass_kg: 1.2, inertia_kg_m2: 9.0e-3, points: {A: [-0.075, 0.0], B: [0.075, 0.0]}",
+     ["linkages.watt_six_bar_worn_pin.linkage", "locks up between the driver angles"]),
+    ("linkage-mobile", "        O6: {journal: rocker.O, bearing: ground.O6}\n", "", ["linkages.watt_six_bar_worn_pin.linkage.joints", "free motions"]),
+    ("linkage-effect-key", "impact_velocity_floor_m_s: 1.0e-3, friction: 0.05", "impact_velocity_floor_m_s: 1.0e-3, viscosity_Pa_s: 0.1, friction: 0.05",
+     ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.viscosity_Pa_s", "unknown key"]),
+    ("linkage-turns-guard", "    turns: 2\n    points_per_turn: 3600", "    turns: 2000\n    points_per_turn: 3600",
+     ["linkages.watt_six_bar_worn_pin.turns", "2000"]),
 ]
 
 

@@ -12,15 +12,9 @@ from scipy.integrate import quad
 
 from conftest import load_yaml
 from linkwork.engines.multibody.kernels import elastic_contact
-from linkwork.engines.multibody.model import (
-    ELASTIC_LAWS,
-    PEREIRA_Y_BREAK_MM,
-    compile_scene,
-    initial_state,
-    pack,
-    pereira_exponent,
-)
-from linkwork.engines.multibody.simulate import integrate
+from linkwork.engines.multibody.linkage import ELASTIC_LAWS, PEREIRA_Y_BREAK_MM, pereira_exponent
+from linkwork.engines.multibody.model import compile_scene, pack
+from linkwork.papers.clearance.fourbar import initial_state, integrate, scene
 from linkwork.papers.clearance import validity
 from linkwork.papers.clearance.adapter import model_keys, parameters, scene_effects
 
@@ -40,11 +34,12 @@ def contact_force_in_rhs(p, penetration):
     """(dry normal force N, penetration m) that the compiled right-hand side of scene dry_2 reports with joint 2's
     journal pushed ``penetration`` into its bushing, every body at rest (so the damping factor is 1)."""
     joints, effects = scene_effects(SECTION, "dry_2")
-    module = compile_scene(joints, effects, p.contact_law)
+    lk, gravity = scene(p, joints, effects)
+    module = compile_scene(lk, gravity)
     direction = np.array([0.6, -0.8])
-    y0, phi0 = initial_state(p, offset=tuple((p.clearance + penetration) * direction), joint=2)
+    y0 = initial_state(p, joints, offset=tuple((p.clearance + penetration) * direction))
     y0[9:] = 0.0
-    params, _ = pack(p, phi0)
+    params, _ = pack(lk)
     diag = np.zeros(module.N_DIAG)
     module.rhs(0.0, y0, params, np.zeros(1), np.zeros(4, dtype=np.int64), diag)
     return diag[4 + 3], diag[4 + 1]

@@ -4,12 +4,14 @@ dynamics must agree with it to Exudyn's own discretisation error, which falls at
 import copy
 
 import numpy as np
+import pytest
 
 from conftest import load_yaml
-from linkwork.engines.multibody.exudyn_route import ideal_run
-from linkwork.engines.multibody.model import inverse_dynamics
+from linkwork.engines.multibody.linkage import CONTACT_LAWS, ELASTIC_LAWS
 from linkwork.papers.clearance.adapter import parameters
 from linkwork.papers.clearance.crosscheck import dry, ideal, observed_orders, relative_difference, time_to_reach
+from linkwork.papers.clearance.fourbar import exudyn_ideal as ideal_run
+from linkwork.papers.clearance.fourbar import inverse_dynamics
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
 
@@ -53,37 +55,65 @@ def test_the_study_records_agreement_and_the_observed_order():
     assert "Exudyn" in ds.attrs["engine"]
 
 
-def test_exudyns_dry_contact_force_is_linkworks_law():
-    """Second route for the contact law: the Exudyn route's Python force against linkwork's compiled kernels
-    (Hertz with Lankarani-Nikravesh damping, Ambrosio's friction) on random joint states."""
-    from linkwork.engines.multibody.exudyn_route import contact_force
-    from linkwork.engines.multibody.kernels import friction_coefficient, hertz_damping_factor
+def _single_impact(c, speed: float, steps: int):
+    """A free journal (1 kg) crossing a fixed bearing at ``speed`` (m/s) in Exudyn with the native contact of
+    ``exudyn_route.native_contact``: times (s), Exudyn's contact force on the journal (N, x; its sign checked by the
+    caller: the bearing pushes the journal back), its position and velocity."""
+    import exudyn as exu
+    from exudyn import itemInterface as ii
 
-    p = parameters(SECTION, "slender", "dry_both")
-    rng = np.random.default_rng(11)
-    checked = 0
-    for _ in range(300):
-        angle = rng.uniform(0, 2 * np.pi)
-        e = p.clearance * rng.uniform(0.98, 1.02)  # about half of them in contact
-        u = [e * np.cos(angle), e * np.sin(angle), 0.0]
-        v = list(rng.normal(0, 0.05, 2)) + [0.0]
-        w_j, w_b = rng.normal(0, 5, 2)
-        latched = abs(rng.normal(0, 0.05))
-        f, ft = contact_force(p, latched, u, v, w_j, w_b)
-        n = np.array(u[:2]) / e
-        t = np.array([-n[1], n[0]])
-        if e <= p.clearance:
-            assert f == [0.0, 0.0, 0.0] and ft == 0.0
-            continue
-        delta_dot = float(np.dot(v[:2], n))
-        fn = p.hertz_stiffness * (e - p.clearance) ** 1.5 * hertz_damping_factor(0, p.restitution, delta_dot, max(latched, p.impact_velocity_floor))
-        v_t = float(np.dot(v[:2], t)) + w_j * p.journal_radius - w_b * p.bearing_radius
-        ft_ref = friction_coefficient(v_t, p.friction, p.v0, p.v1) * fn
-        on_journal = -np.array(f[:2])
-        np.testing.assert_allclose(on_journal, -fn * n + ft_ref * t, rtol=1e-12, atol=1e-9 * max(fn, 1.0))
-        assert abs(ft - ft_ref) <= 1e-12 * abs(ft_ref)
-        checked += 1
-    assert checked > 50  # enough states in contact
+    from linkwork.engines.multibody.exudyn_route import native_contact
+
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    ground = mbs.AddObject(ii.ObjectGround())
+    node = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[0.0, 0.0, 0.0], initialVelocities=[speed, 0.0, 0.0]))
+    body = mbs.AddObject(ii.ObjectRigidBody2D(mass=1.0, inertia=0.01, nodeNumber=node))
+    markers = [mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=b, localPosition=[0.0, 0.0, 0.0])) for b in (body, ground)]
+    data = mbs.AddNode(ii.NodeGenericData(initialCoordinates=[0.1, 0.0, 0.0, 0.0], numberOfDataCoordinates=4))
+    contact = mbs.AddObject(ii.ObjectContactSphereSphere(markerNumbers=markers, nodeNumber=data, **native_contact(c)))
+    sensors = [mbs.AddSensor(ii.SensorObject(objectNumber=contact, outputVariableType=exu.OutputVariableType.Force, storeInternal=True))]
+    sensors += [mbs.AddSensor(ii.SensorNode(nodeNumber=node, outputVariableType=kind, storeInternal=True))
+                for kind in (exu.OutputVariableType.Position, exu.OutputVariableType.Velocity)]
+    mbs.Assemble()
+    end = 3 * c.clearance / speed
+    settings = exu.SimulationSettings()
+    settings.timeIntegration.endTime, settings.timeIntegration.numberOfSteps = end, steps
+    settings.timeIntegration.generalizedAlpha.useNewmark = True
+    settings.timeIntegration.generalizedAlpha.useIndex2Constraints = True
+    settings.timeIntegration.discontinuous.useRecommendedStepSize = False
+    settings.timeIntegration.newton.relativeTolerance = settings.timeIntegration.newton.absoluteTolerance = 1e-12
+    settings.timeIntegration.verboseMode = 0
+    settings.solution.file.write = False
+    settings.solution.sensors.writePeriod = end / steps
+    mbs.SolveDynamic(settings)
+    force, position, velocity = (mbs.GetSensorStoredData(k) for k in sensors)
+    return force[:, 0], force[:, 1], position[:, 1], velocity[:, 1]  # Exudyn's Force output: on marker 0, the journal
+
+
+@pytest.mark.parametrize("law, elastic", [(law, "hertz-sphere") for law in CONTACT_LAWS] + [("lankarani-nikravesh", "pereira")])
+def test_exudyns_native_contact_is_linkworks_law(law, elastic):
+    """Second route for every contact law of the registry (``linkage.CONTACT_LAWS``) and both elastic laws: Exudyn's
+    compiled sphere-in-hollow-sphere contact with the parameters ``native_contact`` maps (no friction) on a single
+    impact, against linkwork's compiled kernels evaluated on Exudyn's own trajectory (penetration, its rate and the
+    approach speed latched at contact), to 1e-8 of the peak; the journal leaves with the law's restitution to 2 %."""
+    from linkwork.engines.multibody.kernels import elastic_contact, hertz_damping_factor
+
+    section = copy.deepcopy(SECTION)
+    section["joints"].update(contact_law=law, elastic_law=elastic)
+    c = parameters(section, "slender", "dry_both").joint(("contact",))
+    speed = 0.5
+    t, force, x, v = _single_impact(c, speed, 20000)
+    delta = x - c.clearance
+    first = int(np.argmax(delta > 0))
+    assert 0 < first < t.size - 1 and delta[-1] < 0  # in and out again
+    ours = np.zeros_like(x)
+    for i in np.nonzero(delta > 0)[0]:
+        damping = hertz_damping_factor(CONTACT_LAWS[law], c.restitution, v[i], max(speed, c.impact_velocity_floor))
+        ours[i] = elastic_contact(ELASTIC_LAWS[elastic], c.elastic_stiffness, c.elastic_exponent, delta[i])[0] * damping
+    assert np.all(force[delta > 0] < 0)  # the bearing pushes the journal back (-x)
+    assert np.abs(force + ours).max() < 1e-8 * ours.max()
+    assert -v[-1] / speed == pytest.approx(c.restitution, rel=0.02)
 
 
 def test_the_dry_study_compares_per_cycle_means_against_its_margin():

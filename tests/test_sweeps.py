@@ -113,7 +113,7 @@ def test_a_clearance_sweep_point_is_the_scene_settled_from_the_first_start():
     (the same settling rule), the measure over the RMS of the ideal response; its section points are the state's."""
     import copy
 
-    from linkwork.engines.multibody.model import inverse_dynamics
+    from linkwork.papers.clearance.fourbar import inverse_dynamics
     from linkwork.papers.clearance.adapter import parameters
     from linkwork.papers.clearance.studies import cycle, scene
     from linkwork.papers.clearance.sweep import SECTION_POINTS, sweep_point
@@ -162,7 +162,7 @@ def test_resolved_trend_counts_only_changes_beyond_the_cycle_spread():
 def test_clearance_ideal_response_is_periodic_so_one_cycle_serves_every_recorded_cycle(config):
     """The sweep computes the ideal joints over one cycle and compares every recorded cycle with it: the ideal
     response two cycles on is the same (inverse dynamics at the later times, an independent evaluation)."""
-    from linkwork.engines.multibody.model import inverse_dynamics
+    from linkwork.papers.clearance.fourbar import inverse_dynamics
     from linkwork.papers.clearance.adapter import parameters
 
     p = parameters(config["clearance"], config["sweeps"]["clearance"]["variant"], config["sweeps"]["clearance"]["scene"])

@@ -42,13 +42,14 @@ OUTPUTS = [
 REPORTS = ("stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index")
 ALL_JOBS = {
     "all": 1, "stiffness": 1, "stiffness_accuracy": 1, "stiffness_compare": 1,
-    "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1,
+    "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "beatup_sley_pin": 1,
     "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1,
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_contact_law": 2, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
     "accuracy_summary": 1, "sweep_point": 6, "sweep_gather": 2, "report": 8,
     "uncertainty_batch": 17, "uncertainty_gather": 4, "readme_findings": 1,  # 1 + 2 + 4 + 10 (clearance: one per variant and input)
     "assumptions": 5,  # one per paper: the labelled entries, whole (the reports' reasons)
+    "linkage": 1,  # one per linkage of your own (config linkages)
 }
 
 
@@ -272,9 +273,9 @@ def _set_key(path: Path, key: str, value) -> None:
     path.write_text(yaml.safe_dump(cfg, sort_keys=False))
 
 
-def test_the_spec_covers_every_paper_and_the_sweeps():
+def test_the_spec_covers_every_paper_the_sweeps_and_the_linkages():
     assert len(SPEC) >= 15
-    assert {row["key"].split(".")[0] for row in SPEC} == {"stiffness", "beatup", "heald", "transplanter", "clearance", "sweeps"}
+    assert {row["key"].split(".")[0] for row in SPEC} == {"stiffness", "beatup", "heald", "transplanter", "clearance", "sweeps", "linkages"}
 
 
 def test_single_key_edits_rerun_exactly_what_reads_the_key(built, declared, tmp_path):

@@ -32,6 +32,18 @@ rule beatup_window:
         STUDY
 
 
+rule beatup_sley_pin:
+    input:
+        code=code("linkwork.papers.beatup.sley_pin"),
+    output:
+        "results/beatup/sley_pin.nc",
+    params:
+        study="linkwork.papers.beatup.sley_pin:study",
+        cfg=section("beatup", *SIXBAR_MECHANISM, "sixbar.crank_sense.value", "fourbar", "sley_pin"),
+    script:
+        STUDY
+
+
 rule beatup_accuracy:
     input:
         code=code("linkwork.papers.beatup.accuracy"),

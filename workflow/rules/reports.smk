@@ -31,7 +31,7 @@ REPORT_INPUTS = {
     "stiffness": paper_report("stiffness", result="results/stiffness/stiffness.nc"),
     "beatup": paper_report(
         "beatup", result="results/beatup/sixbar.nc", window="results/beatup/window.nc",
-        accuracy="results/beatup/accuracy.nc",
+        accuracy="results/beatup/accuracy.nc", sley_pin="results/beatup/sley_pin.nc",
     ),
     "heald": paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc"),
     "transplanter": paper_report(

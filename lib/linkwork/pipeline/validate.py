@@ -204,6 +204,17 @@ def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
     check_labelled(config)
     if "sweeps" in config:
         check_sweeps(config["sweeps"], config)
+    check_linkages(config.get("linkages") or {})
+
+
+def check_linkages(linkages: Mapping[str, Any]) -> None:
+    """Every linkage of ``linkages`` assembles and runs through its driven turn (``describe.errors``: one line per
+    problem, naming its key)."""
+    from ..engines.multibody.describe import errors
+
+    problems = [line for name, scene in linkages.items() for line in errors(scene["linkage"], f"linkages.{name}.linkage")]
+    if problems:
+        raise ConfigError("invalid config:\n  " + "\n  ".join(problems))
 
 
 def merge_overrides(config: dict[str, Any], base: Mapping[str, Any]) -> None:

@@ -1,7 +1,11 @@
-"""Planar multibody dynamics of a four-bar with clearance joints (paper ``clearance``).
+"""Planar multibody dynamics of any linkage with ideal and clearance revolute joints.
 
-kernels: compiled building blocks (constraints, forces, contact laws, film forces).
-model: parameters, the generated right-hand side of a scene, integrators, the ideal scene.
+linkage: the description (bodies, ground points, joints with their clearances and effects, driver) and the contact laws.
+describe: the description read from config and checked, with the key of any problem named.
+assembly: configurations (assembly on a branch, the driven turn, kinematics) and the ideal inverse dynamics.
+kernels: compiled building blocks (constraints, forces, contact laws, film forces, small solves).
+model: the generated right-hand side of a scene (topology and effects as code, the rest as data) and its integrators.
+simulate: continuable runs of a compiled scene.  exudyn_route: the same description in Exudyn.
 """
 
 import os

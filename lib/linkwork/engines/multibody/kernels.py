@@ -79,6 +79,23 @@ def driver(q, qd, t, body, phi0, omega, row, phi, phiq, gamma, phidot):
 
 
 @njit(cache=True)
+def driver_series(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phidot):
+    """Row row: phi_body = phi0 + omega t + sum_k (a[k-1] cos(k omega t) + b[k-1] sin(k omega t)) (rad; a given
+    periodic motion of the driven body as a Fourier series of the mean speed omega, rad/s)."""
+    theta, rate, accel = phi0 + omega * t, omega, 0.0
+    for k in range(a.size):
+        kw = (k + 1) * omega
+        c, s = np.cos(kw * t), np.sin(kw * t)
+        theta += a[k] * c + b[k] * s
+        rate += kw * (b[k] * c - a[k] * s)
+        accel -= kw * kw * (a[k] * c + b[k] * s)
+    phiq[row, 3 * body + 2] = 1.0
+    gamma[row] = accel
+    phi[row] = q[3 * body + 2] - theta
+    phidot[row] = qd[3 * body + 2] - rate
+
+
+@njit(cache=True)
 def apply_force(q, cs, g, body, sx, sy, fx, fy):
     """Add a force applied at a body point (local s) to the generalized forces."""
     c, s = cs[2 * body], cs[2 * body + 1]
@@ -200,18 +217,15 @@ def gauss_solve_into(a, b, x):
 
 
 @njit(cache=True)
-def ideal_jacobians(q, qd, t, nc, phi0, omega, l2, l3, l4, ground):
-    """Phi_q (n, nc, 9) of the ideal four-bar (ground pin of the crank, driver, ground pin of the rocker, the two
-    coupler pins) at each of the n states ``q``, ``qd`` (n, 9) at times ``t`` (s), by the scenes' own kernels."""
-    n = q.shape[0]
-    out = np.zeros((n, nc, 9))
-    phi, gamma, phidot, cs = np.zeros(nc), np.zeros(nc), np.zeros(nc), np.empty(6)
+def solve_stack(a, b):
+    """x[i] with a[i] x[i] = b[i] for a stack of small systems (a: (n, m, m), b: (n, m); neither is changed), each by
+    ``gauss_solve_into``: for the engine's small constraint Jacobians this is faster than numpy's batched LAPACK call."""
+    n, m = b.shape
+    x = np.empty((n, m))
+    aa = np.empty((m, m))
+    bb = np.empty(m)
     for i in range(n):
-        phiq = out[i]
-        body_trig(q[i], cs)
-        revolute(q[i], qd[i], cs, 0, -0.5 * l2, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)
-        driver(q[i], qd[i], t[i], 0, phi0, omega, 2, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 2, -0.5 * l4, 0.0, -1, 0.0, 0.0, ground, 0.0, 3, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 0, 0.5 * l2, 0.0, 1, -0.5 * l3, 0.0, 0.0, 0.0, 5, phi, phiq, gamma, phidot)
-        revolute(q[i], qd[i], cs, 1, 0.5 * l3, 0.0, 2, 0.5 * l4, 0.0, 0.0, 0.0, 7, phi, phiq, gamma, phidot)
-    return out
+        aa[:, :] = a[i]
+        bb[:] = b[i]
+        gauss_solve_into(aa, bb, x[i])
+    return x

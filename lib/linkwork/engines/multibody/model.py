@@ -1,22 +1,22 @@
-"""A four-bar with clearance joints as a planar multibody system, assembled from the scene's effects.
+"""A planar linkage with ideal and clearance revolute joints as a multibody system, generated from its description.
 
-Formulation (the paper's eqs. 1-3): bodies crank (0), coupler (1), rocker (2) in (x, y, phi) at
-their centres of mass; ideal revolutes and the constant-speed crank driver are constraints,
-M q'' = g - Phi_q^T lambda, Phi_q q'' = gamma - 2 alpha Phi' - beta^2 Phi (Baumgarte).  M is
-diagonal, so lambda comes from the small Schur complement Phi_q M^-1 Phi_q^T.  The crank torque
-is -lambda of the driver row.
+Formulation (the clearance paper's eqs. 1-3, for any linkage of ``linkage.Linkage``): bodies in (x, y, phi) at their
+centres of mass; ideal revolutes and the driver are constraints, M q'' = g - Phi_q^T lambda,
+Phi_q q'' = gamma - 2 alpha Phi' - beta^2 Phi (Baumgarte).  M is diagonal, so lambda comes from the small Schur
+complement Phi_q M^-1 Phi_q^T.  The driver torque is -lambda of the driver row.
 
-A clearance joint is not a constraint but a force element between a journal (on the first body)
-and a bearing (on the second).  The scene names its effects; the right-hand side is generated
-as source code containing exactly those effects (no branch, no call for an effect left out),
-compiled by numba and cached on disk by the hash of its source.  Each effect increments its own
-evaluation counter, so a test can prove that an effect left out is never evaluated.
+A clearance joint is not a constraint but a force element between a journal (on the joint's first body) and a
+bearing (on its second).  Each clearance joint names its effects; the right-hand side is generated as source code
+containing exactly those effects (no branch, no call for an effect left out), compiled by numba and cached on disk by
+the hash of its source.  The source holds the topology only (which bodies each joint joins, which effects act where,
+the contact laws' hysteresis); every dimension and property is data in the packed parameters (``pack``), so one
+compiled scene serves every linkage of the same topology.  Each effect increments its own evaluation counter, so a
+test can prove that an effect left out is never evaluated.
 
-The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law)
-is chosen apart from its hysteresis damping (CONTACT_LAWS); it is data in the packed parameters, not
-generated code, so one compiled scene serves every elastic law.
+The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law) is chosen
+apart from its hysteresis damping (CONTACT_LAWS); it is data, not generated code.
 
-Sign conventions resolved here (the printed model differs):
+Sign conventions resolved here (the clearance paper's printed model differs):
 * eccentricity e = journal centre - bearing centre, n = e/|e|; the dry contact force on the
   journal is -F_N n, i.e. it pushes the journal back into the bearing (eqs. 4/17 as printed push
   it outward);
@@ -32,178 +32,70 @@ import hashlib
 import importlib.util
 import os
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
-from ...units import STANDARD_GRAVITY
-from ..kinematics import FourBar, four_bar, toggle_positions
+from .linkage import CONTACT_LAWS, ELASTIC_LAWS, JOINT_EFFECTS, Clearance, Driver, Linkage, LinkageError, oriented
 
-CONTACT_LAWS = {"lankarani-nikravesh": 0, "hunt-crossley": 1, "flores": 2}
-#: Elastic (force-penetration) laws of the dry contact, orthogonal to the hysteresis damping of CONTACT_LAWS:
-#: the sphere law of eq. (9) and the conformal cylindrical law of Pereira, Ramalho and Ambrosio (2011).
-ELASTIC_LAWS = {"hertz-sphere": 0, "pereira": 1}
-EFFECTS = ("contact", "friction", "lubrication", "gravity")
-N_STATE = 19  # q (9), q' (9), driver work (1)
-DIAG_FIXED = 4  # rocker angular acceleration, crank torque, energy, constraint drift
+EFFECTS = (*JOINT_EFFECTS, "gravity")
+DIAG_FIXED = 4  # output body's angular acceleration, driver torque, energy, constraint drift
 DIAG_PER_JOINT = 6  # e, delta, delta', dry normal force, film radial force, film tangential force
+#: A clearance joint's packed values, in order (``pack``): its journal and bearing points, then its properties.
+CLEARANCE_VALUES = ("jx", "jy", "bx", "by", "clearance", "r_journal", "r_bearing", "restitution", "friction", "v0", "v1",
+                    "film", "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent")
 
 
-@dataclass(frozen=True)
-class FourBarParameters:
-    """Physical data of the four-bar with clearance joints (SI)."""
-
-    ground: float
-    lengths: tuple[float, float, float]  # crank, coupler, rocker
-    masses: tuple[float, float, float]
-    inertias: tuple[float, float, float]  # about the centres of mass (kg m^2)
-    crank_speed: float  # rad/s
-    journal_radius: float
-    bearing_radius: float
-    youngs_modulus: tuple[float, float]  # journal, bearing
-    poisson: tuple[float, float]
-    joint_length: float  # L of the bearing (lubrication)
-    restitution: float
-    friction: float
-    v0: float
-    v1: float
-    viscosity: float  # Pa s
-    e0: float  # film/dry transition tolerance on the eccentricity, m
-    impact_velocity_floor: float  # m/s
-    baumgarte_alpha: float
-    baumgarte_beta: float
-    gravity: float = STANDARD_GRAVITY
-    contact_law: str = "lankarani-nikravesh"
-    branch: int = 1
-    elastic_law: str = "hertz-sphere"  # a key of ELASTIC_LAWS; "pereira" reads joint_length
-
-    @property
-    def clearance(self) -> float:
-        return self.bearing_radius - self.journal_radius
-
-    @property
-    def hertz_stiffness(self) -> float:
-        """K of eq. (9): 4 / (3 (sigma_i + sigma_j)) sqrt(R_i R_j / |R_j - R_i|), N/m^1.5."""
-        sig = sum((1 - nu**2) / e for nu, e in zip(self.poisson, self.youngs_modulus, strict=True))
-        return 4.0 / (3.0 * sig) * np.sqrt(self.journal_radius * self.bearing_radius / self.clearance)
-
-    @property
-    def effective_modulus(self) -> float:
-        """E* = 1 / sum((1 - nu^2) / E) of the journal and bearing materials, Pa."""
-        return 1.0 / sum((1 - nu**2) / e for nu, e in zip(self.poisson, self.youngs_modulus, strict=True))
-
-    @property
-    def elastic_exponent(self) -> float:
-        """Exponent n (-) of the elastic law F = K delta^n: 1.5 for the sphere law, Pereira's n(c) for the conformal."""
-        if self.elastic_law == "hertz-sphere":
-            return 1.5
-        if self.elastic_law == "pereira":
-            return pereira_exponent(self.clearance)
-        raise _unknown_elastic_law(self.elastic_law)
-
-    @property
-    def elastic_stiffness(self) -> float:
-        """K of the elastic law F = K delta^n, N/m^n: eq. (9)'s K, or Pereira's K(c, L, E*)."""
-        if self.elastic_law == "hertz-sphere":
-            return self.hertz_stiffness
-        if self.elastic_law == "pereira":
-            return pereira_stiffness(self.clearance, self.joint_length, self.effective_modulus)
-        raise _unknown_elastic_law(self.elastic_law)
-
-    @property
-    def film_coefficient(self) -> float:
-        """12 pi mu L R^3 / c^2 (N s/m per unit eccentricity-ratio rate... times 1/s)."""
-        return 12 * np.pi * self.viscosity * self.joint_length * self.journal_radius**3 / self.clearance**2
-
-    def linkage(self) -> FourBar:
-        l2, l3, l4 = self.lengths
-        return FourBar(crank=l2, coupler=l3, rocker=l4, ground=self.ground, branch=self.branch)
+def n_state(linkage: Linkage) -> int:
+    """Length of a scene's state: q (3 nb), q' (3 nb) and the driver's work (1)."""
+    return 2 * linkage.n_coordinates + 1
 
 
-# --- the conformal cylindrical law of Pereira, Ramalho and Ambrosio (2011) ---------------------------
-# C. M. Pereira, A. L. Ramalho, J. A. Ambrosio, "A critical overview of internal and external cylinder contact
-# force models", Nonlinear Dynamics 63 (2011) 681-697: for a journal in a bushing (internal contact) of radial
-# clearance dR and length L, F = (a dR + b) L E* / dR * delta^n with n = Y dR^-0.005, a and b and Y fitted to
-# finite-element results, everything in mm, N and N/mm^2 (MPa).  Coefficients as implemented in the public
-# DyS code (github.com/ladisk/DyS @ 5e6a54d, MBD_system/contact_model/contact_model_cylinder.py); the two branches
-# of Y meet at the break clearance only with dR in mm in both (our check, tests/test_contact_laws.py).
-PEREIRA_A = 0.965  # -, internal contact
-PEREIRA_B = 0.0965  # mm, internal contact
-PEREIRA_Y_BREAK_MM = 0.34954  # mm: Y's logarithmic branch below, linear branch above
-PEREIRA_CLEARANCE_RANGE_M = (0.005e-3, 10.0e-3)  # radial clearances over which Y is given (the fit's range), m
-_MM_PER_M = 1e3
-_MPA_PER_PA = 1e-6
+def check_effects(name: str, effects) -> None:
+    """A clearance joint's effects: known ones, friction only with contact (it acts with the normal force)."""
+    unknown = set(effects) - set(JOINT_EFFECTS)
+    if unknown:
+        raise LinkageError(f"joints.{name}.clearance.effects", f"unknown effect(s) {sorted(unknown)}; known: {JOINT_EFFECTS}")
+    if "friction" in effects and "contact" not in effects:
+        raise LinkageError(f"joints.{name}.clearance.effects", "friction needs the contact effect (it acts with the normal contact force)")
 
 
-def _unknown_elastic_law(law: str) -> ValueError:
-    return ValueError(f"unknown elastic law {law!r}; known: {sorted(ELASTIC_LAWS)}")
+def _clearance_values(linkage: Linkage, joint) -> list[float]:
+    """A clearance joint's packed values (CLEARANCE_VALUES); those of effects it does not name are NaN."""
+    c: Clearance = joint.clearance
+    nan = float("nan")
+    fx = set(c.effects)
+    v = dict.fromkeys(CLEARANCE_VALUES, nan)
+    (v["jx"], v["jy"]), (v["bx"], v["by"]) = linkage.point(joint.journal), linkage.point(joint.bearing)
+    v.update(clearance=c.clearance, r_journal=c.journal_radius, r_bearing=c.bearing_radius)
+    if "contact" in fx:
+        v.update(restitution=c.restitution, floor=c.impact_velocity_floor, elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
+                 elastic_stiffness=c.elastic_stiffness, elastic_exponent=c.elastic_exponent)
+    if "friction" in fx:
+        v.update(friction=c.friction, v0=c.v0, v1=c.v1)
+    if "lubrication" in fx:
+        v.update(film=c.film_coefficient, eps_limit=1.0 - c.e0 / c.clearance)
+    return [float(v[k]) for k in CLEARANCE_VALUES]
 
 
-def pereira_exponent(clearance: float) -> float:
-    """Pereira's exponent n = Y dR^-0.005 (-) of the radial clearance ``clearance`` (m; dR in mm in the fit).
-
-    Y = 1.51 [ln(1000 dR)]^-0.151 up to the break clearance (the logarithm of dR in micrometres), Y = 0.0151 dR + 1.151
-    above it.  Outside the fitted range the nearer branch is extrapolated (the clearance paper states each law's range); below
-    1 um the logarithm is not positive and the law is undefined (ValueError).
-    """
-    dr = clearance * _MM_PER_M
-    if dr <= 1e-3:
-        raise ValueError(f"Pereira's exponent is undefined at a radial clearance of {clearance:g} m (ln(1000 dR) <= 0)")
-    y = 1.51 * np.log(1000.0 * dr) ** -0.151 if dr <= PEREIRA_Y_BREAK_MM else 0.0151 * dr + 1.151
-    return float(y * dr**-0.005)
-
-
-def pereira_stiffness(clearance: float, length: float, effective_modulus: float) -> float:
-    """K of Pereira's internal-contact law F = K delta^n in SI, N/m^n.
-
-    clearance: radial clearance dR (m); length: joint length L (m); effective_modulus: E* (Pa).  The fit gives
-    (a dR + b) L E* / dR in N/mm^n with dR, L in mm and E* in N/mm^2; delta in m is 1000 delta in mm, so
-    K_SI = K_mm * 1000^n.
-    """
-    dr, n = clearance * _MM_PER_M, pereira_exponent(clearance)
-    k_mm = (PEREIRA_A * dr + PEREIRA_B) * (length * _MM_PER_M) * (effective_modulus * _MPA_PER_PA) / dr
-    return float(k_mm * _MM_PER_M**n)
-
-
-# joint geometry: (journal body, journal point, bearing body, bearing point) as functions of the lengths
-def joint_points(lengths):
-    l2, l3, l4 = lengths
-    return {
-        1: (0, (l2 / 2, 0.0), 1, (-l3 / 2, 0.0)),  # crank pin A in the coupler's bushing
-        2: (1, (l3 / 2, 0.0), 2, (l4 / 2, 0.0)),  # coupler pin B in the rocker's bushing
+def pack(linkage: Linkage) -> tuple[np.ndarray, dict[str, int]]:
+    """The linkage's data as one float array for the compiled code, with the index of every block by name.  The
+    layout depends on the topology only, so the generated source (which holds indices) does too."""
+    d = linkage.driver
+    values: dict[str, list[float]] = {
+        "mass": [v for b in linkage.bodies for v in (b.mass, b.mass, b.inertia)],
+        "gravity": [linkage.gravity], "alpha": [linkage.baumgarte], "beta": [linkage.baumgarte],
+        "omega": [d.speed], "phi0": [d.start_angle], "series": [*d.cos, *d.sin],
     }
-
-
-def pack(p: FourBarParameters, phi0: float) -> tuple[np.ndarray, dict[str, int]]:
-    """Parameters as one float array for the compiled code, with the index of every name."""
-    l2, l3, l4 = p.lengths
-    m, inertia = p.masses, p.inertias
-    values = {
-        "mass": [m[0], m[0], inertia[0], m[1], m[1], inertia[1], m[2], m[2], inertia[2]],
-        "ground": [p.ground],
-        "l": [l2, l3, l4],
-        "omega": [p.crank_speed],
-        "phi0": [phi0],
-        "alpha": [p.baumgarte_alpha],
-        "beta": [p.baumgarte_beta],
-        "gravity": [p.gravity],
-        "clearance": [p.clearance],
-        "r_journal": [p.journal_radius],
-        "r_bearing": [p.bearing_radius],
-        "hertz": [p.hertz_stiffness],
-        "restitution": [p.restitution],
-        "friction": [p.friction],
-        "v0": [p.v0],
-        "v1": [p.v1],
-        "film": [p.film_coefficient],
-        "eps_limit": [1.0 - p.e0 / p.clearance],
-        "floor": [p.impact_velocity_floor],
-        # appended last so that every earlier index (and so the generated source) keeps its place
-        "elastic_law": [float(ELASTIC_LAWS[p.elastic_law])],
-        "elastic_stiffness": [p.elastic_stiffness],
-        "elastic_exponent": [p.elastic_exponent],
-    }
+    for k, item in enumerate(linkage.constraint_order()):
+        if isinstance(item, Driver):
+            continue
+        first, second = oriented(item)
+        gx, gy = linkage.point(second) if second[0] == "ground" else (0.0, 0.0)
+        s2 = (0.0, 0.0) if second[0] == "ground" else linkage.point(second)
+        values[f"joint{k}"] = [*linkage.point(first), *s2, gx, gy]
+    for k, joint in enumerate(linkage.clearance_joints):
+        values[f"clearance{k}"] = _clearance_values(linkage, joint)
     index, flat = {}, []
     for key, vals in values.items():
         index[key] = len(flat)
@@ -211,125 +103,161 @@ def pack(p: FourBarParameters, phi0: float) -> tuple[np.ndarray, dict[str, int]]
     return np.array(flat, dtype=float), index
 
 
-def generate_source(clearance_joints: tuple[int, ...], effects: tuple[str, ...], contact_law: str, lengths) -> str:
-    """Python source of the scene's right-hand side and integrators (numba)."""
-    unknown = set(effects) - set(EFFECTS)
-    if unknown:
-        raise ValueError(f"unknown effect(s) {sorted(unknown)}; known: {EFFECTS}")
-    if any(j not in (1, 2) for j in clearance_joints):
-        raise ValueError(f"clearance joints must be 1 and/or 2, got {clearance_joints}")
-    if "friction" in effects and "contact" not in effects:
-        raise ValueError("friction needs the contact effect (it acts with the normal contact force)")
-    law = CONTACT_LAWS[contact_law]
-    _, idx = pack(_dummy_parameters(lengths), 0.0)
-    l2, l3, l4 = (f"p[{idx['l'] + k}]" for k in range(3))
-    pts = {1: (0, f"0.5 * {l2}", "0.0", 1, f"-0.5 * {l3}", "0.0"), 2: (1, f"0.5 * {l3}", "0.0", 2, f"0.5 * {l4}", "0.0")}
-    ideal = [j for j in (1, 2) if j not in clearance_joints]
-    nc = 2 + 1 + 2 + 2 * len(ideal)
-    n_diag = DIAG_FIXED + DIAG_PER_JOINT * len(clearance_joints)
-    P = lambda name, k=0: f"p[{idx[name] + k}]"  # noqa: E731
-    L = []
+def _constraint_lines(linkage: Linkage, idx) -> tuple[list[str], list[list[int]], int]:
+    """Source lines of the constraint rows (the ideal joints and the driver, in ``constraint_order``), their Phi_q
+    pattern and the driver's row."""
+    lines, pattern, row, driver_row = [], [], 0, 0
+    for k, item in enumerate(linkage.constraint_order()):
+        if isinstance(item, Driver):
+            b = linkage.body_index(item.body)
+            if item.cos:
+                n = len(item.cos)
+                s = idx["series"]
+                lines.append(f"    driver_series(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], p[{s}:{s + n}], "
+                             f"p[{s + n}:{s + 2 * n}], {row}, phi, phiq, gamma, phidot)")
+            else:
+                lines.append(f"    driver(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], {row}, phi, phiq, gamma, phidot)")
+            pattern.append([3 * b + 2])
+            driver_row = row
+            row += 1
+            continue
+        first, second = oriented(item)
+        bi, bj = linkage.body_index(first[0]), linkage.body_index(second[0])
+        six, siy, sjx, sjy, gx, gy = (f"p[{idx[f'joint{k}'] + m}]" for m in range(6))
+        lines.append(f"    revolute(q, qd, cs, {bi}, {six}, {siy}, {bj}, {sjx}, {sjy}, {gx}, {gy}, {row}, phi, phiq, gamma, phidot)")
+        pattern += revolute_pattern(bi, bj)
+        row += 2
+    return lines, pattern, driver_row
+
+
+def _clearance_lines(linkage: Linkage, idx) -> list[str]:
+    """Source lines of the clearance joints' forces: exactly the effects each joint names."""
+    L: list[str] = []
     a = L.append
-    a("import numpy as np")
-    a("from numba import njit")
-    a("from linkwork.engines.multibody.kernels import (revolute, driver, apply_force, clearance_state, hertz_damping_factor,")
-    a("    friction_coefficient, film_forces, gauss_solve_into, elastic_contact, body_trig)")
-    a(f"NC = {nc}")
-    a(f"N_DIAG = {n_diag}")
-    a(f"JOINTS = {tuple(clearance_joints)}")
-    a(f"EFFECTS = {tuple(effects)}")
-    a("")
-    a(f"N_WORK = {15 + nc * (15 + nc)}")
-    a("")
-    a("@njit(cache=True)")
-    a("def rhs(t, y, p, latched, counts, diag):")
-    a("    \"\"\"dy/dt at (t, y), a new array; the diagnostics into ``diag`` (see rhs_into).\"\"\"")
-    a("    out = np.empty(19)")
-    a("    rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)")
-    a("    return out")
-    a("")
-    a("@njit(cache=True)")
-    a("def rhs_into(t, y, p, latched, counts, diag, w, out):")
-    a("    \"\"\"dy/dt at (t, y) into ``out`` (19), the diagnostics into ``diag``; ``w``: a work array of N_WORK,")
-    a("    cleared here and cut into the pieces below (the integrators pass one, so that a call allocates nothing).\"\"\"")
-    a("    q = y[0:9]")
-    a("    qd = y[9:18]")
-    a("    w[:] = 0.0")
-    a("    cs = w[0:6]")
-    a("    body_trig(q, cs)")
-    a("    g = w[6:15]")
-    a("    phi = w[15 : 15 + NC]")
-    a("    gamma = w[15 + NC : 15 + 2 * NC]")
-    a("    phidot = w[15 + 2 * NC : 15 + 3 * NC]")
-    a("    gamma_b = w[15 + 3 * NC : 15 + 4 * NC]")
-    a("    schur_rhs = w[15 + 4 * NC : 15 + 5 * NC]")
-    a("    lam = w[15 + 5 * NC : 15 + 6 * NC]")
-    a("    phiq = w[15 + 6 * NC : 15 + 15 * NC].reshape((NC, 9))")
-    a("    schur = w[15 + 15 * NC :].reshape((NC, NC))")
-    a(f"    mass = p[{idx['mass']}:{idx['mass'] + 9}]")
-    a("    potential = 0.0")
-    if "gravity" in effects:
-        a("    counts[3] += 1")
-        a("    for b in range(3):")
-        a(f"        g[3 * b + 1] -= mass[3 * b] * {P('gravity')}")
-        a(f"        potential += mass[3 * b] * {P('gravity')} * q[3 * b + 1]")
-    for k, j in enumerate(clearance_joints):
-        bj, jx, jy, bb, bx, by = pts[j]
-        o = DIAG_FIXED + DIAG_PER_JOINT * k
-        a(f"    # clearance joint {j}")
+    for k, joint in enumerate(linkage.clearance_joints):
+        c = joint.clearance
+        o = idx[f"clearance{k}"]
+        P = {name: f"p[{o + m}]" for m, name in enumerate(CLEARANCE_VALUES)}
+        bj, bb = linkage.body_index(joint.journal[0]), linkage.body_index(joint.bearing[0])
+        jx, jy, bx, by = P["jx"], P["jy"], P["bx"], P["by"]
+        d = DIAG_FIXED + DIAG_PER_JOINT * k
+        a(f"    # clearance joint {joint.name}")
         a(f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, "
-          f"{P('clearance')}, {P('r_journal')}, {P('r_bearing')})")
+          f"{P['clearance']}, {P['r_journal']}, {P['r_bearing']})")
         a("    fn = 0.0")
         a("    ft = 0.0")
         a("    fr_film = 0.0")
         a("    ft_film = 0.0")
-        if "contact" in effects:
+        if "contact" in c.effects:
             a("    if delta > 0.0:")
             a("        counts[0] += 1")
-            a(f"        vimp = latched[{k}] if latched[{k}] > {P('floor')} else {P('floor')}")
-            law_k_n = f"int({P('elastic_law')}), {P('elastic_stiffness')}, {P('elastic_exponent')}"
-            a(f"        fe, ue = elastic_contact({law_k_n}, delta)")
-            a(f"        fn = fe * hertz_damping_factor({law}, {P('restitution')}, ddot, vimp)")
+            a(f"        vimp = latched[{k}] if latched[{k}] > {P['floor']} else {P['floor']}")
+            a(f"        fe, ue = elastic_contact(int({P['elastic_law']}), {P['elastic_stiffness']}, {P['elastic_exponent']}, delta)")
+            a(f"        fn = fe * hertz_damping_factor({CONTACT_LAWS[c.contact_law]}, {P['restitution']}, ddot, vimp)")
             a("        potential += ue")
-            if "friction" in effects:
+            if "friction" in c.effects:
                 a("        counts[1] += 1")
-                a(f"        ft = friction_coefficient(vt, {P('friction')}, {P('v0')}, {P('v1')}) * fn")
-        if "lubrication" in effects:
+                a(f"        ft = friction_coefficient(vt, {P['friction']}, {P['v0']}, {P['v1']}) * fn")
+        if "lubrication" in c.effects:
             a("    counts[2] += 1")
-            a(f"    fr_film, ft_film = film_forces(e / {P('clearance')}, ddot / {P('clearance')}, wj + wb, gd, {P('film')}, {P('eps_limit')})")
+            a(f"    fr_film, ft_film = film_forces(e / {P['clearance']}, ddot / {P['clearance']}, wj + wb, gd, {P['film']}, "
+              f"{P['eps_limit']})")
         a("    tx, ty = -ny, nx")
         a("    fx = (-fn + fr_film) * nx + (ft + ft_film) * tx")
         a("    fy = (-fn + fr_film) * ny + (ft + ft_film) * ty")
         a(f"    apply_force(q, cs, g, {bj}, {jx}, {jy}, fx, fy)")
         a(f"    apply_force(q, cs, g, {bb}, {bx}, {by}, -fx, -fy)")
-        if "friction" in effects:
-            a(f"    g[{3 * bj + 2}] += {P('r_journal')} * ft")
-            a(f"    g[{3 * bb + 2}] -= {P('r_bearing')} * ft")
-        for m_, val in enumerate(("e", "delta", "ddot", "fn", "fr_film", "ft_film")):
-            a(f"    diag[{o + m_}] = {val}")
-    a(f"    revolute(q, qd, cs, 0, -0.5 * {l2}, 0.0, -1, 0.0, 0.0, 0.0, 0.0, 0, phi, phiq, gamma, phidot)")
-    a(f"    driver(q, qd, t, 0, {P('phi0')}, {P('omega')}, 2, phi, phiq, gamma, phidot)")
-    a(f"    revolute(q, qd, cs, 2, -0.5 * {l4}, 0.0, -1, 0.0, 0.0, {P('ground')}, 0.0, 3, phi, phiq, gamma, phidot)")
-    pattern = [*revolute_pattern(0, -1), [2], *revolute_pattern(2, -1)]  # Phi_q's nonzero columns per row
-    row = 5
-    for j in ideal:
-        bj, jx, jy, bb, bx, by = pts[j]
-        a(f"    revolute(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, 0.0, 0.0, {row}, phi, phiq, gamma, phidot)")
-        pattern += revolute_pattern(bj, bb)
-        row += 2
-    a(f"    damping = 2.0 * {P('alpha')}")
-    a(f"    stiffness = {P('beta')} ** 2")
+        if "friction" in c.effects:
+            a(f"    g[{3 * bj + 2}] += {P['r_journal']} * ft")
+            a(f"    g[{3 * bb + 2}] -= {P['r_bearing']} * ft")
+        for m, val in enumerate(("e", "delta", "ddot", "fn", "fr_film", "ft_film")):
+            a(f"    diag[{d + m}] = {val}")
+    return L
+
+
+def _check_topology(linkage: Linkage) -> None:
+    for joint in linkage.clearance_joints:
+        check_effects(joint.name, joint.clearance.effects)
+        if joint.clearance.contact_law not in CONTACT_LAWS:
+            raise LinkageError(f"joints.{joint.name}.clearance.contact_law",
+                               f"unknown contact law {joint.clearance.contact_law!r}; known: {sorted(CONTACT_LAWS)}")
+        if "ground" in (joint.journal[0], joint.bearing[0]):
+            raise LinkageError(f"joints.{joint.name}", "a clearance joint with the ground is not supported yet (journal and bearing must be bodies)")
+
+
+def generate_source(linkage: Linkage, gravity: bool) -> str:
+    """Python source of the scene's right-hand side and integrators (numba): the linkage's topology, its clearance
+    joints' effects and, if ``gravity``, gravity."""
+    _check_topology(linkage)
+    _, idx = pack(linkage)
+    nb = len(linkage.bodies)
+    nq = 3 * nb
+    joints = linkage.clearance_joints
+    constraint_lines, pattern, driver_row = _constraint_lines(linkage, idx)
+    nc = len(pattern)
+    out_b, drv_b = linkage.body_index(linkage.output), linkage.body_index(linkage.driver.body)
+    L: list[str] = []
+    a = L.append
+    a("import numpy as np")
+    a("from numba import njit")
+    a("from linkwork.engines.multibody.kernels import (revolute, driver, driver_series, apply_force, clearance_state,")
+    a("    hertz_damping_factor, friction_coefficient, film_forces, gauss_solve_into, elastic_contact, body_trig)")
+    a(f"NB = {nb}")
+    a(f"NQ = {nq}")
+    a(f"NY = {2 * nq + 1}")
+    a(f"NC = {nc}")
+    a(f"N_DIAG = {DIAG_FIXED + DIAG_PER_JOINT * len(joints)}")
+    a(f"JOINTS = {tuple(j.name for j in joints)}")
+    scene_effects = [e for e in EFFECTS if any(e in j.clearance.effects for j in joints) or (e == "gravity" and gravity)]
+    a(f"EFFECTS = {tuple(scene_effects)}")
+    a("")
+    a(f"N_WORK = {5 * nb + nc * (6 + nq + nc)}")
+    a("")
+    a("@njit(cache=True)")
+    a("def rhs(t, y, p, latched, counts, diag):")
+    a("    \"\"\"dy/dt at (t, y), a new array; the diagnostics into ``diag`` (see rhs_into).\"\"\"")
+    a("    out = np.empty(NY)")
+    a("    rhs_into(t, y, p, latched, counts, diag, np.empty(N_WORK), out)")
+    a("    return out")
+    a("")
+    a("@njit(cache=True)")
+    a("def rhs_into(t, y, p, latched, counts, diag, w, out):")
+    a("    \"\"\"dy/dt at (t, y) into ``out`` (NY), the diagnostics into ``diag``; ``w``: a work array of N_WORK,")
+    a("    cleared here and cut into the pieces below (the integrators pass one, so that a call allocates nothing).\"\"\"")
+    a("    q = y[0:NQ]")
+    a("    qd = y[NQ : 2 * NQ]")
+    a("    w[:] = 0.0")
+    a(f"    cs = w[0:{2 * nb}]")
+    a("    body_trig(q, cs)")
+    a(f"    g = w[{2 * nb}:{5 * nb}]")
+    o = 5 * nb
+    for k, name in enumerate(("phi", "gamma", "phidot", "gamma_b", "schur_rhs", "lam")):
+        a(f"    {name} = w[{o + k * nc} : {o + (k + 1) * nc}]")
+    o += 6 * nc
+    a(f"    phiq = w[{o} : {o + nq * nc}].reshape((NC, NQ))")
+    a(f"    schur = w[{o + nq * nc} :].reshape((NC, NC))")
+    a(f"    mass = p[{idx['mass']}:{idx['mass'] + nq}]")
+    a("    potential = 0.0")
+    if gravity:
+        a("    counts[3] += 1")
+        a("    for b in range(NB):")
+        a(f"        g[3 * b + 1] -= mass[3 * b] * p[{idx['gravity']}]")
+        a(f"        potential += mass[3 * b] * p[{idx['gravity']}] * q[3 * b + 1]")
+    L.extend(_clearance_lines(linkage, idx))
+    L.extend(constraint_lines)
+    a(f"    damping = 2.0 * p[{idx['alpha']}]")
+    a(f"    stiffness = p[{idx['beta']}] ** 2")
     a("    for r in range(NC):")
     a("        gamma_b[r] = gamma[r] - damping * phidot[r] - stiffness * phi[r]")
-    a("    out[0:9] = qd")
-    a("    qdd = out[9:18]")
-    L.extend(schur_source(pattern))
-    a("    torque = -lam[2]")
-    a("    out[18] = torque * qd[2]")
+    a("    out[0:NQ] = qd")
+    a("    qdd = out[NQ : 2 * NQ]")
+    L.extend(schur_source(pattern, nq))
+    a(f"    torque = -lam[{driver_row}]")
+    a(f"    out[{2 * nq}] = torque * qd[{3 * drv_b + 2}]")
     a("    kinetic = 0.0")
-    a("    for k in range(9):")
+    a("    for k in range(NQ):")
     a("        kinetic += 0.5 * mass[k] * qd[k] * qd[k]")
-    a("    diag[0] = qdd[8]")
+    a(f"    diag[0] = qdd[{3 * out_b + 2}]")
     a("    diag[1] = torque")
     a("    diag[2] = kinetic + potential")
     a("    drift = 0.0")
@@ -348,7 +276,7 @@ def revolute_pattern(bi: int, bj: int) -> list[list[int]]:
     return [sorted(c for b in bodies for c in (3 * b, 3 * b + 2)), sorted(c for b in bodies for c in (3 * b + 1, 3 * b + 2))]
 
 
-def schur_source(pattern: list[list[int]]) -> list[str]:
+def schur_source(pattern: list[list[int]], nq: int) -> list[str]:
     """Source lines that solve M q'' = g - Phi_q^T lam, Phi_q q'' = gamma_b (M diagonal) by the Schur complement
     Phi_q M^-1 Phi_q^T lam = Phi_q M^-1 g - gamma_b, summing only the products of Phi_q's nonzero entries
     (``pattern``: the nonzero columns of each row).  The sums run over the columns in increasing order, as a full
@@ -365,7 +293,7 @@ def schur_source(pattern: list[list[int]]) -> list[str]:
         terms = "".join(f" + phiq[{a}, {k}] * (g[{k}] / mass[{k}])" for k in cols_a)
         lines.append(f"    schur_rhs[{a}] = (0.0{terms}) - gamma_b[{a}]")
     lines.append("    gauss_solve_into(schur, schur_rhs, lam)")
-    for k in range(9):
+    for k in range(nq):
         terms = "".join(f" - phiq[{a}, {k}] * lam[{a}]" for a, cols in enumerate(pattern) if k in cols)
         lines.append(f"    qdd[{k}] = (g[{k}]{terms}) / mass[{k}]")
     return lines
@@ -803,23 +731,18 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
 '''
 
 
-def _dummy_parameters(lengths) -> FourBarParameters:
-    return FourBarParameters(1.0, tuple(lengths), (1.0,) * 3, (1.0,) * 3, 1.0, 0.0099, 0.01, (1.0, 1.0), (0.3, 0.3),
-                             0.01, 0.9, 0.0, 1e-4, 1e-3, 0.0, 1e-7, 1e-3, 1.0, 1.0)
-
-
 def cache_dir() -> Path:
     """Where generated scene modules are written (LINKWORK_CACHE, else ~/.cache/linkwork)."""
     return Path(os.environ.get("LINKWORK_CACHE", Path.home() / ".cache" / "linkwork")) / "multibody"
 
 
-def compile_scene(clearance_joints: tuple[int, ...], effects: tuple[str, ...], contact_law: str = "lankarani-nikravesh"):
-    """The compiled module of a scene (rhs, rk4, dopri5), cached on disk by the hash of its source.
+def compile_scene(linkage: Linkage, gravity: bool):
+    """The compiled module of a scene (rhs, integrators), cached on disk by the hash of its source.
 
-    The elastic law is data, not code: ``pack`` gives its code, K and n, and the one compiled module serves every
-    elastic law (the dispatch is in ``kernels.elastic_contact``), so it needs no place in the key.
+    The source holds the topology and the effects only; dimensions, properties and the elastic law are data
+    (``pack``), so one compiled module serves every linkage of the same topology and effects.
     """
-    source = generate_source(tuple(clearance_joints), tuple(effects), contact_law, (1.0, 1.0, 1.0))
+    source = generate_source(linkage, gravity)
     digest = hashlib.sha256(source.encode()).hexdigest()[:16]
     name = f"linkwork_scene_{digest}"
     if name in sys.modules:
@@ -836,157 +759,3 @@ def compile_scene(clearance_joints: tuple[int, ...], effects: tuple[str, ...], c
     sys.modules[name] = module
     spec.loader.exec_module(module)
     return module
-
-
-# --- initial state and the ideal (kinematic) scene -------------------------------------------------
-
-
-def start_angle(p: FourBarParameters) -> float:
-    """Crank angle with crank and coupler collinear (extended): the rocker's dead point."""
-    return float(toggle_positions(p.linkage()).crank_angle[0])
-
-
-def kinematic_state(p: FourBarParameters, crank_angle: np.ndarray):
-    """Body positions q, velocities q' and accelerations q'' of the ideal linkage (n, 9) each."""
-    m = four_bar(p.linkage(), crank_angle)
-    w = p.crank_speed
-    l2, l3, l4 = p.lengths
-    ang = np.stack([m.crank_angle, m.coupler_angle, m.rocker_angle], axis=-1)
-    rate = np.stack([np.ones_like(m.crank_angle), m.coupler_rate, m.rocker_rate], axis=-1) * w
-    acc = np.stack([np.zeros_like(m.crank_angle), m.coupler_accel, m.rocker_accel], axis=-1) * w**2
-    starts = [np.zeros_like(m.A), m.A, np.broadcast_to(p.linkage().rocker_pivot, m.A.shape)]
-    half = [l2 / 2, l3 / 2, l4 / 2]
-    q = np.empty(ang.shape[:-1] + (9,))
-    qd, qdd = np.empty_like(q), np.empty_like(q)
-    for b in range(3):
-        e = np.stack([np.cos(ang[..., b]), np.sin(ang[..., b])], axis=-1)
-        perp = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-        start_vel = np.zeros_like(e) if b != 1 else l2 * w * np.stack([-np.sin(ang[..., 0]), np.cos(ang[..., 0])], axis=-1)
-        start_acc = np.zeros_like(e) if b != 1 else -l2 * w**2 * np.stack([np.cos(ang[..., 0]), np.sin(ang[..., 0])], axis=-1)
-        q[..., 3 * b : 3 * b + 2] = starts[b] + half[b] * e
-        q[..., 3 * b + 2] = ang[..., b]
-        qd[..., 3 * b : 3 * b + 2] = start_vel + half[b] * rate[..., b, None] * perp
-        qd[..., 3 * b + 2] = rate[..., b]
-        qdd[..., 3 * b : 3 * b + 2] = start_acc + half[b] * (acc[..., b, None] * perp - rate[..., b, None] ** 2 * e)
-        qdd[..., 3 * b + 2] = acc[..., b]
-    return q, qd, qdd
-
-
-def inverse_dynamics(p: FourBarParameters, t: np.ndarray, gravity: bool) -> dict[str, np.ndarray]:
-    """The ideal scene: kinematics, then Phi_q^T lambda = g - M q'' (no time integration).
-
-    Returns rocker angular acceleration, crank torque, joint reaction magnitudes at A and B and the
-    mechanical energy, at the times t (s).  The constraint Jacobians are assembled by the compiled kernels in one
-    compiled loop (``kernels.ideal_jacobians``) and the systems solved as one stack (the same numbers as a loop of single
-    solves: tests/test_clearance.py).
-    """
-    from .kernels import ideal_jacobians
-
-    module = compile_scene((), ("gravity",) if gravity else ())
-    phi0 = start_angle(p)
-    t = np.asarray(t, dtype=float)
-    theta = phi0 + p.crank_speed * t
-    q, qd, qdd = kinematic_state(p, theta)
-    params, idx = pack(p, phi0)
-    mass = params[idx["mass"] : idx["mass"] + 9]
-    l2, l3, l4 = p.lengths
-    phiq = ideal_jacobians(q, qd, t, module.NC, phi0, p.crank_speed, float(l2), float(l3), float(l4), float(p.ground))
-    g = np.zeros(9)
-    if gravity:
-        g[1::3] -= mass[0::3] * p.gravity
-    lam = np.linalg.solve(np.swapaxes(phiq, 1, 2), (g - mass * qdd)[..., None])[..., 0]
-    energy = 0.5 * np.sum(mass * qd**2, axis=-1)
-    if gravity:
-        energy = energy + np.sum(mass[0::3] * p.gravity * q[:, 1::3], axis=-1)
-    return {"rocker_acceleration": qdd[:, 8], "crank_torque": -lam[:, 2], "force_A": np.hypot(lam[:, 5], lam[:, 6]),
-            "force_B": np.hypot(lam[:, 7], lam[:, 8]), "energy": energy}
-
-
-def initial_state(p: FourBarParameters, offset: tuple[float, float] = (0.0, 0.0), joint: int = 0) -> tuple[np.ndarray, float]:
-    """Consistent initial state at the dead point (journals centred), optionally displacing the coupler
-    by ``offset`` (m) to start a journal off-centre.  Returns (y0, phi0)."""
-    phi0 = start_angle(p)
-    q, qd, _ = kinematic_state(p, np.array([phi0]))
-    y0 = np.zeros(N_STATE)
-    y0[:9], y0[9:18] = q[0], qd[0]
-    if joint:
-        y0[3] += offset[0]
-        y0[4] += offset[1]
-    return y0, phi0
-
-
-def _point(q: np.ndarray, body: int, local) -> np.ndarray:
-    """World position (m) of a body's local point (m), q of shape (..., 9)."""
-    phi = q[..., 3 * body + 2]
-    c, s = np.cos(phi), np.sin(phi)
-    return np.stack([q[..., 3 * body] + c * local[0] - s * local[1], q[..., 3 * body + 1] + s * local[0] + c * local[1]], axis=-1)
-
-
-def _point_velocity(q: np.ndarray, qd: np.ndarray, body: int, local) -> np.ndarray:
-    """World velocity (m/s) of a body's local point."""
-    phi, w = q[..., 3 * body + 2], qd[..., 3 * body + 2]
-    c, s = np.cos(phi), np.sin(phi)
-    rx, ry = c * local[0] - s * local[1], s * local[0] + c * local[1]
-    return np.stack([qd[..., 3 * body] - w * ry, qd[..., 3 * body + 1] + w * rx], axis=-1)
-
-
-def journal_offsets(p: FourBarParameters, clearance_joints, states: np.ndarray) -> np.ndarray:
-    """Eccentricity e = journal centre - bearing centre (m) and its rate (m/s) of each clearance joint in the states
-    (..., >= 18): shape (..., joint, 4) as (e_x, e_y, e_x', e_y') in the fixed frame."""
-    q, qd = states[..., :9], states[..., 9:18]
-    pts = joint_points(p.lengths)
-    out = []
-    for j in clearance_joints:
-        bj, sj, bb, sb = pts[j]
-        e = _point(q, bj, sj) - _point(q, bb, sb)
-        v = _point_velocity(q, qd, bj, sj) - _point_velocity(q, qd, bb, sb)
-        out.append(np.concatenate([e, v], axis=-1))
-    return np.stack(out, axis=-2)
-
-
-def _position_residual(p: FourBarParameters, q: np.ndarray, phi0: float, clearance_joints, eccentricity) -> np.ndarray:
-    """The nine position equations of a start: crank pinned to the ground at O2 and at angle phi0, rocker pinned at
-    O4, each ideal joint closed, each clearance joint at its eccentricity (m)."""
-    l2, l3, l4 = p.lengths
-    pts = joint_points(p.lengths)
-    res = [_point(q, 0, (-l2 / 2, 0.0)), [q[2] - phi0], _point(q, 2, (-l4 / 2, 0.0)) - np.array([p.ground, 0.0])]
-    for j in (1, 2):
-        bj, sj, bb, sb = pts[j]
-        gap = _point(q, bj, sj) - _point(q, bb, sb)
-        res.append(gap - (np.asarray(eccentricity, dtype=float) if j in clearance_joints else 0.0))
-    return np.concatenate([np.ravel(r) for r in res])
-
-
-def offset_start(p: FourBarParameters, clearance_joints, eccentricity, rate, tol: float = 1e-15) -> np.ndarray:
-    """A start at the dead point with every clearance joint's journal at ``eccentricity`` (m, (x, y)) and moving
-    at ``rate`` (m/s) relative to its bearing, the ground pins, the drive and the ideal joints exact: positions by
-    Newton's method on the nine position equations, velocities from the same equations'
-    rate form (crank at the drive speed), both with the complex-step Jacobian.  Returns y0 (N_STATE,)."""
-    phi0 = start_angle(p)
-    q = kinematic_state(p, np.array([phi0]))[0][0].copy()
-    for _ in range(20):
-        r = _position_residual(p, q, phi0, clearance_joints, eccentricity)
-        jac = _residual_jacobian(p, q, phi0, clearance_joints, eccentricity)
-        dq = np.linalg.solve(jac, -r)
-        q += dq
-        if np.max(np.abs(dq)) < tol * max(1.0, np.max(np.abs(q))):
-            break
-    jac = _residual_jacobian(p, q, phi0, clearance_joints, eccentricity)
-    rhs = np.zeros(9)
-    rhs[2] = p.crank_speed
-    rows = {1: slice(5, 7), 2: slice(7, 9)}
-    for j in clearance_joints:
-        rhs[rows[j]] = rate
-    y0 = np.zeros(N_STATE)
-    y0[:9], y0[9:18] = q, np.linalg.solve(jac, rhs)
-    return y0
-
-
-def _residual_jacobian(p: FourBarParameters, q: np.ndarray, phi0: float, clearance_joints, eccentricity) -> np.ndarray:
-    """d(position equations)/dq by the complex step (exact to rounding: Im f(q + i h e_k) / h, h = 1e-30)."""
-    jac = np.empty((9, 9))
-    for k in range(9):
-        dq = np.zeros(9, dtype=complex)
-        dq[k] = 1e-30j
-        jac[:, k] = _position_residual(p, q + dq, phi0, clearance_joints, eccentricity).imag / 1e-30
-    return jac

@@ -14,7 +14,9 @@ from typing import Any
 
 import numpy as np
 
-from .model import N_STATE, FourBarParameters, compile_scene, initial_state, pack
+from .assembly import start_state
+from .linkage import Linkage
+from .model import compile_scene, n_state, pack
 
 SCIPY = ("bdf", "radau", "lsoda", "rk45", "scipy-dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
 METHODS = ("rk4", "dopri5", "dop853", "ndf", *SCIPY)
@@ -29,18 +31,17 @@ class Run:
     ``memory()`` is the run's whole state as one vector (t, y, latched, in contact): a run restarted from it
     (``Run(..., memory=...)``) continues the same motion; a Poincaré section point that holds it can be restarted."""
 
-    def __init__(self, p: FourBarParameters, joints, effects, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None):
-        self.module = compile_scene(tuple(joints), tuple(effects), p.contact_law)
+    def __init__(self, linkage: Linkage, gravity: bool, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None):
+        self.module = compile_scene(linkage, gravity)
         self.integrator = dict(integrator)
-        self.phi0 = initial_state(p)[1]
-        self.params, _ = pack(p, self.phi0)
-        n = max(len(joints), 1)
+        self.params, _ = pack(linkage)
+        n, ns = max(len(linkage.clearance_joints), 1), n_state(linkage)
         if memory is not None:
             memory = np.asarray(memory, dtype=float)
             t0, y = float(memory[0]), memory[1:]
-            self.y, self.latched, self.was = y[:N_STATE].copy(), y[N_STATE : N_STATE + n].copy(), y[N_STATE + n :] > 0.5
+            self.y, self.latched, self.was = y[:ns].copy(), y[ns : ns + n].copy(), y[ns + n :] > 0.5
         else:
-            self.y = initial_state(p)[0] if y0 is None else np.asarray(y0, dtype=float).copy()
+            self.y = start_state(linkage) if y0 is None else np.asarray(y0, dtype=float).copy()
             self.latched, self.was = np.zeros(n), np.zeros(n, dtype=bool)
         self.t = float(t0)
         self.h = integrator.get("first_step_s", integrator.get("step_s", 0.0))
@@ -82,14 +83,14 @@ class Run:
         return ys, diags
 
 
-def integrate(p: FourBarParameters, joints, effects, t_out, integrator: Mapping[str, Any], y0=None):
-    """Run a scene from its consistent initial state (or ``y0``) and sample it at ``t_out`` (s, from 0).
+def integrate(linkage: Linkage, gravity: bool, t_out, integrator: Mapping[str, Any], y0=None):
+    """Run a scene from its consistent start (or ``y0``) and sample it at ``t_out`` (s, from 0).
 
-    Returns (states, diagnostics, accepted steps, rejected steps, effect evaluation counts, phi0).
+    Returns (states, diagnostics, accepted steps, rejected steps, effect evaluation counts).
     """
-    run = Run(p, joints, effects, integrator, y0=y0)
+    run = Run(linkage, gravity, integrator, y0=y0)
     ys, diags = run.advance(t_out)
-    return ys, diags, run.steps, run.rejected, run.counts, run.phi0
+    return ys, diags, run.steps, run.rejected, run.counts
 
 
 def _scipy(module, y0, t_out, params, latched, counts, integrator, was):

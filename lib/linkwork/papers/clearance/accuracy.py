@@ -28,8 +28,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ...engines.multibody.model import initial_state, inverse_dynamics, joint_points
-from ...engines.multibody.simulate import integrate
+from .fourbar import initial_state, integrate, inverse_dynamics, joint_points
 from ...pipeline.accuracy import summary_variables
 from ...pipeline.timing import run_and_time
 from .adapter import integrator_kind, parameters, scene_effects
@@ -72,7 +71,7 @@ def eccentricity(p, joints: Sequence[int], states: np.ndarray) -> np.ndarray:
         c, s = np.cos(phi), np.sin(phi)
         return np.stack([x + c * sx - s * sy, y + s * sx + c * sy], axis=-1)
 
-    points = joint_points(p.lengths)
+    points = joint_points(p)
     out = np.empty((q.shape[0], len(joints), 2))
     for k, j in enumerate(joints):
         journal_body, (jx, jy), bearing_body, (bx, by) = points[j]
@@ -142,7 +141,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
             return (contact_error(ys, ref, t, window_s, p, joints) if dry else r), r, float(np.abs(d[:, 0] - ref_d[:, 0]).max() / scale)
 
         reference_error[i], rms_reference_error[i], _ = measure(check, check_d)
-        y0, _ = initial_state(p, offset=(wp["start_perturbation_m"], 0.0), joint=1)
+        y0 = initial_state(p, joints, offset=(wp["start_perturbation_m"], 0.0))
         moved, moved_d, *_ = integrate(p, joints, effects, t, _setting(ref_spec["method"], ref_spec["rtol"], wp), y0=y0)
         start_sensitivity[i], rms_start_sensitivity[i], _ = measure(moved, moved_d)
         measures.append(DRY_MEASURE.format(window=wp["dry_error_window_cycles"]) if dry else RMS_MEASURE)

@@ -77,7 +77,7 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
     Parameters of effects the scene does not name are NaN; the joint length is read by the lubrication and by
     a contact whose elastic law needs it (ELASTIC_LAW_KEYS).
     """
-    from ...engines.multibody.model import FourBarParameters
+    from .fourbar import FourBarParameters
 
     nan = float("nan")
     b = cfg["bodies"]

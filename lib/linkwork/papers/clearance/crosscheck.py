@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ...engines.multibody.model import inverse_dynamics
+from .fourbar import inverse_dynamics
 from .adapter import parameters
 from .studies import QUANTITIES
 
@@ -39,7 +39,7 @@ def observed_orders(steps: np.ndarray, differences: np.ndarray) -> np.ndarray:
 
 def ideal(cfg: Mapping[str, Any]) -> xr.Dataset:
     """Rule study: the ideal scene of every variant in Exudyn at every step of ``crosscheck.steps_s``."""
-    from ...engines.multibody.exudyn_route import ideal_run
+    from .fourbar import exudyn_ideal as ideal_run
 
     check = cfg["crosscheck"]
     variants = list(cfg["variants"])
@@ -103,7 +103,7 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
     """Rule study: one dry scene of one variant in both engines, per-cycle measures and their comparison."""
     import copy
 
-    from ...engines.multibody.exudyn_route import run as exudyn_run
+    from .fourbar import exudyn_dry as exudyn_run
     from .adapter import integrator_kind, scene_effects
     from .studies import fixed_record, output_times
 
@@ -125,7 +125,7 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
         measures[k] = fixed_record(local, variant, scene, integ, settle, cycles)
         settings.append(f"linkwork {integ['method']} rtol {integ['rtol']:.0e}")
     for k, step in enumerate(steps):
-        run = exudyn_run(p, float(t[-1]), float(step), check["newton_tolerance"], float(t[1] - t[0]), joints)
+        run = exudyn_run(p, joints, float(t[-1]), float(step), check["newton_tolerance"], float(t[1] - t[0]))
         n = min(run["t"].size, t.size)
         measures[2 + k] = cycle_measures(t[:n], {q: run[q][:n] for q in QUANTITIES}, {q: ideal_at[q][:n] for q in QUANTITIES}, settle, cycles)
         wall[2 + k] = run["wall_s"]
@@ -168,7 +168,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     error linkwork's Dormand-Prince reaches, each method's least time to reach it over linkwork's."""
     import copy
 
-    from ...engines.multibody.exudyn_route import run as exudyn_run
+    from .fourbar import exudyn_dry as exudyn_run
     from ...pipeline.timing import run_and_time
     from .accuracy import _setting
     from .accuracy import work_precision as integrator_work_precision
@@ -185,15 +185,15 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     joints, effects = scene_effects(cfg, scene)
     t = np.linspace(0.0, wp["cycles"] * cycle(p), int(wp["cycles"] * wp["points_per_cycle"]) + 1)
     ideal_acc = inverse_dynamics(p, t, True)["rocker_acceleration"]
-    from ...engines.multibody.simulate import integrate
+    from .fourbar import integrate
 
     _, ref, *_ = integrate(p, joints, effects, t, _setting(wp["reference"][scene]["method"], wp["reference"][scene]["rtol"], wp))
     ref_rms = np.sqrt(np.mean((ref[:, 0] - ideal_acc) ** 2))
     steps = np.array(sorted(xc["exudyn_steps_s"], reverse=True), dtype=float)
     ex_error, ex_time = np.empty(steps.size), np.empty(steps.size)
     for k, step in enumerate(steps):
-        run, seconds = run_and_time(lambda step=step: exudyn_run(p, float(t[-1]), float(step), cfg["crosscheck"]["newton_tolerance"], float(t[1] - t[0]), joints,
-                                                               progress_s=1e9), wp["repeats"])
+        run, seconds = run_and_time(lambda step=step: exudyn_run(p, joints, float(t[-1]), float(step), cfg["crosscheck"]["newton_tolerance"], float(t[1] - t[0]),
+                                                               progress_s=float("inf")), wp["repeats"])
         n = min(run["t"].size, t.size)
         ex_error[k] = abs(np.sqrt(np.mean((run["rocker_acceleration"][:n] - ideal_acc[:n]) ** 2)) - ref_rms) / ref_rms
         ex_time[k] = seconds

@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ...engines.multibody.model import N_STATE
+from .fourbar import N_STATE
 from .uncertainty import batch, sample_judgement
 
 #: The dry scenes whose contact memory is swapped between the first two starts.

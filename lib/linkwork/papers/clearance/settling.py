@@ -22,8 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ...engines.multibody.model import initial_state, journal_offsets, offset_start
-from ...engines.multibody.simulate import Run
+from .fourbar import initial_state, journal_offsets, offset_start, run
 from ...engines.states import NOT_PERIODIC, PERIODIC, section_period, settle, thirds_agree
 
 #: The claims' measures of one turn's deviation from the ideal curve: its RMS, its peak |.|, and its ripple (the RMS of
@@ -44,7 +43,7 @@ def start_state(p, joints, start: Mapping[str, Any]) -> np.ndarray:
     """The initial state of one start (``start``: eccentricity and rate as fractions of c and c omega)."""
     ecc, rate = np.asarray(start["eccentricity"], dtype=float), np.asarray(start["rate"], dtype=float)
     if not ecc.any() and not rate.any():
-        return initial_state(p)[0]
+        return initial_state(p, joints)
     c, w = p.clearance, p.crank_speed
     return offset_start(p, joints, ecc * c, rate * c * w)
 
@@ -64,7 +63,7 @@ class CycleRunner:
     def __init__(self, p, joints, effects, integrator, ideal_cycle: Mapping[str, np.ndarray], per: int, shown: int, ripple_cutoff_hz: float,
                  y0=None, memory=None):
         self.p, self.joints, self.per, self.shown = p, tuple(joints), per, shown
-        self.run = Run(p, joints, effects, integrator, y0=y0, memory=memory)
+        self.run = run(p, joints, effects, integrator, y0=y0, memory=memory)
         self.ideal = np.stack([ideal_cycle[q] for q in RESPONSES])  # one turn, its end point included
         self.harmonic = ripple_harmonic(ripple_cutoff_hz, p.crank_speed)
         self.memories, self.extremes, self.last, self.peak_refinement = [], [], [], []

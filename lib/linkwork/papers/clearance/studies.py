@@ -9,8 +9,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ...engines.multibody.model import inverse_dynamics, start_angle
-from ...engines.multibody.simulate import integrate
+from .fourbar import integrate, inverse_dynamics, start_angle
 from . import validity
 from .adapter import integrator_kind, parameters, scene_effects
 from .settling import MEASURES, RESPONSES

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ...engines.multibody.model import inverse_dynamics
+from .fourbar import inverse_dynamics
 from ...pipeline.sweeps import gather, interpret, points_dataset
 from . import validity
 from .adapter import integrator_kind, parameters, scene_effects

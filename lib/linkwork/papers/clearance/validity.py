@@ -18,7 +18,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...engines.multibody.model import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
+from ...engines.multibody.linkage import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
 from ...units import DEG_PER_RAD
 
 

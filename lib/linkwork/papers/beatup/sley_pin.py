@@ -1,0 +1,170 @@
+"""The GN721 six-bar with a clearance at the sley pin E: the sley's acceleration around the front dead centre with and
+without it, beside the four-bar's (a question the paper could not answer; every mass, the loom speed and the pin are
+assumed and labelled in config ``beatup.sley_pin``).
+
+The six-bar is written as a linkage description for the shared multibody engine: crank AB, coupler BC, rocker DC,
+link CE and the sley (sword FE with its beam and reed, one rigid body turning about the rocking shaft F), ideal
+revolutes at A, B, C (twice: coupler and link on the rocker), D and F, and at E either an ideal joint or the link's pin
+in the sley's bushing with a dry clearance (contact and friction).  The crank turns at the loom speed in the paper's
+sense (``sixbar.crank_sense``), from the front dead centre.  The dry scene is run turn by turn until its state is
+found (``engines.states.settle``: the pin's eccentricity and its rate once a turn at the front dead centre); the
+judged turns' sley acceleration is compared with the ideal six-bar's and with the four-bar's (its ideal kinematics
+at the same loom speed, from its own front dead centre).  Its numerical error: the same state rerun from its section
+point at a tighter tolerance.  SI units inside, degrees at the output boundary.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+import xarray as xr
+
+from ...configformat import labelled
+from ...engines.kinematics import four_bar, solve_chain
+from ...engines.multibody import assembly
+from ...engines.multibody.linkage import Body, Clearance, Driver, Joint, Linkage
+from ...engines.multibody.simulate import Run
+from ...engines.states import settle
+from ...units import rpm_to_rad_s
+from .adapter import crank_sense, four_bar_beatup, six_bar
+from .model import CRANK_SENSES, dead_centres
+
+#: The bodies of the six-bar: (name, its two named points, the chain's point names, the chain link giving its angle).
+BODIES = (("crank", ("A", "B"), "A-B"), ("coupler", ("B", "C"), "B-C"), ("rocker", ("D", "C"), "D-C"), ("link", ("C", "E"), "C-E"),
+          ("sley", ("F", "E"), "F-E"))
+
+
+def _linkage(mech, sp: Mapping[str, Any], omega: float, front: float, pin: Clearance | None) -> Linkage:
+    """The six-bar as a description, started at the crank angle ``front`` (rad) and driven at ``omega`` (rad/s)."""
+    chain = mech.chain()
+    m = solve_chain(chain, np.array([front]))
+    lengths = {"crank": mech.l1, "coupler": mech.l2, "rocker": mech.l3, "link": mech.l5, "sley": mech.l6}
+    masses = sp["masses_kg"]
+    bodies = []
+    for name, (p, q), link in BODIES:
+        length = lengths[name]
+        mass = labelled(masses[name])
+        if name == "sley":  # its centre of mass on FE at the assumed distance from F, its assumed inertia there
+            r = labelled(sp["sley_centre_of_mass_m"])
+            points, inertia = {p: (-r, 0.0), q: (length - r, 0.0)}, labelled(sp["sley_inertia_kg_m2"])
+        else:  # a slender steel link, centre of mass at mid-length
+            points, inertia = {p: (-length / 2, 0.0), q: (length / 2, 0.0)}, mass * length**2 / 12
+        bodies.append(Body(name, mass, inertia, points, float(m.links[link].angle[0])))
+    ground = {k: tuple(v) for k, v in chain.ground.items()}
+    joints = (Joint("A", ("crank", "A"), ("ground", "A")), Joint("B", ("crank", "B"), ("coupler", "B")),
+              Joint("C", ("coupler", "C"), ("rocker", "C")), Joint("D", ("rocker", "D"), ("ground", "D")),
+              Joint("C'", ("link", "C"), ("rocker", "C")), Joint("E", ("link", "E"), ("sley", "E"), pin),
+              Joint("F", ("sley", "F"), ("ground", "F")))
+    return Linkage(tuple(bodies), ground, joints, Driver("crank", omega, front), output="sley")
+
+
+def _pin(sp: Mapping[str, Any]) -> Clearance:
+    """The sley pin's clearance (contact and friction), from ``sley_pin.pin``."""
+    p = sp["pin"]
+    r = labelled(p["journal_radius_m"])
+    return Clearance(r, r + labelled(p["radial_clearance_m"]), ("contact", "friction"), (p["youngs_modulus_Pa"],) * 2, (p["poisson"],) * 2,
+                     labelled(p["restitution"]), "lankarani-nikravesh", "hertz-sphere", labelled(p["friction"]), p["v0_m_s"], p["v1_m_s"],
+                     impact_velocity_floor=p["impact_velocity_floor_m_s"])
+
+
+def _turn_measures(acc: np.ndarray, ideal: np.ndarray, near: np.ndarray) -> np.ndarray:
+    """Per turn: the peak |sley acceleration| near the front dead centre, and the RMS deviation from the ideal's."""
+    return np.array([np.abs(acc[near]).max(), np.sqrt(np.mean((acc[:-1] - ideal[:-1]) ** 2))])
+
+
+class _Turns:
+    """Runs the dry scene turn by turn for ``engines.states.settle``; keeps each turn's run state and sley acceleration."""
+
+    def __init__(self, linkage, gravity, integrator, ideal, near, per, y0=None, memory=None):
+        self.linkage, self.ideal, self.near, self.per = linkage, ideal, near, per
+        self.run = Run(linkage, gravity, integrator, y0=y0, memory=memory)
+        self.c = linkage.clearance_joints[0].clearance.clearance
+        self.scale = np.array([1.0, 1.0, abs(linkage.driver.speed), abs(linkage.driver.speed)]) * self.c
+        self.memories, self.turns, self.contact = [], [], []
+
+    def step(self, n: int):
+        points, measures = [], []
+        for _ in range(n):
+            self.memories.append(self.run.memory())
+            points.append(assembly.journal_offsets(self.linkage, self.run.y)[0] / self.scale)
+            t = self.run.t + np.arange(self.per + 1) * self.linkage.driver.period / self.per
+            _, diags = self.run.advance(t)
+            self.turns.append(diags[:, 0])
+            self.contact.append((diags[:, 5].max(), diags[:, 7].max()))  # penetration, dry contact force
+            measures.append(_turn_measures(diags[:, 0], self.ideal, self.near))
+        return np.array(points), np.array(measures)
+
+
+def study(section: Mapping[str, Any]) -> xr.Dataset:
+    """Rule study: the sley's acceleration with and without a clearance at the sley pin, beside the four-bar's."""
+    sp = section["sley_pin"]
+    mech = six_bar(section["sixbar"])
+    sense = CRANK_SENSES[crank_sense(section["sixbar"])]
+    omega = sense * rpm_to_rad_s(labelled(sp["loom_speed_rev_min"]))
+    front = dead_centres(mech).front
+    ideal_lk, pin_lk = _linkage(mech, sp, omega, front, None), _linkage(mech, sp, omega, front, _pin(sp))
+    per = int(sp["points_per_turn"])
+    t = np.arange(per + 1) * ideal_lk.driver.period / per
+    from_front = np.degrees(np.abs(omega) * t)  # crank angle turned since the front dead centre, deg
+    near = (from_front <= sp["window_deg"]) | (from_front >= 360.0 - sp["window_deg"])
+    ideal = assembly.inverse_dynamics(ideal_lk, t, sp["gravity"])["output_acceleration"]
+    st = sp["states"]
+    runner = _Turns(pin_lk, sp["gravity"], sp["integrator"], ideal, near, per, y0=assembly.start_state(pin_lk))
+    found = settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
+                   st["min_cycles"], 0.95)
+    first, stop = found["window"]
+    judged = np.array(runner.turns[max(first, stop - sp["kept_turns"]):stop])
+    measures = found["measures"][first:stop]
+    n_check = min(st["check_cycles"], stop - first)  # the first judged turns rerun at the check integrator
+    check = _Turns(pin_lk, sp["gravity"], sp["check_integrator"], ideal, near, per, memory=runner.memories[first])
+    _, check_measures = check.step(n_check)
+    numerical = np.abs(check_measures.mean(axis=0) - measures[:n_check].mean(axis=0))
+    fb = four_bar_beatup(section["fourbar"])
+    fb_front = _four_bar_front(fb)
+    fb_theta = fb_front + np.sign(omega) * np.abs(omega) * t
+    fb_acc = four_bar(fb.linkage(), fb_theta).rocker_accel * omega**2
+    print(f"beatup_sley_pin: {found['status']} (period {found['period']}, transient {found['transient']} turns, "
+          f"{len(runner.turns)} turns run)", flush=True)
+    return _dataset(sp, from_front, ideal, judged, fb_acc, near, found, measures, numerical, runner, omega, n_check)
+
+
+def _four_bar_front(fb) -> float:
+    """The four-bar's front dead centre: the crank angle (rad) of the sword's largest angle (a fine scan)."""
+    grid = np.linspace(0.0, 2 * np.pi, 36001)
+    return float(grid[np.argmax(fb.sword_angle(grid))])
+
+
+def _dataset(sp, from_front, ideal, judged, fb_acc, near, found, measures, numerical, runner, omega, n_check) -> xr.Dataset:
+    pen, force = np.array(runner.contact).T
+    first, stop = found["window"]
+    # one turn, ordered from half a turn before the front dead centre to half a turn after it (the end point dropped)
+    about = np.where(from_front > 180.0, from_front - 360.0, from_front)[:-1]
+    order = np.argsort(about, kind="stable")
+    peaks = np.array([np.abs(ideal[near]).max(), measures[:, 0].mean(), np.abs(fb_acc[near]).max()])
+    ideal, fb_acc, judged, about = ideal[:-1][order], fb_acc[:-1][order], judged[:, :-1][:, order], about[order]
+    data = {
+        "sley_acceleration_ideal": ("crank_angle", ideal, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with an ideal pin"}),
+        "sley_acceleration_pin": (("judged_turn", "crank_angle"), judged, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with the clearance at the sley pin (judged turns)"}),
+        "sley_acceleration_fourbar": ("crank_angle", fb_acc, {"units": "rad/s^2", "long_name": "sword angular acceleration of the four-bar (ideal, the same loom speed)"}),
+        "peak_near_front": ("mechanism", peaks, {"units": "rad/s^2", "long_name": f"largest |sley angular acceleration| within {sp['window_deg']} deg of crank angle of the front dead centre (clearance: mean over the judged turns)"}),
+        "peak_numerical_error": ((), numerical[0], {"units": "rad/s^2", "long_name": "change of the clearance scene's mean peak over the first judged turns when they are rerun from their section point at the check integrator"}),
+        "peak_standard_error": ((), measures[:, 0].std(ddof=1) / np.sqrt(measures.shape[0]), {"units": "rad/s^2", "long_name": "standard error of the clearance scene's mean peak over the judged turns"}),
+        "rms_deviation": ((), measures[:, 1].mean(), {"units": "rad/s^2", "long_name": "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged turns)"}),
+        "rms_numerical_error": ((), numerical[1], {"units": "rad/s^2", "long_name": "change of that RMS deviation at the check integrator (the first judged turns)"}),
+        "judged_turns": ((), int(measures.shape[0]), {"units": "1", "long_name": "turns the clearance scene is judged on"}),
+        "max_penetration": ((), float(pen[first:stop].max()), {"units": "m", "long_name": "largest penetration at the sley pin over the judged turns"}),
+        "max_contact_force": ((), float(force[first:stop].max()), {"units": "N", "long_name": "largest dry contact force at the sley pin over the judged turns"}),
+        "state_period": ((), int(found["period"]), {"units": "1", "long_name": "period of the settled state in turns (0: not periodic)"}),
+        "state_transient": ((), int(found["transient"]), {"units": "1", "long_name": "turns before the judged window"}),
+        "turns_run": ((), len(runner.turns), {"units": "1", "long_name": "turns integrated"}),
+        "check_turns": ((), int(n_check), {"units": "1", "long_name": "judged turns rerun at the check integrator"}),
+    }
+    coords = {"crank_angle": ("crank_angle", about, {"units": "deg", "long_name": "crank angle from the front dead centre (negative: before it)"}),
+              "judged_turn": ("judged_turn", np.arange(stop - judged.shape[0], stop), {"units": "1", "long_name": "turn from the start (the last judged turns)"}),
+              "mechanism": ("mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"], {"units": "1", "long_name": "mechanism"})}
+    attrs = {"state_status": str(found["status"]), "loom_speed_rad_s": abs(omega), "loom_speed_rev_min": labelled(sp["loom_speed_rev_min"]),
+             "window_deg": float(sp["window_deg"]), "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
+             "integrator": str(sp["integrator"]), "check_integrator": str(sp["check_integrator"])}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

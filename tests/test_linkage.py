@@ -1,0 +1,261 @@
+"""Any planar linkage from config: a six-bar written as a config entry alone, its ideal dynamics by the engine against an
+independent route, the generated right-hand side against the assembly's constraints, and bad descriptions refused
+with their key.
+
+The independent route: the six-bar's closed-form dyad kinematics (``engines.kinematics.solve_chain``: the crank and
+three RRR dyads, from the link lengths written out here, no constraint Jacobian), the bodies' centres of mass from
+their points, and the driver torque from the power balance T theta' = sum(m a.v + J alpha omega) + sum(m g v_y).
+"""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+import yaml
+
+from linkwork.engines.kinematics import Chain, Dyad, solve_chain
+from linkwork.engines.multibody import assembly, describe
+from linkwork.engines.multibody.linkage import LinkageError
+from linkwork.engines.multibody.model import compile_scene, pack
+from linkwork.engines.multibody.simulate import integrate
+
+#: A Watt six-bar with a bell crank: crank O2-A, coupler A-B, bell crank O4-B-C, link C-D, rocker O6-D (SI, degrees).
+SIX_BAR = yaml.safe_load("""
+bodies:
+  crank: {mass_kg: 0.4, inertia_kg_m2: 1.0e-3, points: {O: [-0.05, 0.0], A: [0.05, 0.0]}, angle_guess_deg: 30}
+  coupler: {mass_kg: 1.2, inertia_kg_m2: 9.0e-3, points: {A: [-0.15, 0.0], B: [0.15, 0.0]}, angle_guess_deg: -50}
+  bellcrank: {mass_kg: 1.0, inertia_kg_m2: 6.0e-3, points: {O: [-0.05, -0.03], B: [0.15, -0.03], C: [-0.05, 0.12]}, angle_guess_deg: -100}
+  link: {mass_kg: 0.9, inertia_kg_m2: 7.0e-3, points: {C: [-0.15, 0.0], D: [0.15, 0.0]}, angle_guess_deg: 150}
+  rocker: {mass_kg: 0.7, inertia_kg_m2: 2.5e-3, points: {O: [-0.1, 0.0], D: [0.1, 0.0]}, angle_guess_deg: -120}
+ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.3]}
+joints:
+  O2: {journal: crank.O, bearing: ground.O2}
+  A: {journal: crank.A, bearing: coupler.A}
+  B: {journal: coupler.B, bearing: bellcrank.B}
+  O4: {journal: bellcrank.O, bearing: ground.O4}
+  C: {journal: bellcrank.C, bearing: link.C}
+  D: {journal: link.D, bearing: rocker.D}
+  O6: {journal: rocker.O, bearing: ground.O6}
+driver: {body: crank, speed_rad_s: 20.0, start_angle_deg: 30}
+output: rocker
+""")
+G = 9.80665
+
+
+def _chain() -> Chain:
+    """The same six-bar as a crank and three dyads, by its link lengths (m): the independent route's geometry."""
+    return Chain(ground={"O2": (0.0, 0.0), "O4": (0.3, 0.0), "O6": (0.3, 0.3)}, crank_pivot="O2", crank_tip="A", crank_length=0.1,
+                 dyads=(Dyad("B", "A", "O4", 0.3, 0.2, -1), Dyad("C", "O4", "B", 0.15, 0.25, 1), Dyad("D", "C", "O6", 0.3, 0.2, 1)))
+
+
+#: Each body of the route: (mass, inertia, a point the chain knows, that point in the body frame, the link giving the
+#: body's angle, that link's angle in the body frame).
+ROUTE_BODIES = (
+    (0.4, 1.0e-3, "A", (0.05, 0.0), "O2-A", 0.0),
+    (1.2, 9.0e-3, "B", (0.15, 0.0), "A-B", 0.0),
+    (1.0, 6.0e-3, "B", (0.15, -0.03), "O4-B", 0.0),
+    (0.9, 7.0e-3, "D", (0.15, 0.0), "C-D", 0.0),
+    (0.7, 2.5e-3, "D", (0.1, 0.0), "O6-D", 0.0),
+)
+
+
+def independent_route(theta, theta_d, theta_dd, gravity=True):
+    """Output (rocker) angular acceleration (rad/s^2) and driver torque (N m) at crank angles theta (rad), rates and
+    accelerations, by the closed-form chain and the power balance."""
+    m = solve_chain(_chain(), theta)
+    power = np.zeros_like(theta)
+    for mass, inertia, name, (sx, sy), link, offset in ROUTE_BODIES:
+        pt, ln = m.points[name], m.links[link]
+        phi = ln.angle - offset
+        w, a = theta_d * ln.rate, theta_dd * ln.rate + theta_d**2 * ln.accel
+        vp = theta_d[:, None] * pt.vel
+        ap = theta_dd[:, None] * pt.vel + (theta_d**2)[:, None] * pt.acc
+        r = np.stack([np.cos(phi) * sx - np.sin(phi) * sy, np.sin(phi) * sx + np.cos(phi) * sy], axis=-1)  # centre -> point
+        perp = np.stack([-r[:, 1], r[:, 0]], axis=-1)
+        v = vp - w[:, None] * perp
+        acc = ap - a[:, None] * perp + (w**2)[:, None] * r
+        power += mass * np.sum(acc * v, axis=-1) + inertia * a * w + (mass * G * v[:, 1] if gravity else 0.0)
+    out = m.links["O6-D"]
+    return theta_dd * out.rate + theta_d**2 * out.accel, power / theta_d
+
+
+def _times(linkage, turns=1.0, n=361):
+    return np.linspace(0.0, turns * 2 * np.pi / linkage.driver.speed, n)
+
+
+def test_a_six_bar_written_in_config_assembles_on_its_branch_through_the_turn():
+    linkage = describe.check(SIX_BAR, "linkages.six_bar")
+    turn = assembly.follow_turn(linkage)
+    m = solve_chain(_chain(), linkage.driver.angle(turn.t)[0])
+    for b, (_, _, _, _, link, offset) in enumerate(ROUTE_BODIES):
+        gap = np.angle(np.exp(1j * (turn.q[:, 3 * b + 2] - (m.links[link].angle - offset))))
+        assert np.abs(gap).max() < 1e-10
+    assert turn.gain[2] == pytest.approx(2 * np.pi) and np.all(turn.gain[5::3] == 0.0)  # the crank turns, the rest rock
+
+
+@pytest.mark.parametrize("gravity", [True, False])
+def test_six_bar_inverse_dynamics_equals_the_closed_form_chain_and_power_balance(gravity):
+    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    t = _times(linkage, turns=1.5)
+    ours = assembly.inverse_dynamics(linkage, t, gravity)
+    th, thd, thdd = linkage.driver.angle(t)
+    acc, torque = independent_route(th, thd, thdd, gravity)
+    assert np.abs(ours["output_acceleration"] - acc).max() < 1e-9 * np.abs(acc).max()
+    assert np.abs(ours["driver_torque"] - torque).max() < 1e-9 * np.abs(torque).max()
+
+
+def test_six_bar_forward_dynamics_reproduces_the_independent_route():
+    """The compiled right-hand side generated from the description, integrated (DOP853) from the assembled start over
+    one turn: its output acceleration and driver torque against the independent route."""
+    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    t = _times(linkage)
+    integ = {"method": "dop853", "rtol": 1e-11, "atol": 1e-13, "first_step_s": 1e-6, "max_step_s": 1e-3}
+    ys, diags, *_ = integrate(linkage, True, t, integ)
+    acc, torque = independent_route(*linkage.driver.angle(t))
+    assert diags[:, 3].max() < 1e-9  # constraint drift, m
+    assert np.abs(diags[:, 0] - acc).max() < 1e-6 * np.abs(acc).max()
+    assert np.abs(diags[:, 1] - torque).max() < 1e-6 * np.abs(torque).max()
+
+
+def test_a_driver_given_as_a_fourier_series_moves_the_crank_so():
+    """The driver theta0 + omega t + a1 cos(omega t) + b2 sin(2 omega t): engine (inverse and forward) against the route."""
+    spec = copy.deepcopy(SIX_BAR)
+    spec["driver"].update(cos_deg=[6.0, 0.0], sin_deg=[0.0, -4.0])
+    linkage = describe.check(spec, "linkages.six_bar")
+    t = _times(linkage)
+    th, thd, thdd = linkage.driver.angle(t)
+    acc, torque = independent_route(th, thd, thdd)
+    ours = assembly.inverse_dynamics(linkage, t, True)
+    assert np.abs(ours["driver_torque"] - torque).max() < 1e-9 * np.abs(torque).max()
+    integ = {"method": "dop853", "rtol": 1e-11, "atol": 1e-13, "first_step_s": 1e-6, "max_step_s": 1e-3}
+    ys, diags, *_ = integrate(linkage, True, t, integ)
+    assert np.abs(ys[:, 2] - th).max() < 1e-9  # the crank follows the series
+    assert np.abs(diags[:, 1] - torque).max() < 1e-6 * np.abs(torque).max()
+
+
+def test_the_generated_right_hand_side_solves_the_assemblys_equations():
+    """At random states of the six-bar: the compiled right-hand side's accelerations satisfy M q'' = g - Phi_q^T lam and
+    Phi_q q'' = gamma - 2 a Phi' - b^2 Phi with Phi_q, Phi, gamma written independently in numpy (``assembly``)."""
+    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    module = compile_scene(linkage, True)
+    params, _ = pack(linkage)
+    rng = np.random.default_rng(5)
+    y0 = assembly.start_state(linkage)
+    nq = linkage.n_coordinates
+    mass = assembly.mass_vector(linkage)
+    for _ in range(20):
+        y = y0 + np.r_[rng.normal(0, 1e-4, nq), rng.normal(0, 0.5, nq), 0.0]
+        t = rng.uniform(0.0, 0.3)
+        out = module.rhs(t, y, params, np.zeros(1), np.zeros(4, dtype=np.int64), np.zeros(module.N_DIAG))
+        q, qd, qdd = y[None, :nq], y[None, nq : 2 * nq], out[nq : 2 * nq]
+        phi, jac, nu = assembly.constraints(linkage, q, np.array([t]))
+        gamma = assembly.gamma_of(linkage, q, qd, np.array([t]))[0]
+        rate = jac[0] @ qd[0] - nu[0]
+        b = linkage.baumgarte
+        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-9, atol=1e-9 * np.abs(gamma).max())
+        lam = np.linalg.lstsq(jac[0].T, assembly.applied_forces(linkage, q, True)[0] - mass * qdd, rcond=None)[0]
+        assert np.allclose(jac[0].T @ lam, assembly.applied_forces(linkage, q, True)[0] - mass * qdd, atol=1e-8 * np.abs(mass * qdd).max())
+        assert out[2 * nq] == pytest.approx(-lam[2] * qd[0, 2], rel=1e-8)  # the driver's power: its row follows the crank's pin
+
+
+def _edit(path: str, value):
+    spec = copy.deepcopy(SIX_BAR)
+    *parents, last = path.split(".")
+    node = spec
+    for p in parents:
+        node = node[p]
+    if value is None:
+        del node[last]
+    else:
+        node[last] = value
+    return spec
+
+
+BAD = [
+    # (what, edit, the key named, words of the message)
+    ("a joint naming an unknown point", ("joints.C.bearing", "link.X"), "linkages.six_bar.joints.C.bearing", "unknown point 'X'"),
+    ("a joint naming an unknown body", ("joints.C.bearing", "lever.C"), "linkages.six_bar.joints.C.bearing", "unknown body 'lever'"),
+    ("a joint missing: a free motion left", ("joints.O6", None), "linkages.six_bar.joints", "2 free motions besides the driver"),
+    ("a body not connected to the ground", ("bodies.weight", {"mass_kg": 1.0, "inertia_kg_m2": 0.1, "points": {"P": [0.0, 0.0]}}),
+     "linkages.six_bar.bodies.weight", "not connected to the ground"),
+    ("a driver on a body that is not grounded", ("driver.body", "coupler"), "linkages.six_bar.driver.body", "not pinned to the ground"),
+    ("a linkage that cannot assemble", ("ground.O6", [0.3, 0.9]), "linkages.six_bar.driver", "does not assemble"),
+    ("a joint of a body to itself", ("joints.C.bearing", "bellcrank.O"), "linkages.six_bar.joints.C", "to itself"),
+    ("a clearance reading a key of an effect it does not name",
+     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["lubrication"], "viscosity_Pa_s": 0.1,
+                             "length_m": 0.02, "e0_m": 1e-6, "friction": 0.1}), "linkages.six_bar.joints.D.clearance.friction", "unknown key"),
+    ("friction without contact",
+     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["friction"]}),
+     "linkages.six_bar.joints.D.clearance.effects", "friction needs contact"),
+    ("a film cap beyond the clearance",
+     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["lubrication"], "viscosity_Pa_s": 0.1,
+                             "length_m": 0.02, "e0_m": 2e-4}), "linkages.six_bar.joints.D.clearance.e0_m", "below the radial clearance"),
+    ("a negative mass", ("bodies.link.mass_kg", -1.0), "linkages.six_bar.bodies.link.mass_kg", "positive"),
+    ("an unknown output body", ("output", "sley"), "linkages.six_bar.output", "unknown body"),
+]
+
+
+@pytest.mark.parametrize("what, edit, key, words", BAD, ids=[b[0] for b in BAD])
+def test_a_bad_description_is_refused_with_its_key(what, edit, key, words):
+    with pytest.raises(LinkageError) as err:
+        describe.check(_edit(*edit), "linkages.six_bar")
+    assert err.value.key == key and words in str(err.value), str(err.value)
+
+
+def test_lock_up_inside_the_turn_is_refused_with_the_angle():
+    """A first loop that is not a crank-rocker (a coupler of 0.15 m: coupler and bell crank reach 0.35 m, the crank pin
+    goes 0.4 m from O4 at 180 deg, so B cannot close beyond about 112 deg): the turn is
+    followed until the dyad at B cannot close, and the message names the linkage and the driver angle."""
+    spec = _edit("bodies.coupler.points", {"A": [-0.075, 0.0], "B": [0.075, 0.0]})
+    spec["bodies"]["coupler"]["angle_guess_deg"] = -60
+    with pytest.raises(LinkageError) as err:
+        describe.check(spec, "linkages.six_bar")
+    assert err.value.key == "linkages.six_bar" and "driver angle" in str(err.value), str(err.value)
+
+
+def test_exudyn_built_from_the_same_description_drives_the_six_bar_alike():
+    """Route 3 for any linkage: Exudyn's model is built from the description (bodies, revolute joints, the driver's
+    coordinate constraint); its output acceleration and driver torque against our inverse dynamics, converging with the
+    step (second order)."""
+    from linkwork.engines.multibody.exudyn_route import ideal_run
+
+    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    end = 2 * np.pi / linkage.driver.speed
+    diffs = []
+    for step in (4e-4, 2e-4):
+        run = ideal_run(linkage, end, step, 1e-12)
+        ours = assembly.inverse_dynamics(linkage, run["t"], True)
+        diffs.append(np.abs(run["driver_torque"] - ours["driver_torque"]).max() / np.abs(ours["driver_torque"]).max())
+    assert diffs[1] < 1e-3 and 3.0 < diffs[0] / diffs[1] < 5.0, diffs
+
+
+def test_the_registries_are_one_table_each():
+    """Contact laws and integrators: the schema's choices, the compiled kernels' codes and the Exudyn route's laws are
+    the keys of ``linkage.CONTACT_LAWS`` and ``simulate.METHODS``."""
+    from conftest import load_yaml
+    from linkwork.engines.multibody.exudyn_route import HYSTERESIS
+    from linkwork.engines.multibody.linkage import CONTACT_LAWS
+    from linkwork.engines.multibody.simulate import METHODS
+
+    schema = load_yaml("config/schema.yaml")
+    clearance = schema["properties"]["clearance"]
+    assert clearance["$defs"]["integrator"]["properties"]["method"]["enum"] == list(METHODS)
+    joints = clearance["properties"]["joints"]["properties"]
+    assert set(joints["contact_law"]["enum"]) == set(CONTACT_LAWS) == set(HYSTERESIS)
+    assert sorted(CONTACT_LAWS.values()) == list(range(len(CONTACT_LAWS)))  # the kernels' codes 0, 1, 2
+
+
+def test_a_driver_turning_the_other_way():
+    """A negative driver speed turns the crank towards decreasing angles: the turn is followed that way (the crank's
+    gain is -2 pi) and the inverse dynamics matches the independent route at the negative rates."""
+    spec = copy.deepcopy(SIX_BAR)
+    spec["driver"]["speed_rad_s"] = -20.0
+    linkage = describe.check(spec, "linkages.six_bar")
+    assert assembly.follow_turn(linkage).gain[2] == pytest.approx(-2 * np.pi)
+    t = np.linspace(0.0, linkage.driver.period, 181)
+    ours = assembly.inverse_dynamics(linkage, t, True)
+    acc, torque = independent_route(*linkage.driver.angle(t))
+    assert np.abs(ours["output_acceleration"] - acc).max() < 1e-9 * np.abs(acc).max()
+    assert np.abs(ours["driver_torque"] - torque).max() < 1e-9 * np.abs(torque).max()
