@@ -41,7 +41,7 @@ joints:
 driver: {body: crank, speed_rad_s: 20.0, start_angle_deg: 30}
 output: rocker
 """)
-G = 9.80665
+from linkwork.units import STANDARD_GRAVITY as G  # noqa: E402
 
 
 def _chain() -> Chain:

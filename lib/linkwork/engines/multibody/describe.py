@@ -11,7 +11,7 @@ The config form (degrees for angles, SI otherwise, units in the key names)::
       A: {journal: crank.A, bearing: coupler.A, clearance: {...}}   # a clearance joint names its effects
     driver: {body: crank, speed_rad_s: 10.0, start_angle_deg: 60, cos_deg: [], sin_deg: []}   # a negative speed turns the other way
     output: rocker
-    gravity_m_s2: 9.80665      # optional
+    gravity_m_s2: 9.81         # optional (default: standard gravity)
     baumgarte_per_s: 250.0     # optional
     assembly: {steps_per_turn: 720, tolerance: 1.0e-13, max_iterations: 50, condition_limit: 1.0e8}   # optional
 
@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from .assembly import AssemblySettings, follow_turn
+from ...units import STANDARD_GRAVITY
 from .linkage import CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError
 
 #: Clearance keys every clearance joint reads, and those each effect adds.
@@ -264,7 +265,7 @@ def from_config(spec: Mapping[str, Any], key: str = "linkage") -> Linkage:
         raise LinkageError(f"{key}.output", f"unknown body {spec['output']!r}; bodies: {', '.join(b.name for b in bodies)}")
     names = {"linkage": key, "driver": f"{key}.driver"}
     return Linkage(bodies, ground, joints, driver, str(spec["output"]),
-                   _number(f"{key}.gravity_m_s2", spec.get("gravity_m_s2", 9.80665), nonnegative=True),
+                   _number(f"{key}.gravity_m_s2", spec.get("gravity_m_s2", STANDARD_GRAVITY), nonnegative=True),
                    _number(f"{key}.baumgarte_per_s", spec.get("baumgarte_per_s", 250.0), positive=True), names)
 
 

@@ -69,16 +69,17 @@ def _pin(sp: Mapping[str, Any]) -> Clearance:
                      impact_velocity_floor=p["impact_velocity_floor_m_s"])
 
 
-def _turn_measures(acc: np.ndarray, ideal: np.ndarray, near: np.ndarray) -> np.ndarray:
-    """Per turn: the peak |sley acceleration| near the front dead centre, and the RMS deviation from the ideal's."""
-    return np.array([np.abs(acc[near]).max(), np.sqrt(np.mean((acc[:-1] - ideal[:-1]) ** 2))])
+def _turn_measures(acc: np.ndarray, ideal: np.ndarray, windows: list[np.ndarray]) -> np.ndarray:
+    """Per turn: the largest |sley acceleration| within each window about the front dead centre, over the whole turn,
+    and the RMS deviation from the ideal's (rad/s^2)."""
+    return np.array([*(np.abs(acc[w]).max() for w in windows), np.abs(acc).max(), np.sqrt(np.mean((acc[:-1] - ideal[:-1]) ** 2))])
 
 
 class _Turns:
     """Runs the dry scene turn by turn for ``engines.states.settle``; keeps each turn's run state and sley acceleration."""
 
-    def __init__(self, linkage, gravity, integrator, ideal, near, per, y0=None, memory=None):
-        self.linkage, self.ideal, self.near, self.per = linkage, ideal, near, per
+    def __init__(self, linkage, gravity, integrator, ideal, windows, per, y0=None, memory=None):
+        self.linkage, self.ideal, self.windows, self.per = linkage, ideal, windows, per
         self.run = Run(linkage, gravity, integrator, y0=y0, memory=memory)
         self.c = linkage.clearance_joints[0].clearance.clearance
         self.scale = np.array([1.0, 1.0, abs(linkage.driver.speed), abs(linkage.driver.speed)]) * self.c
@@ -93,7 +94,7 @@ class _Turns:
             _, diags = self.run.advance(t)
             self.turns.append(diags[:, 0])
             self.contact.append((diags[:, 5].max(), diags[:, 7].max()))  # penetration, dry contact force
-            measures.append(_turn_measures(diags[:, 0], self.ideal, self.near))
+            measures.append(_turn_measures(diags[:, 0], self.ideal, self.windows))
         return np.array(points), np.array(measures)
 
 
@@ -108,26 +109,30 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     per = int(sp["points_per_turn"])
     t = np.arange(per + 1) * ideal_lk.driver.period / per
     from_front = np.degrees(np.abs(omega) * t)  # crank angle turned since the front dead centre, deg
-    near = (from_front <= sp["window_deg"]) | (from_front >= 360.0 - sp["window_deg"])
+    windows = [(from_front <= w) | (from_front >= 360.0 - w) for w in sp["windows_deg"]]
     ideal = assembly.inverse_dynamics(ideal_lk, t, sp["gravity"])["output_acceleration"]
     st = sp["states"]
-    runner = _Turns(pin_lk, sp["gravity"], sp["integrator"], ideal, near, per, y0=assembly.start_state(pin_lk))
+    runner = _Turns(pin_lk, sp["gravity"], sp["integrator"], ideal, windows, per, y0=assembly.start_state(pin_lk))
     found = settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
                    st["min_cycles"], 0.95)
     first, stop = found["window"]
     judged = np.array(runner.turns[max(first, stop - sp["kept_turns"]):stop])
     measures = found["measures"][first:stop]
     n_check = min(st["check_cycles"], stop - first)  # the first judged turns rerun at the check integrator
-    check = _Turns(pin_lk, sp["gravity"], sp["check_integrator"], ideal, near, per, memory=runner.memories[first])
+    check = _Turns(pin_lk, sp["gravity"], sp["check_integrator"], ideal, windows, per, memory=runner.memories[first])
     _, check_measures = check.step(n_check)
     numerical = np.abs(check_measures.mean(axis=0) - measures[:n_check].mean(axis=0))
     fb = four_bar_beatup(section["fourbar"])
     fb_front = _four_bar_front(fb)
-    fb_theta = fb_front + np.sign(omega) * np.abs(omega) * t
-    fb_acc = four_bar(fb.linkage(), fb_theta).rocker_accel * omega**2
+    fb_acc = four_bar(fb.linkage(), fb_front + omega * t).rocker_accel * omega**2
+    grid = np.linspace(0.0, 2 * np.pi, 36001)
+    swings = np.array([dead_centres(mech).swing, np.ptp(fb.sword_angle(grid))])
     print(f"beatup_sley_pin: {found['status']} (period {found['period']}, transient {found['transient']} turns, "
           f"{len(runner.turns)} turns run)", flush=True)
-    return _dataset(sp, from_front, ideal, judged, fb_acc, near, found, measures, numerical, runner, omega, n_check)
+    fixed = {"ideal": _turn_measures(ideal, ideal, windows), "fourbar": _turn_measures(fb_acc, ideal, windows)}
+    turn_peak_at = {"ideal": from_front[np.argmax(np.abs(ideal))], "fourbar": from_front[np.argmax(np.abs(fb_acc))],
+                    "pin": from_front[np.argmax(np.abs(np.array(runner.turns[first:stop])).max(axis=0))]}
+    return _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check, swings)
 
 
 def _four_bar_front(fb) -> float:
@@ -136,23 +141,39 @@ def _four_bar_front(fb) -> float:
     return float(grid[np.argmax(fb.sword_angle(grid))])
 
 
-def _dataset(sp, from_front, ideal, judged, fb_acc, near, found, measures, numerical, runner, omega, n_check) -> xr.Dataset:
+def _signed(angle_deg: float) -> float:
+    """A crank angle turned since the front dead centre (deg, 0..360) as an angle about it (-180..180]."""
+    return float(angle_deg - 360.0 if angle_deg > 180.0 else angle_deg)
+
+
+def _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check, swings) -> xr.Dataset:
     pen, force = np.array(runner.contact).T
     first, stop = found["window"]
+    nw = len(sp["windows_deg"])
     # one turn, ordered from half a turn before the front dead centre to half a turn after it (the end point dropped)
     about = np.where(from_front > 180.0, from_front - 360.0, from_front)[:-1]
     order = np.argsort(about, kind="stable")
-    peaks = np.array([np.abs(ideal[near]).max(), measures[:, 0].mean(), np.abs(fb_acc[near]).max()])
     ideal, fb_acc, judged, about = ideal[:-1][order], fb_acc[:-1][order], judged[:, :-1][:, order], about[order]
+    pin_mean = measures.mean(axis=0)
+    window_peaks = np.array([fixed["ideal"][:nw], pin_mean[:nw], fixed["fourbar"][:nw]])
+    turn_peaks = np.array([fixed["ideal"][nw], measures[:, nw].max(), fixed["fourbar"][nw]])
+    mech = ("mechanism", "window")
     data = {
         "sley_acceleration_ideal": ("crank_angle", ideal, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with an ideal pin"}),
-        "sley_acceleration_pin": (("judged_turn", "crank_angle"), judged, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with the clearance at the sley pin (judged turns)"}),
-        "sley_acceleration_fourbar": ("crank_angle", fb_acc, {"units": "rad/s^2", "long_name": "sword angular acceleration of the four-bar (ideal, the same loom speed)"}),
-        "peak_near_front": ("mechanism", peaks, {"units": "rad/s^2", "long_name": f"largest |sley angular acceleration| within {sp['window_deg']} deg of crank angle of the front dead centre (clearance: mean over the judged turns)"}),
-        "peak_numerical_error": ((), numerical[0], {"units": "rad/s^2", "long_name": "change of the clearance scene's mean peak over the first judged turns when they are rerun from their section point at the check integrator"}),
-        "peak_standard_error": ((), measures[:, 0].std(ddof=1) / np.sqrt(measures.shape[0]), {"units": "rad/s^2", "long_name": "standard error of the clearance scene's mean peak over the judged turns"}),
-        "rms_deviation": ((), measures[:, 1].mean(), {"units": "rad/s^2", "long_name": "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged turns)"}),
-        "rms_numerical_error": ((), numerical[1], {"units": "rad/s^2", "long_name": "change of that RMS deviation at the check integrator (the first judged turns)"}),
+        "sley_acceleration_pin": (("judged_turn", "crank_angle"), judged, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with the clearance at the sley pin (the last judged turns)"}),
+        "sley_acceleration_fourbar": ("crank_angle", fb_acc, {"units": "rad/s^2", "long_name": "sword angular acceleration of the four-bar (ideal, the same loom speed, from its own front dead centre)"}),
+        "peak_in_window": (mech, window_peaks, {"units": "rad/s^2", "long_name": "largest |sley angular acceleration| within the window of crank angle about the front dead centre (clearance: mean over the judged turns)"}),
+        "pin_peak_in_window_low": ("window", measures[:, :nw].min(axis=0), {"units": "rad/s^2", "long_name": "clearance scene: the smallest of the judged turns' peaks in the window"}),
+        "pin_peak_in_window_high": ("window", measures[:, :nw].max(axis=0), {"units": "rad/s^2", "long_name": "clearance scene: the largest of the judged turns' peaks in the window"}),
+        "pin_peak_in_window_spread": ("window", measures[:, :nw].std(axis=0, ddof=1), {"units": "rad/s^2", "long_name": "clearance scene: standard deviation of the judged turns' peaks in the window"}),
+        "pin_peak_in_window_numerical_error": ("window", numerical[:nw], {"units": "rad/s^2", "long_name": "change of the clearance scene's mean peak over the first judged turns when they are rerun from their section point at the check integrator"}),
+        "pin_over_ideal_in_window": ("window", window_peaks[1] / window_peaks[0], {"units": "1", "long_name": "the clearance scene's mean peak in the window over the ideal six-bar's"}),
+        "turn_peak": ("mechanism", turn_peaks, {"units": "rad/s^2", "long_name": "largest |sley angular acceleration| over the whole turn (clearance: the largest over the judged turns)"}),
+        "turn_peak_at": ("mechanism", np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]), {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"}),
+        "swing": ("linkage", np.degrees(swings), {"units": "deg", "long_name": "sley (sword) swing between its dead centres"}),
+        "ideal_turn_peak_per_swing": ("linkage", np.array([turn_peaks[0], turn_peaks[2]]) / np.degrees(swings), {"units": "rad/s^2 per deg", "long_name": "largest |sley angular acceleration| of the ideal linkage over a turn, per degree of its swing"}),
+        "rms_deviation": ((), pin_mean[nw + 1], {"units": "rad/s^2", "long_name": "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged turns)"}),
+        "rms_numerical_error": ((), numerical[nw + 1], {"units": "rad/s^2", "long_name": "change of that RMS deviation at the check integrator (the first judged turns)"}),
         "judged_turns": ((), int(measures.shape[0]), {"units": "1", "long_name": "turns the clearance scene is judged on"}),
         "max_penetration": ((), float(pen[first:stop].max()), {"units": "m", "long_name": "largest penetration at the sley pin over the judged turns"}),
         "max_contact_force": ((), float(force[first:stop].max()), {"units": "N", "long_name": "largest dry contact force at the sley pin over the judged turns"}),
@@ -163,8 +184,10 @@ def _dataset(sp, from_front, ideal, judged, fb_acc, near, found, measures, numer
     }
     coords = {"crank_angle": ("crank_angle", about, {"units": "deg", "long_name": "crank angle from the front dead centre (negative: before it)"}),
               "judged_turn": ("judged_turn", np.arange(stop - judged.shape[0], stop), {"units": "1", "long_name": "turn from the start (the last judged turns)"}),
-              "mechanism": ("mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"], {"units": "1", "long_name": "mechanism"})}
+              "mechanism": ("mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"], {"units": "1", "long_name": "mechanism"}),
+              "window": ("window", np.asarray(sp["windows_deg"], dtype=float), {"units": "deg", "long_name": "half-width of the window of crank angle about the front dead centre"}),
+              "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"})}
     attrs = {"state_status": str(found["status"]), "loom_speed_rad_s": abs(omega), "loom_speed_rev_min": labelled(sp["loom_speed_rev_min"]),
-             "window_deg": float(sp["window_deg"]), "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
+             "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
              "integrator": str(sp["integrator"]), "check_integrator": str(sp["check_integrator"])}
     return xr.Dataset(data, coords=coords, attrs=attrs)
