@@ -160,6 +160,22 @@ def start_rounding(f: dict) -> list[str]:
     ]
 
 
+def engines(f: dict) -> list[str]:
+    rows = []
+    for engine, label in (("linkwork", "linkwork (compiled DOP853)"), ("exudyn", f"Exudyn {f['exudyn_version']} (native contact)")):
+        for k, r in enumerate(f["engines"][engine]):
+            ratio = f["cpu_ratio_at_equal_error"][k] if engine == "linkwork" else None
+            at_equal = "" if ratio is None else ("no Exudyn step measured is as accurate" if ratio != ratio else f"{ratio:.1f}×")
+            rows.append(f"| {label} | {r['setting']} | {r['error']:.1e} | {r['cpu_s_per_simulated_s']:.3g} s | {r['wall_s_per_simulated_s']:.3g} s | {at_equal} |")
+    return [
+        f"`python benchmarks/engines.py` on {_machine(f['machine'])}: two engines on the same dry scene in one run (the IFToMM benchmark "
+        f"library's reporting form). Method: {f['method']} The reference's own error (rtol 1e-12 against 1e-13): {f['reference_error']:.1e}.", "",
+        "| engine | setting | error (max \\|Δ rocker acceleration\\| / max \\|reference\\|) | CPU time per simulated second | wall time per simulated second | "
+        "Exudyn's least CPU time at this error, over linkwork's |",
+        "|---|---|---|---|---|---|", *rows,
+    ]
+
+
 def transplanter(f: dict) -> list[str]:
     t = f["targets"]
     return [
@@ -219,7 +235,7 @@ def job_resources(f: dict) -> list[str]:
     ]
 
 
-SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "formulation": formulation, "start_rounding": start_rounding, "transplanter": transplanter, "chains": chains, "tests": tests}
+SECTIONS = {"pipeline": pipeline, "slurm": slurm, "job_resources": job_resources, "foundation": foundation, "clearance": clearance, "clearance_turns": clearance_turns, "formulation": formulation, "start_rounding": start_rounding, "engines": engines, "transplanter": transplanter, "chains": chains, "tests": tests}
 
 
 def render(measured: Path = MEASURED) -> str:

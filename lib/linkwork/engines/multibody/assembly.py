@@ -14,7 +14,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .kernels import solve_stack
 from .linkage import GROUND, Driver, Joint, Linkage, LinkageError, oriented
 
 
@@ -109,10 +108,20 @@ def gamma_of(linkage: Linkage, q: np.ndarray, qd: np.ndarray, t: np.ndarray, clo
     return gamma
 
 
+#: Stacks at least this tall are solved by the compiled kernel (faster than numpy's batched LAPACK call there); smaller
+#: ones by numpy, so that checking a description (validation, in Snakemake's own process) loads no compiled code.
+COMPILED_STACK = 2048
+
+
 def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """x with a[i] x[i] = b[i] over a stack (Gaussian elimination with partial pivoting, compiled); LinAlgError on a
-    singular or non-finite system."""
-    x = solve_stack(np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float))
+    """x with a[i] x[i] = b[i] over a stack (Gaussian elimination with partial pivoting); LinAlgError on a singular or
+    non-finite system."""
+    if a.shape[0] < COMPILED_STACK:
+        x = np.linalg.solve(a, b[..., None])[..., 0]
+    else:
+        from .kernels import solve_stack
+
+        x = solve_stack(np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float))
     if not np.isfinite(x).all():
         raise np.linalg.LinAlgError("singular constraint Jacobian")
     return x

@@ -178,9 +178,10 @@ def run(linkage: Linkage, end_time: float, step: float, newton_tolerance: float,
     settings.timeIntegration.verboseMode = 0
     settings.solution.file.write = False
     settings.solution.sensors.writePeriod = output_period
-    start = time.perf_counter()
+    start, cpu = time.perf_counter(), time.process_time()
     mbs.SolveDynamic(settings)
-    wall = time.perf_counter() - start
+    wall, cpu = time.perf_counter() - start, time.process_time() - cpu
     acc = mbs.GetSensorStoredData(acc_sensor)
     torque = mbs.GetSensorStoredData(torque_sensor)
-    return {"t": acc[:, 0], "output_acceleration": acc[:, 3], "driver_torque": -torque[:, 1], "wall_s": wall, "version": exu.__version__}
+    return {"t": acc[:, 0], "output_acceleration": acc[:, 3], "driver_torque": -torque[:, 1], "wall_s": wall, "cpu_s": cpu,
+            "version": exu.__version__}
