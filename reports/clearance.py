@@ -796,7 +796,7 @@ else:
 # In Exudyn each dry clearance joint is Exudyn's own compiled contact, a sphere inside a hollow sphere, with parameters
 # mapped from the same joint description: the Hertz stiffness and exponent, Hunt–Crossley damping whose restitution is
 # chosen so that it equals our Lankarani–Nikravesh damping on the impact velocity latched at contact (floored as
-# ours; tests/test_crosscheck.py checks the force of a single impact against our kernels for every contact law).
+# ours; the project's tests check the force of a single impact against our kernels for every contact law).
 # Friction differs below the full-slip speed: Exudyn's is proportional to the slip up to it, ours (Ambrosio's) is zero
 # below a threshold and linear above it. The ideal joints and the driver are exact constraints there, while ours are
 # Baumgarte-stabilised as in the paper.
