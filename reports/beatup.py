@@ -618,7 +618,8 @@ rows = [(f"{w:g}", f"{float(sley.peak_in_window.sel(mechanism=names[0], window=w
          f"{float(sley.pin_peak_in_window_high.sel(window=w)):.0f}; ± {float(sley.pin_peak_in_window_spread.sel(window=w)):.0f} turn to turn; "
          f"{float(sley.pin_peak_in_window_numerical_error.sel(window=w)):.1f} numerical)",
          f"{float(sley.peak_in_window.sel(mechanism=names[2], window=w)):.0f}") for w in sley.window.values]
-table(pd.DataFrame(rows, columns=["within ± (deg of crank)", "six-bar, ideal pin", "six-bar, clearance: mean (range over the turns; spread; numerical error)", "four-bar"]), {},
+table(pd.DataFrame(rows, columns=["within ± (deg of crank)", "six-bar, ideal pin",
+                                  f"six-bar, clearance: mean (range over the {int(sley.judged_turns)} judged turns; spread; numerical error)", "four-bar"]), {},
       caption="Largest |sley angular acceleration| (rad/s²) within a window of crank angle about the front dead centre, per window width")
 turn_peak = dict(zip(names, sley.turn_peak.values))
 turn_at = dict(zip(names, sley.turn_peak_at.values))
@@ -627,20 +628,26 @@ per_swing = dict(zip(sley.linkage.values, sley.ideal_turn_peak_per_swing.values)
 state = ("settles into a periodic motion" if int(sley.state_period) > 0 else
          "does not settle into a periodic motion: it is irregular from turn to turn, and only stationary in the statistical sense "
          "(its measures' last third of turns agrees with their middle third)")
+halves = dict(zip(sley.half_turn.values, zip(sley.pin_half_turn_peak.values, sley.pin_half_turn_peak_at.values)))
+before, after = halves["before the front dead centre"], halves["after the front dead centre"]
 md(
-    f"The clearance scene {state}; it is judged on {int(sley.judged_turns)} turns after a transient of {int(sley.state_transient)}. "
-    f"The pin's impacts come before the front dead centre: over a whole turn the largest |acceleration| with the clearance is "
-    f"{turn_peak[names[1]]:.0f} rad/s² at {turn_at[names[1]]:.0f}° of crank angle, against {turn_peak[names[0]]:.0f} rad/s² (at "
-    f"{turn_at[names[0]]:.0f}°) with an ideal pin. About the front dead centre it depends on how far back the window reaches: within "
+    f"The clearance scene {state}; it is judged on {int(sley.judged_turns)} turns after a transient of {int(sley.state_transient)}, and "
+    "every range and spread below is over those turns only (in an irregular motion a longer record can widen them). The pin strikes "
+    f"in two groups: before the front dead centre, up to {before[0]:.0f} rad/s² (at {before[1]:.0f}° of crank angle), and after it, up to "
+    f"{after[0]:.0f} rad/s² (at {after[1]:.0f}°), against {turn_peak[names[0]]:.0f} rad/s² (at {turn_at[names[0]]:.0f}°) for the ideal pin "
+    "over the whole turn. About the front dead centre the answer depends on how far back the window reaches: within "
     f"± {float(sley.window.values[0]):g}° the clearance's mean peak is {float(sley.pin_over_ideal_in_window.values[0]):.2f} times the ideal's, "
-    f"within ± {float(sley.window.values[-1]):g}° {float(sley.pin_over_ideal_in_window.values[-1]):.2f} times, with a large scatter from turn "
-    "to turn where a window's edge meets the impacts (the table). The pin's "
+    f"within ± {float(sley.window.values[-1]):g}° {float(sley.pin_over_ideal_in_window.values[-1]):.2f} times; the jumps between the widths "
+    "come from where a window's edge falls relative to the impacts, not from a change at the dead centre. Where a window's numerical "
+    "error is as large as its turn-to-turn spread, its mean is not resolved: in a motion that does not repeat, the check rerun's change is "
+    "the divergence of the trajectory as much as the solver's error. The pin's "
     f"impacts reach {float(sley.max_contact_force):.0f} N at a penetration of {float(sley.max_penetration) * 1e6:.1f} µm; over a whole turn "
     f"the clearance moves the sley's acceleration by {float(sley.rms_deviation):.0f} rad/s² (RMS, mean over the judged turns) from the ideal "
-    f"six-bar's. The four-bar is not the same stroke: its sword swings {swing['four-bar']:.1f}° against the six-bar's {swing['six-bar']:.1f}°, "
-    f"so its accelerations are not a like-for-like ranking; per degree of swing the ideal peaks are {per_swing['six-bar']:.1f} (six-bar) and "
-    f"{per_swing['four-bar']:.1f} rad/s² per degree (four-bar). These numbers hold for the assumed masses, speed and pin only; they show what "
-    "a worn sley pin can do to the beat-up, not what the GN721 does."
+    f"six-bar's. The four-bar (its dimensions assumed, arm to crank {win_cfg['fourbar']['arm_to_crank']['value']:g}) is not the same stroke: its "
+    f"sword swings {swing['four-bar']:.1f}° against the six-bar's {swing['six-bar']:.1f}°, so its accelerations are not a like-for-like "
+    f"ranking; per degree of swing the ideal peaks are {per_swing['six-bar']:.1f} (six-bar) and {per_swing['four-bar']:.1f} rad/s² per "
+    "degree (four-bar). Every number here holds for the assumed masses, speed and pin only: it shows what a worn sley pin can do to the "
+    "beat-up, not what the GN721 does."
 )
 
 # %% [markdown]

@@ -259,3 +259,38 @@ def test_a_driver_turning_the_other_way():
     acc, torque = independent_route(*linkage.driver.angle(t))
     assert np.abs(ours["output_acceleration"] - acc).max() < 1e-9 * np.abs(acc).max()
     assert np.abs(ours["driver_torque"] - torque).max() < 1e-9 * np.abs(torque).max()
+
+
+def test_an_over_constrained_linkage_is_refused():
+    """A second pin between the bell crank and the ground (redundant constraints): Grübler's count names them."""
+    spec = copy.deepcopy(SIX_BAR)
+    spec["ground"]["C0"] = [0.2, 0.1]
+    spec["joints"]["extra"] = {"journal": "bellcrank.C", "bearing": "ground.C0"}
+    with pytest.raises(LinkageError) as err:
+        describe.check(spec, "linkages.six_bar")
+    assert err.value.key == "linkages.six_bar.joints" and "redundant constraints" in str(err.value), str(err.value)
+
+
+def test_a_change_point_linkage_is_refused_where_it_passes_it():
+    """A four-bar with s + l = p + q (crank 0.1, coupler 0.3, rocker 0.2, ground 0.2 m: a change point where all four
+    links line up): following the turn meets a singular constraint Jacobian there, and the description is refused with
+    its key and the driver angle."""
+    spec = yaml.safe_load("""
+bodies:
+  crank: {mass_kg: 0.4, inertia_kg_m2: 1.0e-3, points: {O: [-0.05, 0.0], A: [0.05, 0.0]}, angle_guess_deg: 90}
+  coupler: {mass_kg: 1.0, inertia_kg_m2: 8.0e-3, points: {A: [-0.15, 0.0], B: [0.15, 0.0]}, angle_guess_deg: 20}
+  rocker: {mass_kg: 0.8, inertia_kg_m2: 3.0e-3, points: {O: [-0.1, 0.0], B: [0.1, 0.0]}, angle_guess_deg: 100}
+ground: {O2: [0.0, 0.0], O4: [0.2, 0.0]}
+joints:
+  O2: {journal: crank.O, bearing: ground.O2}
+  A: {journal: crank.A, bearing: coupler.A}
+  B: {journal: coupler.B, bearing: rocker.B}
+  O4: {journal: rocker.O, bearing: ground.O4}
+driver: {body: crank, speed_rad_s: 10.0, start_angle_deg: 90}
+output: rocker
+""")
+    with pytest.raises(LinkageError) as err:
+        describe.check(spec, "linkages.change_point")
+    message = str(err.value)
+    assert err.value.key == "linkages.change_point" and ("change point" in message or "locks up" in message), message
+    assert "driver angle" in message

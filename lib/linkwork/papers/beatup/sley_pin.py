@@ -130,8 +130,13 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     print(f"beatup_sley_pin: {found['status']} (period {found['period']}, transient {found['transient']} turns, "
           f"{len(runner.turns)} turns run)", flush=True)
     fixed = {"ideal": _turn_measures(ideal, ideal, windows), "fourbar": _turn_measures(fb_acc, ideal, windows)}
+    judged_all = np.abs(np.array(runner.turns[first:stop]))
     turn_peak_at = {"ideal": from_front[np.argmax(np.abs(ideal))], "fourbar": from_front[np.argmax(np.abs(fb_acc))],
-                    "pin": from_front[np.argmax(np.abs(np.array(runner.turns[first:stop])).max(axis=0))]}
+                    "pin": from_front[np.argmax(judged_all.max(axis=0))]}
+    after = from_front <= 180.0  # the half turn after the front dead centre, and the one before it
+    halves = [(judged_all[:, ~after].max(), from_front[~after][np.argmax(judged_all[:, ~after].max(axis=0))]),
+              (judged_all[:, after].max(), from_front[after][np.argmax(judged_all[:, after].max(axis=0))])]
+    turn_peak_at["halves"] = halves
     return _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check, swings)
 
 
@@ -170,6 +175,10 @@ def _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, 
         "pin_over_ideal_in_window": ("window", window_peaks[1] / window_peaks[0], {"units": "1", "long_name": "the clearance scene's mean peak in the window over the ideal six-bar's"}),
         "turn_peak": ("mechanism", turn_peaks, {"units": "rad/s^2", "long_name": "largest |sley angular acceleration| over the whole turn (clearance: the largest over the judged turns)"}),
         "turn_peak_at": ("mechanism", np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]), {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"}),
+        "pin_half_turn_peak": ("half_turn", np.array([h[0] for h in turn_peak_at["halves"]]), {"units": "rad/s^2", "long_name": "clearance scene: the largest |sley angular acceleration| in the half turn before and after the front dead centre, over the judged turns"}),
+        "pin_half_turn_peak_at": ("half_turn", np.array([_signed(h[1]) for h in turn_peak_at["halves"]]), {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"}),
+        "pin_peak_by_turn": (("turn_judged", "window"), measures[:, :nw], {"units": "rad/s^2", "long_name": "clearance scene: each judged turn's largest |sley angular acceleration| in the window"}),
+        "pin_turn_peak_by_turn": ("turn_judged", measures[:, nw], {"units": "rad/s^2", "long_name": "clearance scene: each judged turn's largest |sley angular acceleration| over the whole turn"}),
         "swing": ("linkage", np.degrees(swings), {"units": "deg", "long_name": "sley (sword) swing between its dead centres"}),
         "ideal_turn_peak_per_swing": ("linkage", np.array([turn_peaks[0], turn_peaks[2]]) / np.degrees(swings), {"units": "rad/s^2 per deg", "long_name": "largest |sley angular acceleration| of the ideal linkage over a turn, per degree of its swing"}),
         "rms_deviation": ((), pin_mean[nw + 1], {"units": "rad/s^2", "long_name": "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged turns)"}),
@@ -186,7 +195,9 @@ def _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, 
               "judged_turn": ("judged_turn", np.arange(stop - judged.shape[0], stop), {"units": "1", "long_name": "turn from the start (the last judged turns)"}),
               "mechanism": ("mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"], {"units": "1", "long_name": "mechanism"}),
               "window": ("window", np.asarray(sp["windows_deg"], dtype=float), {"units": "deg", "long_name": "half-width of the window of crank angle about the front dead centre"}),
-              "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"})}
+              "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"}),
+              "half_turn": ("half_turn", ["before the front dead centre", "after the front dead centre"], {"units": "1", "long_name": "half of the crank turn"}),
+              "turn_judged": ("turn_judged", np.arange(first, stop), {"units": "1", "long_name": "judged turn, from the start"})}
     attrs = {"state_status": str(found["status"]), "loom_speed_rad_s": abs(omega), "loom_speed_rev_min": labelled(sp["loom_speed_rev_min"]),
              "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
              "integrator": str(sp["integrator"]), "check_integrator": str(sp["check_integrator"])}
