@@ -43,7 +43,7 @@ REPORTS = ("stiffness", "beatup", "heald", "transplanter", "clearance", "accurac
 ALL_JOBS = {
     "all": 1, "stiffness": 1, "stiffness_accuracy": 1, "stiffness_compare": 1,
     "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "beatup_sley_pin": 1,
-    "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1,
+    "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "heald_contact": 1,
     "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
     "clearance_scene": 14, "clearance_contact_law": 2, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
     "accuracy_summary": 1, "sweep_point": 6, "sweep_gather": 2, "report": 8,

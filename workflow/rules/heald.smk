@@ -46,3 +46,16 @@ rule heald_compare:
         cfg=section("heald", *HEALD_MODEL, "models", design=True),  # the flip bisections read the ranges
     script:
         STUDY
+
+
+rule heald_contact:
+    input:
+        code=code("linkwork.papers.heald.contact"),
+    output:
+        "results/heald/contact.nc",
+    params:
+        study="linkwork.papers.heald.contact:study",
+        # values and ranges of the parameters (a case sets some to a range's end); the drive's choice, not its labels
+        cfg=section("heald", "parameters", "drive.frequency.value", "cam.rise_fraction.value", "cam.harmonics", "cam.samples", "contact", design=True),
+    script:
+        STUDY

@@ -33,7 +33,7 @@ REPORT_INPUTS = {
         "beatup", result="results/beatup/sixbar.nc", window="results/beatup/window.nc",
         accuracy="results/beatup/accuracy.nc", sley_pin="results/beatup/sley_pin.nc",
     ),
-    "heald": paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc"),
+    "heald": paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc", contact="results/heald/contact.nc"),
     "transplanter": paper_report(
         "transplanter", result="results/transplanter/ked.nc", optim="results/transplanter/optim.nc",
         at_published="results/transplanter/at_published.nc", accuracy="results/transplanter/accuracy.nc",

@@ -317,12 +317,24 @@ def mass_vector(linkage: Linkage) -> np.ndarray:
     return np.array([v for b in linkage.bodies for v in (b.mass, b.mass, b.inertia)], dtype=float)
 
 
-def applied_forces(linkage: Linkage, q: np.ndarray, gravity: bool) -> np.ndarray:
-    """Generalised applied forces g (n, 3 nb): gravity along -y at every centre of mass, if it acts."""
-    g = np.zeros_like(q)
+def applied_forces(linkage: Linkage, q: np.ndarray, gravity: bool, qd: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """Generalised applied forces g (n, 3 nb) and their potential energy (n,), J: gravity along -y at every centre
+    of mass, if it acts, and the springs (their dampers read the velocities ``qd``, zero if None)."""
+    g, potential = np.zeros_like(q), np.zeros(q.shape[0])
     if gravity:
         g[:, 1::3] -= mass_vector(linkage)[0::3] * linkage.gravity
-    return g
+        potential += np.sum(mass_vector(linkage)[0::3] * linkage.gravity * q[:, 1::3], axis=-1)
+    qd = np.zeros_like(q) if qd is None else qd
+    for spring in linkage.springs:
+        b = linkage.body_index(spring.point[0])
+        pos, vel = _world_stack(linkage, q, qd, spring.point)
+        d = pos - np.asarray(spring.rest)
+        f = -np.asarray(spring.stiffness) * d - np.asarray(spring.damping) * vel
+        arm = pos - q[:, 3 * b : 3 * b + 2]
+        g[:, 3 * b : 3 * b + 2] += f
+        g[:, 3 * b + 2] += arm[:, 0] * f[:, 1] - arm[:, 1] * f[:, 0]
+        potential += 0.5 * np.sum(np.asarray(spring.stiffness) * d**2, axis=-1)
+    return g, potential
 
 
 def inverse_dynamics(linkage: Linkage, t: np.ndarray, gravity: bool, settings: AssemblySettings = AssemblySettings(),
@@ -336,11 +348,9 @@ def inverse_dynamics(linkage: Linkage, t: np.ndarray, gravity: bool, settings: A
     mass = mass_vector(linkage)
     closed = linkage.clearance_joints
     jac = constraints(linkage, q, np.asarray(t, dtype=float), closed)[1]
-    g = applied_forces(linkage, q, gravity)
+    g, potential = applied_forces(linkage, q, gravity, qd)
     lam = _solve(np.swapaxes(jac, 1, 2), g - mass * qdd)
-    energy = 0.5 * np.sum(mass * qd**2, axis=-1)
-    if gravity:
-        energy = energy + np.sum(mass[0::3] * linkage.gravity * q[:, 1::3], axis=-1)
+    energy = 0.5 * np.sum(mass * qd**2, axis=-1) + potential
     out = {"output_acceleration": qdd[:, 3 * linkage.body_index(linkage.output) + 2], "energy": energy, "q": q, "qd": qd,
            "qdd": qdd}
     row = 0

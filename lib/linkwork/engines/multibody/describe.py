@@ -10,6 +10,9 @@ The config form (degrees for angles, SI otherwise, units in the key names)::
       O2: {journal: crank.O, bearing: ground.O2}
       A: {journal: crank.A, bearing: coupler.A, clearance: {...}}   # a clearance joint names its effects
     driver: {body: crank, speed_rad_s: 10.0, start_angle_deg: 60, cos_deg: [], sin_deg: []}   # a negative speed turns the other way
+    # or a rocking lever: {body: lever, speed_rad_s: 10.0, start_angle_deg: 90, cos_deg: [...], sin_deg: [...], rocking: true}
+    springs:                   # optional: a body point pulled towards a fixed rest point, per axis
+      warp: {point: frame.C, rest_m: [0.8, 0.6], stiffness_N_m: [0.0, 2.0e+4], damping_N_s_m: [0.0, 20.0]}
     output: rocker
     gravity_m_s2: 9.81         # optional (default: standard gravity)
     baumgarte_per_s: 250.0     # optional
@@ -37,7 +40,7 @@ import numpy as np
 
 from .assembly import AssemblySettings, follow_turn
 from ...units import STANDARD_GRAVITY
-from .linkage import CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError
+from .linkage import CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError, Spring
 
 #: Clearance keys every clearance joint reads, and those each effect adds.
 CLEARANCE_KEYS = ("journal_radius_m", "bearing_radius_m", "effects")
@@ -48,7 +51,7 @@ EFFECT_KEYS = {
 }
 ASSEMBLY_KEYS = {"steps_per_turn": "steps_per_turn", "tolerance": "tolerance", "max_iterations": "max_iterations",
                  "condition_limit": "condition_limit"}
-TOP_KEYS = ("bodies", "ground", "joints", "driver", "output", "gravity_m_s2", "baumgarte_per_s", "assembly")
+TOP_KEYS = ("bodies", "ground", "joints", "driver", "output", "springs", "gravity_m_s2", "baumgarte_per_s", "assembly")
 
 
 def _number(key: str, value: Any, positive: bool = False, nonnegative: bool = False) -> float:
@@ -187,7 +190,7 @@ def _joints(key: str, spec: Mapping[str, Any], bodies, ground) -> tuple[Joint, .
 
 
 def _driver(key: str, spec: Mapping[str, Any], bodies, joints) -> Driver:
-    _only(key, _mapping(key, spec), ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg"), ("body", "speed_rad_s", "start_angle_deg"))
+    _only(key, _mapping(key, spec), ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg", "rocking"), ("body", "speed_rad_s", "start_angle_deg"))
     body = spec["body"]
     if body not in [b.name for b in bodies]:
         raise LinkageError(f"{key}.body", f"unknown body {body!r}; bodies: {', '.join(b.name for b in bodies)}")
@@ -199,10 +202,37 @@ def _driver(key: str, spec: Mapping[str, Any], bodies, joints) -> Driver:
     speed = _number(f"{key}.speed_rad_s", spec["speed_rad_s"])
     if speed == 0.0:
         raise LinkageError(f"{key}.speed_rad_s", "must not be zero (its sign is the sense of turning)")
+    rocking = spec.get("rocking", False)
+    if not isinstance(rocking, bool):
+        raise LinkageError(f"{key}.rocking", f"must be true or false, got {rocking!r}")
+    if rocking and not cos:
+        raise LinkageError(f"{key}.cos_deg", "a rocking driver needs its motion as a Fourier series (cos_deg, sin_deg)")
     return Driver(str(body), speed,
                   math.radians(_number(f"{key}.start_angle_deg", spec["start_angle_deg"])),
                   tuple(math.radians(_number(f"{key}.cos_deg[{i}]", v)) for i, v in enumerate(cos)),
-                  tuple(math.radians(_number(f"{key}.sin_deg[{i}]", v)) for i, v in enumerate(sin)))
+                  tuple(math.radians(_number(f"{key}.sin_deg[{i}]", v)) for i, v in enumerate(sin)), rocking)
+
+
+def _springs(key: str, spec: Mapping[str, Any] | None, bodies, ground) -> tuple[Spring, ...]:
+    """Springs from a body point to a fixed rest point (optional section)."""
+    if spec is None:
+        return ()
+    out = []
+    for name, sp in _mapping(key, spec).items():
+        k = f"{key}.{name}"
+        _only(k, _mapping(k, sp), ("point", "rest_m", "stiffness_N_m", "damping_N_s_m"), ("point", "rest_m", "stiffness_N_m"))
+        point = _ref(f"{k}.point", sp["point"], bodies, ground)
+        if point[0] == GROUND:
+            raise LinkageError(f"{k}.point", "must be a point of a body, not of the ground")
+        stiffness = _xy(f"{k}.stiffness_N_m", sp["stiffness_N_m"])
+        damping = _xy(f"{k}.damping_N_s_m", sp.get("damping_N_s_m", [0.0, 0.0]))
+        for label, pair in (("stiffness_N_m", stiffness), ("damping_N_s_m", damping)):
+            if min(pair) < 0:
+                raise LinkageError(f"{k}.{label}", f"must not be negative, got {list(pair)!r}")
+        if max(stiffness) == 0 and max(damping) == 0:
+            raise LinkageError(k, "has neither stiffness nor damping")
+        out.append(Spring(str(name), point, _xy(f"{k}.rest_m", sp["rest_m"]), stiffness, damping))
+    return tuple(out)
 
 
 def _connected(key: str, bodies: tuple[Body, ...], joints: tuple[Joint, ...]) -> None:
@@ -266,7 +296,8 @@ def from_config(spec: Mapping[str, Any], key: str = "linkage") -> Linkage:
     names = {"linkage": key, "driver": f"{key}.driver"}
     return Linkage(bodies, ground, joints, driver, str(spec["output"]),
                    _number(f"{key}.gravity_m_s2", spec.get("gravity_m_s2", STANDARD_GRAVITY), nonnegative=True),
-                   _number(f"{key}.baumgarte_per_s", spec.get("baumgarte_per_s", 250.0), positive=True), names)
+                   _number(f"{key}.baumgarte_per_s", spec.get("baumgarte_per_s", 250.0), positive=True), names,
+                   _springs(f"{key}.springs", spec.get("springs"), bodies, ground))
 
 
 def check(spec: Mapping[str, Any], key: str = "linkage") -> Linkage:

@@ -27,17 +27,18 @@ import time
 
 import numpy as np
 
-from .assembly import start_state
+from .assembly import kinematics, start_state
 from .linkage import Clearance, Driver, Linkage
 
 
 def _driver_offset(driver: Driver):
-    """Exudyn's offset user functions of the driver (the driven angle without its reference value theta0, rad, and
-    its rate, rad/s) as functions of time."""
+    """Exudyn's offset user functions of the driver (the driven angle without its reference value theta(0), rad, and
+    its rate, rad/s) as functions of time.  theta(0) is theta0 plus the series' cosine terms."""
+    reference = float(driver.angle(np.array([0.0]))[0][0])
 
     def offset(mbs, t, item, value):
         th, _, _ = driver.angle(np.array([t]))
-        return float(th[0] - driver.start_angle)
+        return float(th[0] - reference)
 
     def rate(mbs, t, item, value):
         return float(driver.angle(np.array([t]))[1][0])
@@ -83,7 +84,12 @@ def _build(linkage: Linkage, gravity: bool):
             bj, bb = linkage.body_index(joint.journal[0]), linkage.body_index(joint.bearing[0])
             _dry_joint(mbs, joint.clearance, bodies[bj], bodies[bb], linkage.point(joint.journal), linkage.point(joint.bearing))
 
-    # the driver acts on the driven body's rotation coordinate, which excludes its reference value theta0
+    for spring in linkage.springs:  # a spring pulls its body point towards its rest point, per axis
+        rest = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground, localPosition=[*spring.rest, 0.0]))
+        mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(markerNumbers=[rest, marker(spring.point)],
+                                                              stiffness=[*spring.stiffness, 0.0], damping=[*spring.damping, 0.0]))
+
+    # the driver acts on the driven body's rotation coordinate, which excludes its reference value theta(0)
     fixed = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0])), coordinate=0))
     driven = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[linkage.body_index(linkage.driver.body)], coordinate=2))
     offset, rate = _driver_offset(linkage.driver)
@@ -178,10 +184,19 @@ def run(linkage: Linkage, end_time: float, step: float, newton_tolerance: float,
     settings.timeIntegration.verboseMode = 0
     settings.solution.file.write = False
     settings.solution.sensors.writePeriod = output_period
+    if linkage.driver.cos and not linkage.clearance_joints:
+        # Exudyn's initial accelerations leave out what a constraint's user function imposes (its documentation), so a
+        # driver with a Fourier series would start inconsistent and the trapezoidal rule would carry the error as an
+        # undamped two-step oscillation: the ideal linkage's own initial accelerations are set instead
+        qdd0 = kinematics(linkage, np.array([0.0]))[2][0]
+        mbs.systemData.SetODE2Coordinates_tt([float(v) for v in qdd0], configuration=exu.ConfigurationType.Initial)
+        settings.timeIntegration.generalizedAlpha.computeInitialAccelerations = False
     start, cpu = time.perf_counter(), time.process_time()
     mbs.SolveDynamic(settings)
     wall, cpu = time.perf_counter() - start, time.process_time() - cpu
     acc = mbs.GetSensorStoredData(acc_sensor)
     torque = mbs.GetSensorStoredData(torque_sensor)
+    if not settings.timeIntegration.generalizedAlpha.computeInitialAccelerations:
+        acc, torque = acc[1:], torque[1:]  # the start's multipliers are not computed then (stored as zero)
     return {"t": acc[:, 0], "output_acceleration": acc[:, 3], "driver_torque": -torque[:, 1], "wall_s": wall, "cpu_s": cpu,
             "version": exu.__version__}

@@ -96,6 +96,36 @@ def driver_series(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phid
 
 
 @njit(cache=True)
+def driver_rocking(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phidot):
+    """Row row: phi_body = phi0 + sum_k (a[k-1] cos(k omega t) + b[k-1] sin(k omega t)) (rad): a body rocked by a
+    given periodic motion of frequency omega (rad/s), with no mean turning (a cam-driven lever)."""
+    theta, rate, accel = phi0, 0.0, 0.0
+    for k in range(a.size):
+        kw = (k + 1) * omega
+        c, s = np.cos(kw * t), np.sin(kw * t)
+        theta += a[k] * c + b[k] * s
+        rate += kw * (b[k] * c - a[k] * s)
+        accel -= kw * kw * (a[k] * c + b[k] * s)
+    phiq[row, 3 * body + 2] = 1.0
+    gamma[row] = accel
+    phi[row] = q[3 * body + 2] - theta
+    phidot[row] = qd[3 * body + 2] - rate
+
+
+@njit(cache=True)
+def ground_spring(q, qd, cs, g, body, sx, sy, rx, ry, kx, ky, cx, cy):
+    """A linear spring-damper from a body point (local s, m) to a fixed rest point r (m): F = -k d - c v per axis
+    (N/m, N s/m), added to the generalized forces; returns its potential energy (J)."""
+    c, s = cs[2 * body], cs[2 * body + 1]
+    ax, ay = c * sx - s * sy, s * sx + c * sy
+    dx, dy = q[3 * body] + ax - rx, q[3 * body + 1] + ay - ry
+    w = qd[3 * body + 2]
+    vx, vy = qd[3 * body] - w * ay, qd[3 * body + 1] + w * ax
+    apply_force(q, cs, g, body, sx, sy, -kx * dx - cx * vx, -ky * dy - cy * vy)
+    return 0.5 * (kx * dx * dx + ky * dy * dy)
+
+
+@njit(cache=True)
 def apply_force(q, cs, g, body, sx, sy, fx, fy):
     """Add a force applied at a body point (local s) to the generalized forces."""
     c, s = cs[2 * body], cs[2 * body + 1]

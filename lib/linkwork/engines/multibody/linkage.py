@@ -10,7 +10,9 @@ Conventions:
   angle is the rotation of that frame (rad);
 * a joint joins a point of its first body (the journal's side) to a point of its second (the bearing's side, or
   ``ground``); an ideal joint is two constraint rows, a clearance joint a force element between journal and bearing;
-* the driver turns a grounded body: theta(t) = theta0 + omega t + sum_k (a_k cos(k omega t) + b_k sin(k omega t)).
+* the driver turns a grounded body: theta(t) = theta0 + omega t + sum_k (a_k cos(k omega t) + b_k sin(k omega t)), or
+  rocks it (``rocking``): the same without the mean turning omega t (a cam-driven lever);
+* a spring pulls a body point towards a fixed rest point, with stiffness and damping per axis (a warp, a guide).
 """
 
 from __future__ import annotations
@@ -181,23 +183,42 @@ class Driver:
     start_angle: float  # rad, theta0
     cos: tuple[float, ...] = ()
     sin: tuple[float, ...] = ()
+    rocking: bool = False  # True: no mean turning; omega is the frequency of the series only
 
     @property
     def period(self) -> float:
-        """Duration of one driven turn, s (the speed's sign is the sense of turning)."""
+        """Duration of one driven turn (or one rocking cycle), s (the speed's sign is the sense of turning)."""
         return 2 * np.pi / abs(self.speed)
+
+    @property
+    def drift(self) -> float:
+        """The mean turning speed, rad/s: omega, or 0 for a rocking driver."""
+        return 0.0 if self.rocking else self.speed
 
     def angle(self, t):
         """theta(t), rad, and its first and second time derivatives (rad/s, rad/s^2), at the times t (s)."""
         t = np.asarray(t, dtype=float)
         w = self.speed
-        th, thd, thdd = self.start_angle + w * t, np.full_like(t, w), np.zeros_like(t)
+        th, thd, thdd = self.start_angle + self.drift * t, np.full_like(t, self.drift), np.zeros_like(t)
         for k, (a, b) in enumerate(zip(self.cos, self.sin, strict=True), start=1):
             c, s = np.cos(k * w * t), np.sin(k * w * t)
             th = th + a * c + b * s
             thd = thd + k * w * (b * c - a * s)
             thdd = thdd - (k * w) ** 2 * (a * c + b * s)
         return th, thd, thdd
+
+
+@dataclass(frozen=True)
+class Spring:
+    """A linear spring-damper pulling the point ``point`` (body, point) towards the fixed ``rest`` (m), per axis:
+    F = -(k_x dx, k_y dy) - (c_x v_x, c_y v_y) with (dx, dy) the point's displacement from rest (m) and (v_x, v_y)
+    its velocity (m/s); stiffness in N/m, damping in N s/m (a zero leaves that axis free)."""
+
+    name: str
+    point: tuple[str, str]
+    rest: tuple[float, float]
+    stiffness: tuple[float, float]
+    damping: tuple[float, float] = (0.0, 0.0)
 
 
 @dataclass(frozen=True)
@@ -214,6 +235,7 @@ class Linkage:
     gravity: float = STANDARD_GRAVITY
     baumgarte: float = 250.0
     names: Mapping[str, str] = field(default_factory=dict)  # config key of each part, for messages
+    springs: tuple[Spring, ...] = ()
 
     def body_index(self, name: str) -> int:
         """Index of a body (-1 for the ground)."""
@@ -252,7 +274,8 @@ class Linkage:
     def with_clearance(self, updates: Mapping[str, Clearance | None]) -> Linkage:
         """The same linkage with the named joints' clearances replaced (None: the joint made ideal)."""
         joints = tuple(Joint(j.name, j.journal, j.bearing, updates.get(j.name, j.clearance)) for j in self.joints)
-        return Linkage(self.bodies, self.ground, joints, self.driver, self.output, self.gravity, self.baumgarte, self.names)
+        return Linkage(self.bodies, self.ground, joints, self.driver, self.output, self.gravity, self.baumgarte, self.names,
+                       self.springs)
 
 
 def oriented(joint: Joint) -> tuple[tuple[str, str], tuple[str, str]]:

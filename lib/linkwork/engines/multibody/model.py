@@ -96,6 +96,8 @@ def pack(linkage: Linkage) -> tuple[np.ndarray, dict[str, int]]:
         values[f"joint{k}"] = [*linkage.point(first), *s2, gx, gy]
     for k, joint in enumerate(linkage.clearance_joints):
         values[f"clearance{k}"] = _clearance_values(linkage, joint)
+    for k, spring in enumerate(linkage.springs):
+        values[f"spring{k}"] = [*linkage.point(spring.point), *spring.rest, *spring.stiffness, *spring.damping]
     index, flat = {}, []
     for key, vals in values.items():
         index[key] = len(flat)
@@ -110,10 +112,11 @@ def _constraint_lines(linkage: Linkage, idx) -> tuple[list[str], list[list[int]]
     for k, item in enumerate(linkage.constraint_order()):
         if isinstance(item, Driver):
             b = linkage.body_index(item.body)
-            if item.cos:
+            if item.cos or item.rocking:
                 n = len(item.cos)
                 s = idx["series"]
-                lines.append(f"    driver_series(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], p[{s}:{s + n}], "
+                kernel = "driver_rocking" if item.rocking else "driver_series"
+                lines.append(f"    {kernel}(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], p[{s}:{s + n}], "
                              f"p[{s + n}:{s + 2 * n}], {row}, phi, phiq, gamma, phidot)")
             else:
                 lines.append(f"    driver(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], {row}, phi, phiq, gamma, phidot)")
@@ -175,6 +178,16 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
     return L
 
 
+def _spring_lines(linkage: Linkage, idx) -> list[str]:
+    """Source lines of the springs: each adds its force and its potential energy."""
+    lines = []
+    for k, spring in enumerate(linkage.springs):
+        o = idx[f"spring{k}"]
+        args = ", ".join(f"p[{o + m}]" for m in range(8))
+        lines.append(f"    potential += ground_spring(q, qd, cs, g, {linkage.body_index(spring.point[0])}, {args})  # spring {spring.name}")
+    return lines
+
+
 def _check_topology(linkage: Linkage) -> None:
     for joint in linkage.clearance_joints:
         check_effects(joint.name, joint.clearance.effects)
@@ -201,6 +214,8 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     a("import numpy as np")
     a("from numba import njit")
     a("from linkwork.engines.multibody.kernels import (revolute, driver, driver_series, apply_force, clearance_state,")
+    if linkage.springs or linkage.driver.rocking:
+        a("    driver_rocking, ground_spring,")
     a("    hertz_damping_factor, friction_coefficient, film_forces, gauss_solve_into, elastic_contact, body_trig)")
     a(f"NB = {nb}")
     a(f"NQ = {nq}")
@@ -244,6 +259,7 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
         a(f"        g[3 * b + 1] -= mass[3 * b] * p[{idx['gravity']}]")
         a(f"        potential += mass[3 * b] * p[{idx['gravity']}] * q[3 * b + 1]")
     L.extend(_clearance_lines(linkage, idx))
+    L.extend(_spring_lines(linkage, idx))
     L.extend(constraint_lines)
     a(f"    damping = 2.0 * p[{idx['alpha']}]")
     a(f"    stiffness = p[{idx['beta']}] ** 2")

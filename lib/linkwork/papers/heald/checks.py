@@ -37,8 +37,33 @@ def check(section: Mapping[str, Any], key: str = "heald") -> None:
     for what, value in (("value", rise["value"]), *((f"range.{i}", v) for i, v in enumerate(rise.get("range", ())))):
         if not 0 < value < 0.5:
             raise ConfigError(f"config key {key}.cam.rise_fraction.{what}: value {value!r} must lie in (0, 0.5): the rise and the return share one turn")
+    _check_contact(section, key)
     for model in section["models"]:
         try:
             build(model, parameters(section), "elastic")
         except ValueError as exc:
             raise ConfigError(f"config key {key}.parameters (model {model}): {exc}") from None
+
+
+def _check_contact(section: Mapping[str, Any], key: str) -> None:
+    """The contact scene: each case names parameters that have a range; the linkage assembles with every case's
+    parameters at the lowest and the highest speed (the lever ratios and lengths leave it a closed linkage)."""
+    from ...engines.multibody.assembly import follow_turn
+    from ...engines.multibody.linkage import LinkageError
+    from ...units import RAD_S_PER_RPM
+    from .contact import case_parameters, linkage
+
+    cfg, params = section["contact"], section["parameters"]
+    ranges = {}
+    for case, ends in cfg["cases"].items():
+        for name in ends:
+            if name not in params or "range" not in params[name]:
+                raise ConfigError(f"config key {key}.contact.cases.{case}.{name}: not a parameter of {key}.parameters with a range")
+            ranges[name] = tuple(params[name]["range"])
+    p = parameters(section)
+    for case, ends in cfg["cases"].items():
+        for rpm in (min(cfg["speeds_rpm"]), max(cfg["speeds_rpm"])):
+            try:
+                follow_turn(linkage(cfg, section["cam"], case_parameters(p, ranges, ends), rpm * RAD_S_PER_RPM, clearances=False))
+            except LinkageError as exc:
+                raise ConfigError(f"config key {key}.contact (case {case}): the heald linkage {exc}") from None

@@ -1,0 +1,100 @@
+"""The heald linkage with clearance joints at E and F (issue 24's heald question): the engine's springs and rocking
+driver against independent routes, and the contact study on a short run.
+
+Independent routes: the driver's power against the rate of the mechanical energy plus the warp damper's dissipation
+(a power balance, not the multipliers' solve), and the compiled right-hand side against the constraint equations
+written in numpy with the springs' forces assembled apart.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from conftest import load_yaml
+from linkwork.configformat import DESIGN_FIELDS, narrow
+from linkwork.engines.multibody import assembly
+from linkwork.engines.multibody.model import compile_scene, pack
+from linkwork.papers.heald import contact
+from linkwork.papers.heald.adapter import parameters
+from linkwork.units import RAD_S_PER_RPM
+
+SECTION = narrow(load_yaml("config/config.yaml")["heald"], ["parameters", "drive", "cam", "contact"], DESIGN_FIELDS)
+P = parameters(SECTION)
+
+
+def _ideal(rpm: float):
+    return contact.linkage(SECTION["contact"], SECTION["cam"], P, rpm * RAD_S_PER_RPM, clearances=False)
+
+
+def test_the_drivers_power_balances_the_energy_rate_and_the_warp_dampers_loss():
+    """Ideal joints (the linkage is then rigid and driven): T theta' = dE/dt + c_O v_y^2, E the kinetic energy plus
+    gravity's and the warp spring's, its rate by fourth-order central differences of the engine's energy; to 1e-6 of
+    the power."""
+    lk = _ideal(300.0)
+    n = 4001
+    t = np.linspace(0.0, lk.driver.period, n)
+    out = assembly.inverse_dynamics(lk, t, gravity=True)
+    power = out["driver_torque"] * lk.driver.angle(t)[1]
+    dt = t[1] - t[0]
+    e = out["energy"]
+    rate = (e[:-4] - 8 * e[1:-3] + 8 * e[3:-1] - e[4:]) / (12 * dt)
+    frame = lk.body_index("frame")
+    pos, vel = assembly._world_stack(lk, out["q"], out["qd"], ("frame", "P"))
+    loss = P["c_O"] * vel[:, 1] ** 2
+    assert frame >= 0 and np.ptp(pos[:, 1]) > 0.01  # the frame is lifted by centimetres
+    assert np.abs(power[2:-2] - rate - loss[2:-2]).max() < 1e-6 * np.abs(power).max()
+
+
+def test_the_compiled_right_hand_side_with_springs_and_a_rocking_driver_solves_the_numpy_equations():
+    """At perturbed states, the compiled q'' satisfies M q'' = g - Phi_q^T lambda and the Baumgarte-stabilised
+    constraint rows, with Phi, Phi_q, gamma and g (gravity and the warp spring-damper) from numpy."""
+    lk = _ideal(400.0)
+    module = compile_scene(lk, True)
+    params, _ = pack(lk)
+    rng = np.random.default_rng(4)
+    y0 = assembly.start_state(lk)
+    nq = lk.n_coordinates
+    mass = assembly.mass_vector(lk)
+    for _ in range(10):
+        y = y0 + np.r_[rng.normal(0, 1e-5, nq), rng.normal(0, 0.3, nq), 0.0]
+        t = rng.uniform(0.0, lk.driver.period)
+        out = module.rhs(t, y, params, np.zeros(1), np.zeros(4, dtype=np.int64), np.zeros(module.N_DIAG))
+        q, qd, qdd = y[None, :nq], y[None, nq : 2 * nq], out[nq : 2 * nq]
+        phi, jac, nu = assembly.constraints(lk, q, np.array([t]))
+        gamma = assembly.gamma_of(lk, q, qd, np.array([t]))[0]
+        b = lk.baumgarte
+        rate = jac[0] @ qd[0] - nu[0]
+        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-8, atol=1e-8 * np.abs(gamma).max())
+        g = assembly.applied_forces(lk, q, True, qd)[0][0]
+        lam = np.linalg.lstsq(jac[0].T, g - mass * qdd, rcond=None)[0]
+        assert np.allclose(jac[0].T @ lam, g - mass * qdd, atol=1e-7 * np.abs(g).max())
+
+
+def test_the_closed_form_reversal_margin_separates_the_two_cases():
+    """The nominal warp pulls the frame harder than its weight (the load at E and F reverses at any speed); the
+    least-reversal corner does not (its margin below 1)."""
+    ranges = {k: tuple(v["range"]) for k, v in SECTION["parameters"].items() if "range" in v}
+    nominal = contact.reversal_margin(P, SECTION["cam"])
+    corner = contact.reversal_margin(contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["least_reversal"]), SECTION["cam"])
+    assert nominal > 1.0 > corner
+
+
+def test_first_loss_brackets_the_speed():
+    rpm = np.array([25.0, 50.0, 100.0, 200.0])
+    assert contact.first_loss(rpm, np.array([False, False, True, True])) == (50.0, 100.0)
+    held, lost = contact.first_loss(rpm, np.array([True, True, True, True]))
+    assert np.isnan(held) and lost == 25.0
+    held, lost = contact.first_loss(rpm, np.array([False] * 4))
+    assert held == 200.0 and np.isnan(lost)
+
+
+def test_a_journal_flies_where_the_load_reverses_and_stays_in_contact_where_it_does_not():
+    """A short study at 50 rev/min (physics, not a snapshot): with the nominal warp the load at E and F reverses and a
+    journal leaves its bearing's wall; in the least-reversal corner both stay in contact.  The chain's forces are
+    finite and the study's error bar is recorded."""
+    cfg = {**SECTION["contact"], "speeds_rpm": [50.0], "points_per_cycle": 360,
+           "states": {**SECTION["contact"]["states"], "min_cycles": 4, "max_cycles": 12, "check_cycles": 1}}
+    ds = contact.study({**SECTION, "contact": cfg})
+    assert bool(ds.contact_lost.sel(case="nominal", speed=50.0))
+    assert not bool(ds.contact_lost.sel(case="least_reversal", speed=50.0))
+    assert np.isfinite(ds.chain_E.values).all() and (ds.force_numerical_error.values >= 0.0).all()
