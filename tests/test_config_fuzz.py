@@ -122,8 +122,8 @@ CASES = [
     ("linkage-turns-guard", "    turns: 1\n    points_per_turn: 3600", "    turns: 2000\n    points_per_turn: 3600",
      ["linkages.watt_six_bar_worn_pin.turns", "2000"]),
     # the heald contact scene: a case must name a parameter with a range; the linkage must close
-    ("heald-contact-case-unknown", "least_reversal: {k_O: low, stroke_D: low, M_P: high}", "least_reversal: {k_X: low}",
-     ["heald.contact.cases.least_reversal.k_X", "with a range"]),
+    ("heald-contact-case-unknown", "weight_dominant: {k_O: low, stroke_D: low, M_P: high}", "weight_dominant: {k_X: low}",
+     ["heald.contact.cases.weight_dominant.k_X", "with a range"]),
     ("heald-contact-arm-too-short", "D_to_E: 0.3, E_to_F: 1.2, arm_E: 0.1,", "D_to_E: 0.3, E_to_F: 1.2, arm_E: 0.01,",
      ["heald.contact", "does not assemble"]),
 ]

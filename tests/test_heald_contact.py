@@ -75,7 +75,7 @@ def test_the_closed_form_reversal_margin_separates_the_two_cases():
     least-reversal corner does not (its margin below 1)."""
     ranges = {k: tuple(v["range"]) for k, v in SECTION["parameters"].items() if "range" in v}
     nominal = contact.reversal_margin(P, SECTION["cam"])
-    corner = contact.reversal_margin(contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["least_reversal"]), SECTION["cam"])
+    corner = contact.reversal_margin(contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["weight_dominant"]), SECTION["cam"])
     assert nominal > 1.0 > corner
 
 
@@ -96,5 +96,5 @@ def test_a_journal_flies_where_the_load_reverses_and_stays_in_contact_where_it_d
            "states": {**SECTION["contact"]["states"], "min_cycles": 4, "max_cycles": 12, "check_cycles": 1}}
     ds = contact.study({**SECTION, "contact": cfg})
     assert bool(ds.contact_lost.sel(case="nominal", speed=50.0))
-    assert not bool(ds.contact_lost.sel(case="least_reversal", speed=50.0))
+    assert not bool(ds.contact_lost.sel(case="weight_dominant", speed=50.0))
     assert np.isfinite(ds.chain_E.values).all() and (ds.force_numerical_error.values >= 0.0).all()

@@ -194,7 +194,8 @@ def test_reports_only_load_and_format(name):
     allowed = ("import json", "import textwrap", "import matplotlib.pyplot as plt", "from matplotlib.patches import", "import numpy as np",
                "import pandas as pd", "from _common import", "from linkwork.papers import PAPERS", "from linkwork.papers import CITATIONS",
                # presentation constants: the verdict classes' names and meanings, the clearance paper's words for its code names
-               "from linkwork.pipeline.compare import VERDICT", "from linkwork.papers.clearance.words import")
+               "from linkwork.pipeline.compare import VERDICT", "from linkwork.papers.clearance.words import",
+               "from linkwork.units import")  # unit conversions at the report's boundary
     assert all(line.startswith(allowed) for line in imports), imports
     for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
         assert reduction not in text, f"reports/{name}.py computes {reduction}"

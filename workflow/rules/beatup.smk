@@ -33,6 +33,7 @@ rule beatup_window:
 
 
 rule beatup_sley_pin:
+    priority: LONG_JOB_PRIORITY
     input:
         code=code("linkwork.papers.beatup.sley_pin"),
     output:

@@ -49,6 +49,8 @@ rule heald_compare:
 
 
 rule heald_contact:
+    # one job of about a minute that the heald report waits for: among the first to start, not alone at the end
+    priority: CHAIN_HEAD_PRIORITY
     input:
         code=code("linkwork.papers.heald.contact"),
     output:

@@ -29,7 +29,7 @@ from ...engines.multibody.linkage import Body, Clearance, Driver, Joint, Linkage
 from ...engines.multibody.simulate import Run
 from ...engines.states import settle
 from ...units import RAD_S_PER_RPM, STANDARD_GRAVITY
-from .adapter import drive_ratio, parameters
+from .adapter import DRIVE_RATIO, drive_ratio, parameters
 from .dynamics import cam_harmonics, harmonic_transfer, periodic_peaks
 
 #: Model A's masses carried by each body of the linkage, at its named points.
@@ -115,15 +115,22 @@ def case_parameters(p: Mapping[str, float], ranges: Mapping[str, tuple[float, fl
     return {**p, **{k: float(ranges[k][0 if end == "low" else 1]) for k, end in case.items()}}
 
 
-def reversal_margin(p: Mapping[str, float], cam: Mapping[str, Any]) -> float:
-    """Quasi-static check (closed form, small rotations): the warp's largest pull on the frame, k_O eta7 max|x_D|, over
-    the weight the bell cranks hold up at G and K (the frame, the rods GH and KL, the masses at G and K).  Above 1 the
-    load at E and F changes sign within a cycle at any speed, so the journals must cross their clearances."""
+def reversal_loads(p: Mapping[str, float], cam: Mapping[str, Any]) -> tuple[float, float]:
+    """Quasi-static check (closed form, small rotations, the warp unstretched at the cam's mean position): (the warp's
+    largest pull on the frame k_O eta7 max|x_D|, the weight the bell cranks hold up at G and K: the frame, the rods GH
+    and KL, the masses at G and K), N.  When the pull exceeds the weight, the load at E and F along the drive changes
+    sign within a cycle at any speed, so the journals must cross their clearances."""
     c = drive_coefficients(cam, p["stroke_D"])
     theta = 2 * np.pi * np.arange(cam["samples"]) / cam["samples"]
     x = np.real(np.exp(1j * np.outer(theta, np.arange(1, c.size + 1))) @ c)
     weight = STANDARD_GRAVITY * (p["M_P"] + p["m_H9"] + p["m_L10"] + p["M_G"] + p["M_K"])
-    return float(p["k_O"] * p["eta7"] * np.abs(x).max() / weight)
+    return float(p["k_O"] * p["eta7"] * np.abs(x).max()), float(weight)
+
+
+def reversal_margin(p: Mapping[str, float], cam: Mapping[str, Any]) -> float:
+    """The warp's largest pull over the weight held up (``reversal_loads``); above 1 the load reverses at any speed."""
+    pull, weight = reversal_loads(p, cam)
+    return pull / weight
 
 
 class _Cycles:
@@ -184,7 +191,7 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     margins, forces = [], np.empty((*shape, per + 1, 2))
     for i, name in enumerate(names):
         p = case_parameters(base, ranges, cfg["cases"][name])
-        margins.append(reversal_margin(p, cam))
+        margins.append((*reversal_loads(p, cam), p["eta7"], p["eta8"]))
         coefficients = drive_coefficients(cam, p["stroke_D"])
         chain_e, chain_f = periodic_peaks(harmonic_transfer("A", p, w, cam["harmonics"]), coefficients, cam["samples"])
         out["chain_E"][i], out["chain_F"][i] = chain_e, chain_f
@@ -214,7 +221,11 @@ def first_loss(rpm: np.ndarray, lost: np.ndarray) -> tuple[float, float]:
 def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -> xr.Dataset:
     dims = ("case", "speed")
     lost = (out["flight_E"] > 0.0) | (out["flight_F"] > 0.0)
-    brackets = np.array([first_loss(rpm, row) for row in lost])
+    # the linkage sees only the drive frequency: at another drive scenario the same states fall at shaft speeds scaled
+    # by the ratio of the two drive ratios
+    scale = np.array([ratio / r for r in DRIVE_RATIO.values()])
+    brackets = np.array([first_loss(rpm, row) for row in lost])[:, :, None] * scale
+    pull, weight, eta7, eta8 = np.array(margins).T
     units = {"flight": ("1", "largest fraction of a judged cycle in which the journal at {j} is in free flight (no contact)"),
              "gap": ("m", "largest separation of the journal at {j} from its bearing's wall over the judged cycles"),
              "force": ("N", "largest dry contact force at {j} over the judged cycles")}
@@ -233,15 +244,19 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
         "state_status": (dims, status.astype(str), {"units": "1", "long_name": "the settled state's status"}),
         "state_period": (dims, periods, {"units": "1", "long_name": "period of the settled state in cycles (0: not periodic)"}),
         "cycles_run": (dims, cycles, {"units": "1", "long_name": "drive cycles integrated"}),
-        "reversal_margin": ("case", margins, {"units": "1", "long_name": "warp's largest pull on the frame over the weight the bell cranks hold (closed form; above 1 the load at E and F reverses at any speed)"}),
-        "held_up_to_rpm": ("case", brackets[:, 0], {"units": "rev/min", "long_name": "highest speed simulated below the first with contact lost",
-                                                    "nan_meaning": "contact is lost already at the lowest speed simulated"}),
-        "first_lost_rpm": ("case", brackets[:, 1], {"units": "rev/min", "long_name": "lowest speed simulated with contact lost",
-                                                    "nan_meaning": "contact holds at every speed simulated"}),
+        "warp_pull": ("case", pull, {"units": "N", "long_name": "the warp's largest pull on the frame, k_O eta7 max|x_D| (closed form, quasi-static, the warp unstretched at the cam's mean position)"}),
+        "weight_held": ("case", weight, {"units": "N", "long_name": "the weight the bell cranks hold up at G and K (the frame, rods GH and KL, the masses at G and K)"}),
+        "reversal_margin": ("case", pull / weight, {"units": "1", "long_name": "warp's largest pull on the frame over the weight held up (above 1 the load at E and F reverses at any speed)"}),
+        "weight_share": (("case", "joint"), np.stack([weight * eta7, weight * eta8], axis=-1) / 2, {"units": "N", "long_name": "the held weight's static share at each joint along the drive (weight times its lever ratio over two)"}),
+        "held_up_to_rpm": (("case", "drive"), brackets[:, 0], {"units": "rev/min", "long_name": "highest shaft speed simulated below the first with contact lost, per drive scenario",
+                                                               "nan_meaning": "contact is lost already at the lowest speed simulated"}),
+        "first_lost_rpm": (("case", "drive"), brackets[:, 1], {"units": "rev/min", "long_name": "lowest shaft speed simulated with contact lost, per drive scenario",
+                                                               "nan_meaning": "contact holds at every speed simulated"}),
         "contact_force": (("case", "speed", "cycle_point", "joint"), forces, {"units": "N", "long_name": "dry contact force over the last judged cycle"}),
     })
     coords = {"case": ("case", names, {"units": "1", "long_name": "named case of the assumed parameters"}),
               "speed": ("speed", rpm, {"units": "rev/min", "long_name": "main-shaft speed"}),
               "cycle_point": ("cycle_point", np.linspace(0.0, 360.0, forces.shape[2]), {"units": "deg", "long_name": "drive angle over a cycle"}),
-              "joint": ("joint", ["E", "F"], {"units": "1", "long_name": "clearance joint"})}
+              "joint": ("joint", ["E", "F"], {"units": "1", "long_name": "clearance joint"}),
+              "drive": ("drive", list(DRIVE_RATIO), {"units": "1", "long_name": "drive-frequency scenario (heald.drive.frequency's choices)"})}
     return xr.Dataset(data, coords=coords, attrs={"drive_ratio": float(ratio), "title": "Heald linkage with clearance joints at E and F"})
