@@ -26,6 +26,7 @@ import xarray as xr
 from ...configformat import labelled
 from ...engines.multibody import assembly
 from ...engines.multibody.linkage import Body, Clearance, Driver, Joint, Linkage, Spring
+from ...engines.multibody.model import DIAG_FIXED, DIAG_PER_JOINT
 from ...engines.multibody.simulate import Run
 from ...engines.states import settle
 from ...units import RAD_S_PER_RPM, STANDARD_GRAVITY
@@ -34,6 +35,9 @@ from .dynamics import cam_harmonics, harmonic_transfer, periodic_peaks
 
 #: Model A's masses carried by each body of the linkage, at its named points.
 LUMPED = {"rod": {"D": "m_D", "E": "m_E6", "F": "m_F6"}, "crank7": {"E": "m_E7", "G": "M_G"}, "crank8": {"F": "m_F8", "K": "M_K"}}
+#: Diagnostic columns of the clearance joints E and F (``model``: per joint e, delta, delta', dry normal force, ...).
+PENETRATION = [DIAG_FIXED + DIAG_PER_JOINT * k + 1 for k in range(2)]
+CONTACT_FORCE = [DIAG_FIXED + DIAG_PER_JOINT * k + 3 for k in range(2)]
 #: The judged measures per cycle, in order.
 MEASURES = ("flight_E", "flight_F", "gap_E", "gap_F", "force_E", "force_F")
 
@@ -151,8 +155,8 @@ class _Cycles:
             pts.append((assembly.journal_offsets(self.lk, self.run.y) / self.scale).ravel())
             t = self.run.t + np.arange(self.per + 1) * self.lk.driver.period / self.per
             _, diags = self.run.advance(t)
-            pen = diags[:, [5, 11]]  # penetration at E and F (m)
-            force = diags[:, [7, 13]]  # dry contact force at E and F (N)
+            pen = diags[:, PENETRATION]  # penetration at E and F (m)
+            force = diags[:, CONTACT_FORCE]  # dry contact force at E and F (N)
             self.forces.append(force)
             measures.append([*np.mean(pen <= 0.0, axis=0), *np.maximum(0.0, -pen.min(axis=0)), *force.max(axis=0)])
         return np.array(pts), np.array(measures)
@@ -198,8 +202,8 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
         for j, wj in enumerate(w):
             s = _settled(linkage(cfg, cam, p, ratio * wj), cfg, per)
             status[i, j], periods[i, j], cycles[i, j] = s["status"], s["period"], s["cycles"]
-            for k, key in enumerate(MEASURES):
-                out[key][i, j] = s["max"][k] if key.startswith(("flight", "gap", "force")) else s["mean"][k]
+            for k, key in enumerate(MEASURES):  # the largest over the judged cycles
+                out[key][i, j] = s["max"][k]
             out["force_E_mean"][i, j], out["force_F_mean"][i, j] = s["mean"][4], s["mean"][5]
             out["force_numerical"][i, j] = s["numerical"][4:6].max()
             forces[i, j] = s["force"]
