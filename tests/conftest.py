@@ -39,6 +39,41 @@ def expect_config_error(config, schema, *fragments):
         assert fragment in str(info.value), str(info.value)
 
 
+def assert_rhs_solves_the_numpy_equations(linkage, gravity: bool, times, position_noise: float, rate_noise: float, seed: int,
+                                          states: int = 10, driver_row: int | None = None) -> None:
+    """At perturbed states of a linkage (random times in ``times``): the compiled right-hand side's accelerations satisfy
+    M q'' = g - Phi_q^T lam and Phi_q q'' = gamma - 2 a Phi' - b^2 Phi, with Phi, Phi_q, gamma and g (gravity, springs)
+    written independently in numpy (``engines.multibody.assembly``); with ``driver_row``, the driver's power is
+    -lam[driver_row] times the driven body's rate."""
+    import numpy as np
+
+    from linkwork.engines.multibody import assembly
+    from linkwork.engines.multibody.model import compile_scene, pack
+
+    module = compile_scene(linkage, gravity)
+    params, _ = pack(linkage)
+    rng = np.random.default_rng(seed)
+    y0 = assembly.start_state(linkage)
+    nq = linkage.n_coordinates
+    mass = assembly.mass_vector(linkage)
+    driven = 3 * linkage.body_index(linkage.driver.body) + 2
+    for _ in range(states):
+        y = y0 + np.r_[rng.normal(0, position_noise, nq), rng.normal(0, rate_noise, nq), 0.0]
+        t = rng.uniform(*times)
+        out = module.rhs(t, y, params, np.zeros(1), np.zeros(4, dtype=np.int64), np.zeros(module.N_DIAG))
+        q, qd, qdd = y[None, :nq], y[None, nq : 2 * nq], out[nq : 2 * nq]
+        phi, jac, nu = assembly.constraints(linkage, q, np.array([t]))
+        gamma = assembly.gamma_of(linkage, q, qd, np.array([t]))[0]
+        rate = jac[0] @ qd[0] - nu[0]
+        b = linkage.baumgarte
+        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-8, atol=1e-8 * np.abs(gamma).max())
+        g = assembly.applied_forces(linkage, q, gravity, qd)[0][0]
+        lam = np.linalg.lstsq(jac[0].T, g - mass * qdd, rcond=None)[0]
+        assert np.allclose(jac[0].T @ lam, g - mass * qdd, atol=1e-8 * max(np.abs(mass * qdd).max(), np.abs(g).max()))
+        if driver_row is not None:
+            assert out[2 * nq] == pytest.approx(-lam[driver_row] * qd[0, driven], rel=1e-8)
+
+
 # One line per hard case, printed at the end of every test run: what was pushed, which invariant held.
 HARD_CASES = {
     "test_change_point_linkage_passes_its_singular_position": ("four-bar with s + l = p + q through its collinear position", "loop closure <= 1e-12, rates flagged NaN only there"),

@@ -10,10 +10,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from conftest import load_yaml
+from conftest import assert_rhs_solves_the_numpy_equations, load_yaml
 from linkwork.configformat import DESIGN_FIELDS, narrow
 from linkwork.engines.multibody import assembly
-from linkwork.engines.multibody.model import compile_scene, pack
 from linkwork.papers.heald import contact
 from linkwork.papers.heald.adapter import parameters
 from linkwork.units import RAD_S_PER_RPM
@@ -49,25 +48,7 @@ def test_the_compiled_right_hand_side_with_springs_and_a_rocking_driver_solves_t
     """At perturbed states, the compiled q'' satisfies M q'' = g - Phi_q^T lambda and the Baumgarte-stabilised
     constraint rows, with Phi, Phi_q, gamma and g (gravity and the warp spring-damper) from numpy."""
     lk = _ideal(400.0)
-    module = compile_scene(lk, True)
-    params, _ = pack(lk)
-    rng = np.random.default_rng(4)
-    y0 = assembly.start_state(lk)
-    nq = lk.n_coordinates
-    mass = assembly.mass_vector(lk)
-    for _ in range(10):
-        y = y0 + np.r_[rng.normal(0, 1e-5, nq), rng.normal(0, 0.3, nq), 0.0]
-        t = rng.uniform(0.0, lk.driver.period)
-        out = module.rhs(t, y, params, np.zeros(1), np.zeros(4, dtype=np.int64), np.zeros(module.N_DIAG))
-        q, qd, qdd = y[None, :nq], y[None, nq : 2 * nq], out[nq : 2 * nq]
-        phi, jac, nu = assembly.constraints(lk, q, np.array([t]))
-        gamma = assembly.gamma_of(lk, q, qd, np.array([t]))[0]
-        b = lk.baumgarte
-        rate = jac[0] @ qd[0] - nu[0]
-        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-8, atol=1e-8 * np.abs(gamma).max())
-        g = assembly.applied_forces(lk, q, True, qd)[0][0]
-        lam = np.linalg.lstsq(jac[0].T, g - mass * qdd, rcond=None)[0]
-        assert np.allclose(jac[0].T @ lam, g - mass * qdd, atol=1e-7 * np.abs(g).max())
+    assert_rhs_solves_the_numpy_equations(lk, True, (0.0, lk.driver.period), 1e-5, 0.3, seed=4)
 
 
 def test_the_closed_form_reversal_margin_separates_the_two_cases():

@@ -14,11 +14,11 @@ import copy
 import numpy as np
 import pytest
 import yaml
+from conftest import assert_rhs_solves_the_numpy_equations
 
 from linkwork.engines.kinematics import Chain, Dyad, solve_chain
 from linkwork.engines.multibody import assembly, describe
 from linkwork.engines.multibody.linkage import LinkageError
-from linkwork.engines.multibody.model import compile_scene, pack
 from linkwork.engines.multibody.simulate import integrate
 
 #: A Watt six-bar with a bell crank: crank O2-A, coupler A-B, bell crank O4-B-C, link C-D, rocker O6-D (SI, degrees).
@@ -137,27 +137,10 @@ def test_a_driver_given_as_a_fourier_series_moves_the_crank_so():
 
 def test_the_generated_right_hand_side_solves_the_assemblys_equations():
     """At random states of the six-bar: the compiled right-hand side's accelerations satisfy M q'' = g - Phi_q^T lam and
-    Phi_q q'' = gamma - 2 a Phi' - b^2 Phi with Phi_q, Phi, gamma written independently in numpy (``assembly``)."""
+    Phi_q q'' = gamma - 2 a Phi' - b^2 Phi with Phi_q, Phi, gamma written independently in numpy (``assembly``); the
+    driver's power follows its row (the third: after the crank's pin)."""
     linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
-    module = compile_scene(linkage, True)
-    params, _ = pack(linkage)
-    rng = np.random.default_rng(5)
-    y0 = assembly.start_state(linkage)
-    nq = linkage.n_coordinates
-    mass = assembly.mass_vector(linkage)
-    for _ in range(20):
-        y = y0 + np.r_[rng.normal(0, 1e-4, nq), rng.normal(0, 0.5, nq), 0.0]
-        t = rng.uniform(0.0, 0.3)
-        out = module.rhs(t, y, params, np.zeros(1), np.zeros(4, dtype=np.int64), np.zeros(module.N_DIAG))
-        q, qd, qdd = y[None, :nq], y[None, nq : 2 * nq], out[nq : 2 * nq]
-        phi, jac, nu = assembly.constraints(linkage, q, np.array([t]))
-        gamma = assembly.gamma_of(linkage, q, qd, np.array([t]))[0]
-        rate = jac[0] @ qd[0] - nu[0]
-        b = linkage.baumgarte
-        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-9, atol=1e-9 * np.abs(gamma).max())
-        lam = np.linalg.lstsq(jac[0].T, assembly.applied_forces(linkage, q, True)[0][0] - mass * qdd, rcond=None)[0]
-        assert np.allclose(jac[0].T @ lam, assembly.applied_forces(linkage, q, True)[0][0] - mass * qdd, atol=1e-8 * np.abs(mass * qdd).max())
-        assert out[2 * nq] == pytest.approx(-lam[2] * qd[0, 2], rel=1e-8)  # the driver's power: its row follows the crank's pin
+    assert_rhs_solves_the_numpy_equations(linkage, True, (0.0, 0.3), 1e-4, 0.5, seed=5, states=20, driver_row=2)
 
 
 def _edit(path: str, value):

@@ -79,16 +79,21 @@ def driver(q, qd, t, body, phi0, omega, row, phi, phiq, gamma, phidot):
 
 
 @njit(cache=True)
-def driver_series(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phidot):
-    """Row row: phi_body = phi0 + omega t + sum_k (a[k-1] cos(k omega t) + b[k-1] sin(k omega t)) (rad; a given
-    periodic motion of the driven body as a Fourier series of the mean speed omega, rad/s)."""
-    theta, rate, accel = phi0 + omega * t, omega, 0.0
+def fourier_series(t, omega, a, b):
+    """sum_k (a[k-1] cos(k omega t) + b[k-1] sin(k omega t)) (rad) and its first and second time derivatives."""
+    theta, rate, accel = 0.0, 0.0, 0.0
     for k in range(a.size):
         kw = (k + 1) * omega
         c, s = np.cos(kw * t), np.sin(kw * t)
         theta += a[k] * c + b[k] * s
         rate += kw * (b[k] * c - a[k] * s)
         accel -= kw * kw * (a[k] * c + b[k] * s)
+    return theta, rate, accel
+
+
+@njit(cache=True)
+def angle_row(q, qd, body, theta, rate, accel, row, phi, phiq, gamma, phidot):
+    """Row row: the driven body's angle phi_body = theta (rad) at the rate (rad/s) and acceleration (rad/s^2) given."""
     phiq[row, 3 * body + 2] = 1.0
     gamma[row] = accel
     phi[row] = q[3 * body + 2] - theta
@@ -96,20 +101,19 @@ def driver_series(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phid
 
 
 @njit(cache=True)
+def driver_series(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phidot):
+    """Row row: phi_body = phi0 + omega t + the Fourier series of the mean speed omega (rad/s; a given periodic
+    motion of the driven body)."""
+    s, sd, sdd = fourier_series(t, omega, a, b)
+    angle_row(q, qd, body, phi0 + omega * t + s, omega + sd, sdd, row, phi, phiq, gamma, phidot)
+
+
+@njit(cache=True)
 def driver_rocking(q, qd, t, body, phi0, omega, a, b, row, phi, phiq, gamma, phidot):
-    """Row row: phi_body = phi0 + sum_k (a[k-1] cos(k omega t) + b[k-1] sin(k omega t)) (rad): a body rocked by a
-    given periodic motion of frequency omega (rad/s), with no mean turning (a cam-driven lever)."""
-    theta, rate, accel = phi0, 0.0, 0.0
-    for k in range(a.size):
-        kw = (k + 1) * omega
-        c, s = np.cos(kw * t), np.sin(kw * t)
-        theta += a[k] * c + b[k] * s
-        rate += kw * (b[k] * c - a[k] * s)
-        accel -= kw * kw * (a[k] * c + b[k] * s)
-    phiq[row, 3 * body + 2] = 1.0
-    gamma[row] = accel
-    phi[row] = q[3 * body + 2] - theta
-    phidot[row] = qd[3 * body + 2] - rate
+    """Row row: phi_body = phi0 + the Fourier series of frequency omega (rad/s): a body rocked by a given periodic
+    motion with no mean turning (a cam-driven lever)."""
+    s, sd, sdd = fourier_series(t, omega, a, b)
+    angle_row(q, qd, body, phi0 + s, sd, sdd, row, phi, phiq, gamma, phidot)
 
 
 @njit(cache=True)
