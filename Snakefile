@@ -9,16 +9,21 @@ min_version("9.0")
 
 sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
-from linkwork.pipeline.validate import load_yaml, merge_overrides, validate_once  # noqa: E402
+from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
-# --config/--configfile values override it, then validate everything before any job: schema (types,
-# ranges, unknown keys) and each paper's physical checks.  Errors are one line per problem.  A config
-# that passed with the same schema and checking code is not checked again (.snakemake/linkwork-validated).
+# --config/--configfile values override it (--config's text read as the numbers the schema asks for; a --configfile
+# read again for duplicate keys), then validate everything before any job: schema (types,
+# ranges, unknown keys), each paper's physical checks and the published-numbers files (config/published.schema.yaml).
+# Errors are one line per problem.  A config that passed with the same schema, published files and checking code is
+# not checked again (.snakemake/linkwork-validated).
 _root = Path(workflow.basedir)
 try:
+    coerce_overrides(config, workflow.config_settings.config, load_yaml(_root / "config" / "schema.yaml"))
+    for _file in workflow.config_settings.configfiles:  # Snakemake keeps a duplicated key's last value: refuse it, with its line
+        load_yaml(_file)
     merge_overrides(config, load_yaml(_root / "config" / "config.yaml"))
-    validate_once(config, _root / "config" / "schema.yaml", _root / "lib", _root / ".snakemake" / "linkwork-validated")
+    validate_once(config, _root / "config" / "schema.yaml", _root / "lib", _root / ".snakemake" / "linkwork-validated", _root / "config" / "published")
 except ConfigError as exc:
     sys.exit(f"linkwork: {exc}")
 

@@ -9,6 +9,7 @@ acceptance).  A sample of the rows also goes through ``snakemake -n`` on a copy 
 
 from __future__ import annotations
 
+import copy
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -16,8 +17,10 @@ import pytest
 
 from test_workflow import copy_project, snakemake
 
+from linkwork.papers import PAPERS
 from linkwork.pipeline.errors import ConfigError
-from linkwork.pipeline.validate import load_yaml, validate_config
+from linkwork.pipeline.published import check_published
+from linkwork.pipeline.validate import load_yaml, published_schema, validate_config
 
 PROJECT = Path(__file__).resolve().parents[1]
 CONFIG_TEXT = (PROJECT / "config" / "config.yaml").read_text(encoding="utf-8")
@@ -103,6 +106,10 @@ CASES = [
     ("bool-for-number", "restitution: 0.9", "restitution: true", ["clearance.joints.restitution", "True"]),
     ("python-tag", "restitution: 0.9", "restitution: !!python/object/apply:os.system ['true']", ["line", "not valid YAML"]),
     ("empty-scenes", "  scenes:\n    ideal:", "  scenes: {}\n  unused:\n    ideal:", ["clearance"]),
+    # YAML 1.1 surprises (PyYAML reads 0720 as octal 464 and 5:00 as 300 in base 60), and an alias bomb (10^7 entries)
+    ("yaml11-octal", "    points_per_cycle: 720\n", "    points_per_cycle: 0720\n", ["line 183", "heald.contact.points_per_cycle", "0720", "464"]),
+    ("yaml11-base-60", "crank_speed_rpm: 300.0", "crank_speed_rpm: 5:00", ["transplanter.crank_speed_rpm", "5:00", "300"]),
+    ("yaml-alias-bomb", "\nsweeps:\n", "\nbomb:\n  a: &a [1, 1, 1, 1, 1, 1, 1, 1, 1, 1]\n  b: &b [*a, *a, *a, *a, *a, *a, *a, *a, *a, *a]\n  c: &c [*b, *b, *b, *b, *b, *b, *b, *b, *b, *b]\n  d: &d [*c, *c, *c, *c, *c, *c, *c, *c, *c, *c]\n  e: &e [*d, *d, *d, *d, *d, *d, *d, *d, *d, *d]\n  f: &f [*e, *e, *e, *e, *e, *e, *e, *e, *e, *e]\n  g: &g [*f, *f, *f, *f, *f, *f, *f, *f, *f, *f]\nsweeps:\n", ["config.yaml", "entries", "size guard"]),
     # a linkage of your own (config linkages): bad descriptions stop before any job with the key named
     ("linkage-unknown-point", "C: {journal: bellcrank.C, bearing: link.C}", "C: {journal: bellcrank.C, bearing: link.X}",
      ["linkages.watt_six_bar_worn_pin.linkage.joints.C.bearing", "unknown point 'X'"]),
@@ -127,6 +134,61 @@ CASES = [
     ("heald-contact-arm-too-short", "D_to_E: 0.3, E_to_F: 1.2, arm_E: 0.1,", "D_to_E: 0.3, E_to_F: 1.2, arm_E: 0.01,",
      ["heald.contact", "does not assemble"]),
 ]
+
+
+# The published-numbers files (config/published/<paper>.yaml), validated like the config before any job:
+# (id, paper, old text, new text, fragments the message must contain)
+PUBLISHED_CASES = [
+    ("published-negative-tolerance", "stiffness", "tolerance: {abs: 5.0e+3}", "tolerance: {abs: -5.0e+3}",
+     ["stiffness.yaml, quantities.0.tolerance.abs", "-5000.0"]),
+    ("published-nan-tolerance", "stiffness", "tolerance: {abs: 5.0e+3}", "tolerance: {abs: .nan}",
+     ["stiffness.yaml, quantities.0.tolerance.abs", "not a finite number"]),
+    ("published-value-twice", "stiffness", "    value: 3.46e+6\n", "    value: 3.46e+6\n    value: 3.5e+6\n",
+     ["stiffness.yaml, line", "'value' is given twice"]),
+    ("published-tolerance-missing", "stiffness", "    unit: N/m\n    where: \"Sec. 3.2 text; Fig. 7(a)\"\n    tolerance: {abs: 5.0e+3}\n",
+     "    unit: N/m\n    where: \"Sec. 3.2 text; Fig. 7(a)\"\n", ["stiffness.yaml, quantities.0.tolerance", "missing"]),
+    ("published-relation-unknown", "heald", "relation: ge", "relation: gt", ["heald.yaml, quantities", "relation", "'gt'"]),
+    ("published-value-text", "stiffness", "value: 3.46e+6", "value: abc", ["stiffness.yaml, quantities.0.value", "'abc'"]),
+    ("published-id-twice", "stiffness", "id: K_h_min", "id: K_h_max", ["stiffness.yaml, quantities.2", "'K_h_max' is given twice"]),
+    ("published-variable-misspelt", "stiffness", "measure: {variable: K_h, reduce: max", "measure: {variable: K_hh, reduce: max",
+     ["stiffness.yaml, quantities.0 (K_h_max)", "'K_hh'", "RESULT_VARIABLES"]),
+    ("published-paper-other", "stiffness", "paper: stiffness", "paper: beatup", ["stiffness.yaml, paper", "not the file's paper"]),
+    ("published-table-row-short", "beatup", "- [0, 42.45, 0.0403, 0.2289, 65.44, 0.0176, 0.1002]", "- [0, 42.45, 0.0403, 0.2289, 65.44, 0.0176]",
+     ["beatup.yaml, tables.0.rows.0", "6 values", "(7)"]),
+    ("published-unknown-key", "stiffness", "tolerance_source: \"the crank angle", "tolerance_sauce: \"the crank angle",
+     ["stiffness.yaml, quantities.1.tolerance_sauce", "unknown key"]),
+    ("published-reduce-unknown", "stiffness", "reduce: max, dim", "reduce: maximum, dim", ["stiffness.yaml, quantities.0.measure.reduce", "'maximum'"]),
+    ("published-at-without-point", "clearance", "reduce: at, at: {claim: acceleration_order}", "reduce: at",
+     ["clearance.yaml, quantities.0.measure.at: missing"]),
+]
+
+
+def _published_copy(folder: Path, paper: str, old: str, new: str) -> None:
+    """The published files and their schema copied to ``folder``/published with one edit of ``paper``'s file."""
+    target = folder / "published"
+    target.mkdir(parents=True)
+    for name in PAPERS:
+        text = (PROJECT / "config" / "published" / f"{name}.yaml").read_text(encoding="utf-8")
+        if name == paper:
+            assert text.count(old) >= 1, f"fuzz row out of date: {old!r} is not in config/published/{paper}.yaml"
+            text = text.replace(old, new, 1)
+        (target / f"{name}.yaml").write_text(text, encoding="utf-8")
+    (folder / "published.schema.yaml").write_bytes((PROJECT / "config" / "published.schema.yaml").read_bytes())
+
+
+def test_the_published_files_pass():
+    check_published(PROJECT / "config" / "published", published_schema(PROJECT / "config" / "published"), list(PAPERS))
+
+
+@pytest.mark.parametrize(("paper", "old", "new", "fragments"), [c[1:] for c in PUBLISHED_CASES], ids=[c[0] for c in PUBLISHED_CASES])
+def test_bad_published_file_is_refused_naming_the_entry(tmp_path, paper, old, new, fragments):
+    _published_copy(tmp_path, paper, old, new)
+    with pytest.raises(ConfigError) as info:
+        check_published(tmp_path / "published", published_schema(tmp_path / "published"), list(PAPERS))
+    message = str(info.value)
+    for fragment in fragments:
+        assert fragment in message, message
+    assert all(len(line) < 400 for line in message.splitlines()) and "Traceback" not in message, message
 
 
 def _edit(old: str, new: str) -> str:
@@ -154,25 +216,70 @@ def test_bad_config_is_refused_naming_the_key(tmp_path, schema, old, new, fragme
 
 
 @pytest.mark.workflow
+@pytest.mark.parametrize("encoding", ["latin-1", "utf-16"])
+def test_a_config_not_in_utf8_is_refused_naming_the_file(tmp_path, encoding):
+    path = tmp_path / "config.yaml"
+    path.write_bytes(_edit("(Sec. 2)", "(Sec. 2, café)").encode(encoding, errors="replace"))
+    with pytest.raises(ConfigError, match=r"config.yaml: not UTF-8 text \(byte 0x[0-9a-f]{2} at offset \d+\); save the file as UTF-8"):
+        load_yaml(path)
+
+
 def test_snakemake_stops_every_row_before_any_job(tmp_path):
     """Every row through ``snakemake -n`` on its own copy of the project (two at a time): exit non-zero,
     the message names the key in a line starting ``linkwork:``, no job planned, nothing in results/."""
 
     def run(case):
-        name, old, new, fragments = case
+        name, *paper, old, new, fragments = case
         root = copy_project(tmp_path / name)
-        (root / "config" / "config.yaml").write_text(_edit(old, new), encoding="utf-8")
+        if paper:  # a published-numbers file
+            path = root / "config" / "published" / f"{paper[0]}.yaml"
+            path.write_text(path.read_text(encoding="utf-8").replace(old, new, 1), encoding="utf-8")
+        else:
+            (root / "config" / "config.yaml").write_text(_edit(old, new), encoding="utf-8")
         proc = snakemake(root, "-n", check=False)
         return name, root, proc, fragments
 
     with ThreadPoolExecutor(max_workers=2) as pool:
-        runs = list(pool.map(run, CASES))
+        runs = list(pool.map(run, CASES + PUBLISHED_CASES))
     for name, root, proc, fragments in runs:
         message = proc.stdout + proc.stderr
         assert proc.returncode != 0, f"{name}: snakemake accepted the config\n{message[-2000:]}"
         line = next((text for text in message.splitlines() if text.startswith("linkwork: ")), "")
         for fragment in fragments:
             assert fragment in message, f"{name}: {fragment!r} not in\n{message[-2000:]}"
-        assert line and (fragments[0] in line or "invalid config" in line), f"{name}: no one-line message\n{message[-2000:]}"
+        assert line and (fragments[0] in line or "invalid" in line), f"{name}: no one-line message\n{message[-2000:]}"
         assert "Traceback" not in message and "Job stats" not in message, f"{name}\n{message[-2000:]}"
         assert not (root / "results").exists() and not (root / ".snakemake" / "linkwork-validated").exists(), name
+
+
+def test_command_line_text_is_read_as_the_schema_asks(schema):
+    """Snakemake hands nested --config values and ``false`` over as text: they become the schema's numbers and
+    booleans at their keys; text the schema wants as text, or that is no number, stays text (the schema check then
+    names it)."""
+    from linkwork.pipeline.validate import coerce_overrides
+
+    given = {"crosscheck": "false", "clearance": {"numerics": {"points_per_cycle": "360"}, "joints": {"restitution": "0.8"},
+                                                  "scenes": {"dry_1": {"integrator": "explicit"}}},
+             "sweeps": {"clearance": {"small": {"clearance_m": ["1.0e-5", "2e-5"]}}}, "heald": {"contact": {"gravity": "TRUE"}},
+             "transplanter": {"crank_speed_rpm": "fast"}}
+    config = copy.deepcopy(given)
+    coerce_overrides(config, given, schema)
+    assert config["crosscheck"] is False and config["heald"]["contact"]["gravity"] is True
+    assert config["clearance"]["numerics"]["points_per_cycle"] == 360 and isinstance(config["clearance"]["numerics"]["points_per_cycle"], int)
+    assert config["clearance"]["joints"]["restitution"] == 0.8
+    assert config["sweeps"]["clearance"]["small"]["clearance_m"] == [1.0e-5, 2.0e-5]
+    assert config["clearance"]["scenes"]["dry_1"]["integrator"] == "explicit"  # text where the schema wants text
+    assert config["transplanter"]["crank_speed_rpm"] == "fast"  # no number: the schema check names the key
+
+
+@pytest.mark.workflow
+def test_snakemake_reads_nested_overrides_and_refuses_a_configfile_with_a_key_twice(tmp_path):
+    root = copy_project(tmp_path / "project")
+    proc = snakemake(root, "-n", "--config", "clearance={numerics: {points_per_cycle: 360}}", "crosscheck=false")
+    assert "clearance_scene" in proc.stdout, proc.stdout[-2000:]
+    extra = tmp_path / "mine.yaml"
+    extra.write_text("clearance:\n  crank_speed_rad_s: 10.0\n  crank_speed_rad_s: 20.0\n", encoding="utf-8")
+    proc = snakemake(root, "-n", "--configfile", str(extra), check=False)
+    message = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and f"linkwork: {extra}, line 3: config key 'crank_speed_rad_s' is given twice" in message, message[-2000:]
+    assert "Traceback" not in message and not (root / "results").exists()

@@ -173,6 +173,24 @@ def test_a_corrupted_result_names_the_file_and_the_command_that_rebuilds_it(clon
     snakemake(clone, "--cores", "1", "results/reports/stiffness.html")
 
 
+def test_every_variable_a_published_file_may_name_is_written(built):
+    """Each paper's RESULT_VARIABLES (what the published-file validation lets a measure name) is a variable of one of
+    the paper's result files: the validation's list is true."""
+    import importlib
+
+    import xarray as xr
+
+    from linkwork.papers import PAPERS
+
+    for paper in PAPERS:
+        written = set()
+        for path in (built / "results" / paper).glob("*.nc"):
+            with xr.open_dataset(path) as ds:
+                written |= set(ds.variables)
+        declared = importlib.import_module(f"linkwork.papers.{paper}.checks").RESULT_VARIABLES
+        assert declared and declared <= written, (paper, sorted(declared - written))
+
+
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel

@@ -43,16 +43,75 @@ def _construct_mapping(loader, node, deep=False):
 _UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
 
 
+#: A YAML file expands to at most this many entries (mappings, lists and scalars, aliases expanded): a bound on the
+#: time and memory a file of a few lines can ask for (an alias bomb); config/config.yaml holds a few thousand.
+YAML_ENTRIES_LIMIT = 1_000_000
+#: Scalars YAML 1.1 (PyYAML) reads as numbers that YAML 1.2 and a reader do not: a leading zero (octal, 0720 -> 464),
+#: base 60 (5:00 -> 300) and binary (0b101 -> 5).
+_YAML11_NUMBER = re.compile(r"^[-+]?(0[0-7_]+|0b[01_]+|[0-9][0-9_]*(:[0-5]?[0-9])+(\.[0-9_]*)?)$")
+_NUMBER_TAGS = ("tag:yaml.org,2002:int", "tag:yaml.org,2002:float")
+
+
+def _expanded_size(node, memo: dict) -> int:
+    """Entries of a YAML node with every alias expanded, counted without expanding (shared nodes memoised)."""
+    key = id(node)
+    if key not in memo:
+        memo[key] = 1  # a recursive alias counts once
+        if isinstance(node, yaml.MappingNode):
+            memo[key] = 1 + sum(_expanded_size(k, memo) + _expanded_size(v, memo) for k, v in node.value)
+        elif isinstance(node, yaml.SequenceNode):
+            memo[key] = 1 + sum(_expanded_size(v, memo) for v in node.value)
+    return memo[key]
+
+
+def _yaml11_surprise(node, path: tuple = (), seen: set | None = None) -> tuple[tuple, Any] | None:
+    """The first scalar (its key path and node) that YAML 1.1 reads as a number where YAML 1.2 would not."""
+    seen = set() if seen is None else seen
+    if id(node) in seen:
+        return None
+    seen.add(id(node))
+    if isinstance(node, yaml.ScalarNode):
+        return (path, node) if node.tag in _NUMBER_TAGS and not node.style and _YAML11_NUMBER.match(node.value) else None
+    children = [(k.value if isinstance(k, yaml.ScalarNode) else "?", v) for k, v in node.value] if isinstance(node, yaml.MappingNode) \
+        else list(enumerate(node.value)) if isinstance(node, yaml.SequenceNode) else []
+    for name, child in children:
+        found = _yaml11_surprise(child, (*path, name), seen)
+        if found:
+            return found
+    return None
+
+
 def load_yaml(path: str | Path) -> Any:
-    """Parse a YAML file; syntax errors and duplicate keys become one-line ConfigErrors with file and line."""
+    """Parse a YAML file; syntax errors, duplicate keys, numbers YAML 1.1 reads unlike YAML 1.2 (0720 as octal, 5:00 in
+    base 60) and a file expanding to more than ``YAML_ENTRIES_LIMIT`` entries become one-line ConfigErrors with file
+    and line."""
     path = Path(path)
     try:
         with open(path, encoding="utf-8") as fh:
-            return yaml.load(fh, Loader=_UniqueKeyLoader)  # noqa: S506 (a safe loader)
+            loader = _UniqueKeyLoader(fh)
+            try:
+                node = loader.get_single_node()
+                if node is None:
+                    return None
+                size = _expanded_size(node, {})
+                if size > YAML_ENTRIES_LIMIT:
+                    raise ConfigError(f"{path}: expands to {size:.3g} entries (aliases expanded), more than the size guard {YAML_ENTRIES_LIMIT} "
+                                      "(raise YAML_ENTRIES_LIMIT in lib/linkwork/pipeline/validate.py for a larger file)")
+                surprise = _yaml11_surprise(node)
+                if surprise:
+                    where, scalar = surprise
+                    read = loader.construct_object(scalar)
+                    raise ConfigError(f"{path}, line {scalar.start_mark.line + 1}: config key {_key(where)}: value {scalar.value} would be read as {read!r} "
+                                      "(YAML 1.1: a leading zero is octal, a colon base 60, 0b binary); write the number plainly, or quote it for text")
+                return loader.construct_document(node)
+            finally:
+                loader.dispose()
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f"{path}, line {mark.line + 1}, column {mark.column + 1}" if mark else str(path)
         raise ConfigError(f"{where}: not valid YAML ({exc.problem or exc.context})") from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError(f"{path}: not UTF-8 text (byte {exc.object[exc.start]:#04x} at offset {exc.start}); save the file as UTF-8") from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot be read ({exc.strerror})") from None
 
@@ -217,6 +276,65 @@ def check_linkages(linkages: Mapping[str, Any]) -> None:
         raise ConfigError("invalid config:\n  " + "\n  ".join(problems))
 
 
+def _schema_at(schema: Mapping[str, Any], path: tuple) -> Mapping[str, Any] | None:
+    """The schema node that governs the config value at ``path`` (None where the schema says nothing)."""
+    node = _resolve(schema, schema)
+    for part in path:
+        if not isinstance(node, Mapping):
+            return None
+        if isinstance(part, int):
+            node = node.get("items")
+        elif part in node.get("properties", {}):
+            node = node["properties"][part]
+        else:
+            node = node.get("additionalProperties")
+        node = _resolve(schema, node) if isinstance(node, Mapping) else None
+    return node
+
+
+def _types(node: Mapping[str, Any] | None) -> set[str]:
+    if not isinstance(node, Mapping):
+        return set()
+    kind = node.get("type", [])
+    return {kind} if isinstance(kind, str) else set(kind)
+
+
+def _from_text(text: str, types: set[str]) -> Any:
+    """A command-line string read as the number or boolean the schema asks for (YAML 1.2's forms); else unchanged."""
+    word = text.strip()
+    if "boolean" in types and word.lower() in ("true", "false"):
+        return word.lower() == "true"
+    if types & {"number", "integer"}:
+        try:
+            return int(word)
+        except ValueError:
+            pass
+        try:
+            return float(word)
+        except ValueError:
+            pass
+    return text
+
+
+def coerce_overrides(config: dict[str, Any], overrides: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
+    """Read the strings of ``--config`` (``overrides``; Snakemake reads nested values and ``false`` as text) as the
+    numbers and booleans the schema asks for at their keys, in ``config`` (in place).  A string the schema does not
+    want as text and that is no number stays text: the schema check then names its key."""
+
+    def walk(node: Any, target: Any, path: tuple) -> None:
+        items = node.items() if isinstance(node, Mapping) else enumerate(node) if isinstance(node, list) else []
+        for key, value in items:
+            here = (*path, key)
+            if isinstance(value, str):
+                types = _types(_schema_at(schema, here))
+                if types and "string" not in types:
+                    target[key] = _from_text(value, types)
+            else:
+                walk(value, target[key], here)
+
+    walk(overrides, config, ())
+
+
 def merge_overrides(config: dict[str, Any], base: Mapping[str, Any]) -> None:
     """Make ``config`` the file's values ``base`` with the values already in ``config`` (from --config or
     --configfile) laid over them, key by key (in place)."""
@@ -231,8 +349,9 @@ def merge_overrides(config: dict[str, Any], base: Mapping[str, Any]) -> None:
     config.update(merged(dict(base), overrides))
 
 
-def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path) -> str:
-    """sha256 of what a validation depends on: the config, the schema file and the validating code."""
+def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path, published: Path | None = None) -> str:
+    """sha256 of what a validation depends on: the config, the schema file, the validating code and (``published``: the
+    folder of the published-numbers files) those files with their schema."""
     import hashlib
     import json
 
@@ -241,20 +360,33 @@ def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path) -> s
     digest = hashlib.sha256(json.dumps(config, default=str).encode())  # in file order: keys may not be comparable
     digest.update(Path(schema_path).read_bytes())
     checks = tuple(f"linkwork.papers.{p}.checks" for p in PAPERS)
-    for file in closure("linkwork.pipeline.validate", lib, extra=checks):
+    for file in closure("linkwork.pipeline.validate", lib, extra=(*checks, "linkwork.pipeline.published")):
         digest.update(str(file).encode() + b"\0" + Path(file).read_bytes())
+    if published is not None:
+        for file in [published_schema(published), *(Path(published) / f"{p}.yaml" for p in PAPERS)]:
+            digest.update(str(file).encode() + b"\0" + (file.read_bytes() if file.is_file() else b"missing"))
     return digest.hexdigest()
 
 
-def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path) -> None:
-    """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key).
+def published_schema(published: Path) -> Path:
+    """The schema of the published-numbers files in the folder ``published`` (config/published.schema.yaml)."""
+    return Path(published).parent / "published.schema.yaml"
 
-    A passed validation is remembered so that a no-op run stays fast; any change to the three runs it again.
+
+def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path, published: Path | None = None) -> None:
+    """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key);
+    ``published``: the folder of the papers' published-numbers files, validated too (``linkwork.pipeline.published``).
+
+    A passed validation is remembered so that a no-op run stays fast; any change to what it read runs it again.
     """
-    key = validation_key(config, schema_path, lib)
+    key = validation_key(config, schema_path, lib, published)
     if stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == key:
         return
     validate_config(config, load_yaml(schema_path))
+    if published is not None:
+        from .published import check_published
+
+        check_published(published, published_schema(published), [p for p in PAPERS if p in config])
     stamp.parent.mkdir(parents=True, exist_ok=True)
     tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
     tmp.write_text(key + "\n", encoding="utf-8")

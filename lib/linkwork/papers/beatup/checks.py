@@ -13,6 +13,10 @@ from ...units import angle_grid_deg, divides_turn
 from .adapter import four_bar_beatup, six_bar
 from .model import sley_motion
 
+#: The result variables a published-numbers file's measures may name: what the comparison reads from
+#: results/beatup/sixbar.nc and window.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
+RESULT_VARIABLES = frozenset({"accel_peak", "front_dead_centre", "rate_peak_1", "rate_peak_2", "span_front_to_back", "swing", "theta3", "theta3_accel", "theta3_rate", "theta6", "theta6_accel", "theta6_rate"})
+
 
 def check(section: Mapping[str, Any], key: str = "beatup") -> None:
     """Both six-bars (printed and scaled crank) and every swept four-bar turn fully; each printed_rounding is half a

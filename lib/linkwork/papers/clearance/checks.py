@@ -10,6 +10,10 @@ import numpy as np
 from ...engines.kinematics import FourBar, four_bar
 from ...pipeline.errors import ConfigError
 
+#: The result variables a published-numbers file's measures may name: what the comparison reads from
+#: results/clearance/claims.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
+RESULT_VARIABLES = frozenset({"holds"})
+
 
 def check(section: Mapping[str, Any], key: str = "clearance") -> None:
     """Positive clearance; viscosity where lubrication is named; friction only with contact; joint effects

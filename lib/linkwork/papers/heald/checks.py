@@ -9,6 +9,10 @@ from ...pipeline.errors import ConfigError
 from .adapter import parameters
 from .model import build
 
+#: The result variables a published-numbers file's measures may name: what the comparison reads from
+#: results/heald/chain.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
+RESULT_VARIABLES = frozenset({"first_resonance", "growth_fraction", "ratio_EF_min"})
+
 NONNEGATIVE = ("c_O", "c_joint", "clearance_E", "clearance_F")
 
 

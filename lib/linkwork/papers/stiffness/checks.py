@@ -12,6 +12,10 @@ from ...pipeline.errors import ConfigError
 from ...units import angle_grid_deg, divides_turn
 from .adapter import four_bar as linkage_from_config
 
+#: The result variables a published-numbers file's measures may name: what the comparison reads from
+#: results/stiffness/stiffness.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
+RESULT_VARIABLES = frozenset({"K_c", "K_h", "beta", "gamma"})
+
 
 def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
     """The forms the findings compare are computed; the grids divide a turn; the linkage assembles on both grids."""

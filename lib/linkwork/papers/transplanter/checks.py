@@ -12,6 +12,10 @@ from ...units import divides_turn
 from .adapter import mechanism
 from .model import rigid_motion
 
+#: The result variables a published-numbers file's measures may name: what the comparison reads from
+#: results/transplanter/optim.nc and at_published.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
+RESULT_VARIABLES = frozenset({"Ux", "Uy", "distortion", "distortion_ratio", "governing_elasticity", "mass_ratio", "stress_max"})
+
 
 def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance: float = 0.005) -> None:
     """Known material; the grids divide a turn; the linkage turns fully; the arm never sweeps within 5 mm of
