@@ -8,6 +8,7 @@ from snakemake.utils import min_version
 min_version("9.0")
 
 sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
+from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
 from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
@@ -19,6 +20,8 @@ from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overri
 # not checked again (.snakemake/linkwork-validated).
 _root = Path(workflow.basedir)
 try:
+    if compilecache.problem():  # the jobs compile into it: a file in its place or no write permission, named now
+        raise ConfigError(compilecache.problem())
     coerce_overrides(config, workflow.config_settings.config, load_yaml(_root / "config" / "schema.yaml"))
     for _file in workflow.config_settings.configfiles:  # Snakemake keeps a duplicated key's last value: refuse it, with its line
         load_yaml(_file)

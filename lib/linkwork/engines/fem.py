@@ -15,6 +15,10 @@ import numpy as np
 from numba import njit
 from numpy.typing import NDArray
 
+from ..compilecache import use_for_numba
+
+use_for_numba()  # compiled code cached in the compile cache folder, never below lib/
+
 FloatArray = NDArray[np.float64]
 
 

@@ -11,6 +11,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ...compilecache import use_for_numba
+
+use_for_numba()  # compiled code cached in the compile cache folder, never below lib/
+
 
 @njit(cache=True)
 def body_trig(q, cs):

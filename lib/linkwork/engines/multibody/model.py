@@ -36,6 +36,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ... import compilecache
 from .linkage import CONTACT_LAWS, ELASTIC_LAWS, JOINT_EFFECTS, Clearance, Driver, Linkage, LinkageError, oriented
 
 EFFECTS = (*JOINT_EFFECTS, "gravity")
@@ -748,8 +749,8 @@ def dop853(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
 
 
 def cache_dir() -> Path:
-    """Where generated scene modules are written (LINKWORK_CACHE, else ~/.cache/linkwork)."""
-    return Path(os.environ.get("LINKWORK_CACHE", Path.home() / ".cache" / "linkwork")) / "multibody"
+    """Where generated scene modules are written: <compile cache>/multibody (``linkwork.compilecache.root``)."""
+    return compilecache.root() / "multibody"
 
 
 def compile_scene(linkage: Linkage, gravity: bool):

@@ -1,0 +1,76 @@
+"""The compile cache: one folder (``LINKWORK_CACHE``, else ~/.cache/linkwork) for the generated scene modules and for
+numba's compiled code of every cached function, so that nothing is written below lib/.
+
+A cache entry that cannot be read (a truncated or corrupted ``.nbi``/``.nbc`` file) is compiled again and
+overwritten, with one line on stderr naming it; a cache folder that cannot be used is named before any job
+(``problem``, called by the Snakefile's validation).  Standard library only until numba is asked for.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import sys
+from pathlib import Path
+
+#: What reading a damaged cache entry raises (pickle's errors on truncated or overwritten bytes).
+UNREADABLE = (pickle.UnpicklingError, EOFError, ValueError, TypeError, AttributeError, IndexError, KeyError, ImportError)
+
+
+def root() -> Path:
+    """The compile cache folder: $LINKWORK_CACHE, else ~/.cache/linkwork."""
+    return Path(os.environ.get("LINKWORK_CACHE") or Path.home() / ".cache" / "linkwork")
+
+
+def problem() -> str | None:
+    """Why the compile cache folder cannot be used (a file in its place, no write permission), or None."""
+    folder = root()
+    named = f"LINKWORK_CACHE={folder}" if os.environ.get("LINKWORK_CACHE") else f"the compile cache {folder}"
+    if folder.exists() and not folder.is_dir():
+        return f"{named} is a file, not a folder: point LINKWORK_CACHE to a folder (or unset it for ~/.cache/linkwork)"
+    existing = folder
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not os.access(existing, os.W_OK | os.X_OK):
+        return f"{named} cannot be written ({existing} is not writable): point LINKWORK_CACHE to a folder you can write"
+    return None
+
+
+_SAID: set[str] = set()
+
+
+def _said(path: str, exc: BaseException) -> None:
+    if path in _SAID:  # numba reads the index again before it writes the entry anew
+        return
+    _SAID.add(path)
+    print(f"linkwork: compile cache entry {path} was unreadable ({type(exc).__name__}); compiling it again", file=sys.stderr, flush=True)
+
+
+def use_for_numba() -> None:
+    """numba's cache of every ``cache=True`` function goes to <root>/numba (unless NUMBA_CACHE_DIR says where), and an
+    unreadable entry is a cache miss (compiled again, then overwritten) instead of an error.  Call it before the
+    decorated functions are defined."""
+    from numba.core import caching, config
+
+    if not os.environ.get("NUMBA_CACHE_DIR"):
+        config.CACHE_DIR = str(root() / "numba")
+    files = caching.IndexDataCacheFile
+    if getattr(files, "_linkwork_tolerant", False):
+        return
+    load_index, load_data = files._load_index, files._load_data
+
+    def _load_index(self):
+        try:
+            return load_index(self)
+        except UNREADABLE as exc:
+            _said(self._index_path, exc)
+            return {}
+
+    def _load_data(self, name):
+        try:
+            return load_data(self, name)
+        except UNREADABLE as exc:
+            _said(self._data_path(name), exc)
+            raise OSError(str(exc)) from exc  # IndexDataCacheFile.load reads an OSError as a miss
+
+    files._load_index, files._load_data, files._linkwork_tolerant = _load_index, _load_data, True
