@@ -19,6 +19,7 @@ import pandas as pd
 from IPython.display import HTML, Markdown, display
 
 from linkwork.pipeline.results import load as load_result
+from linkwork.pipeline.results import verify
 
 #: One colour per verdict class (linkwork.pipeline.compare.VERDICTS), for tables and the index's matrix.
 VERDICT_COLOURS = {"matches": "#a6dba0", "matches as printed": "#d9f0d3", "depends on assumptions": "#c6dbef", "not reconciled": "#9e9ac8",
@@ -42,6 +43,12 @@ def load(path: Path):
             if column in data:
                 data[column] = data[column].astype(object).where(data[column].notna(), "").astype(str)
     return data
+
+
+def read_csv(path: Path, **options) -> pd.DataFrame:
+    """A CSV result read with pandas' ``options``, after its checksum (a truncated or replaced table is named, not read)."""
+    verify(path)
+    return pd.read_csv(path, **options)
 
 
 def assumed(files) -> dict[str, dict]:

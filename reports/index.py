@@ -18,7 +18,7 @@
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import VERDICT_COLOURS, caption, esc, inputs, load, md, table
+from _common import VERDICT_COLOURS, caption, esc, inputs, load, md, read_csv, table
 from matplotlib.patches import Patch
 
 from linkwork.papers import PAPERS
@@ -36,7 +36,7 @@ def counts(findings, model: str) -> str:
 rows, blocks = [], []
 for paper, title in PAPERS.items():
     findings = load(files[f"findings_{paper}"])
-    comparison = pd.read_csv(files[f"comparison_{paper}"], keep_default_na=False, na_values=[""])
+    comparison = read_csv(files[f"comparison_{paper}"], keep_default_na=False, na_values=[""])
     models = [str(m) for m in findings.count_model.values]
     defensible = findings.attrs["defensible_model"] or models[0]
     rows.append({

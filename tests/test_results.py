@@ -24,7 +24,7 @@ def test_write_is_byte_identical_and_leaves_no_temporary(tmp_path):
         path = results.write(ds, tmp_path / "out.nc")
         digests.append(hashlib.sha256(path.read_bytes()).hexdigest())
     assert digests[0] == digests[1]
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc", "out.nc.sha256"]
     back = xr.open_dataset(tmp_path / "out.nc")
     assert back.attrs["config_json"] == '{"a":1,"b":2}'
     assert back.attrs["config_sha256"] == results.config_sha256({"a": 1, "b": 2})
@@ -53,7 +53,7 @@ def test_a_result_with_unexplained_nan_or_any_inf_is_not_written(tmp_path):
     ds["k"][2] = np.inf
     with pytest.raises(results.NonFiniteResult, match="variable k holds inf at 1 of 3 points"):
         results.write(ds, tmp_path / "other.nc")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc", "out.nc.sha256"]
 
 
 def test_ctrl_c_during_a_write_is_held_until_the_file_is_complete(tmp_path, monkeypatch):
@@ -74,7 +74,7 @@ def test_ctrl_c_during_a_write_is_held_until_the_file_is_complete(tmp_path, monk
     with pytest.raises(KeyboardInterrupt):
         results.write(ds, tmp_path / "out.nc")
     monkeypatch.undo()
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["out.nc", "out.nc.sha256"]
     with xr.open_dataset(tmp_path / "out.nc") as back:
         assert back.k.values.tolist() == [0.0, 1.0, 2.0]
     assert signal.getsignal(signal.SIGINT) is before  # the handler the write found is back
@@ -117,3 +117,63 @@ def test_strings_concatenated_from_files_of_different_widths_are_written_whole(t
     parts = [xr.load_dataset(results.write(labelled(x), tmp_path / f"{k}.nc")) for k, x in enumerate((short, long))]
     results.write(xr.concat(parts, dim="sample"), tmp_path / "gathered.nc")
     assert [str(x) for x in xr.load_dataset(tmp_path / "gathered.nc").sample.values] == short + long
+
+
+def test_every_result_has_its_checksum_and_a_truncated_or_replaced_one_is_named(tmp_path):
+    """The checksum beside a result is sha256sum's line for it; a read of a truncated CSV, or of a netCDF replaced by
+    another valid one, stops with one line naming the file and the command that rebuilds it."""
+    table = results.write_text("a,b\n" + "".join(f"{i},{i * i}\n" for i in range(1000)), tmp_path / "comparison.csv")
+    line = results.checksum_path(table).read_text()
+    assert line == f"{hashlib.sha256(table.read_bytes()).hexdigest()}  comparison.csv\n"
+    assert len(results.load(table)) == 1000
+    table.write_bytes(table.read_bytes()[:3000])  # head -c 3000: still a valid CSV of fewer rows
+    with pytest.raises(results.UnreadableResult) as info:
+        results.load(table)
+    message = str(info.value)
+    assert f"cannot read {table}" in message and "does not match its checksum" in message and f"snakemake --force {table}" in message
+    assert "\n" not in message
+    first, other = results.write(_ds(), tmp_path / "first.nc"), results.write(_ds() * 2, tmp_path / "other.nc")
+    first.write_bytes(other.read_bytes())
+    with pytest.raises(results.UnreadableResult, match="first.nc .it does not match its checksum"):
+        results.load(first)
+    results.checksum_path(other).unlink()  # no checksum beside it (a config file): read as it is
+    assert float(results.load(other).k[1]) == 2.0
+
+
+@pytest.mark.parametrize("kind", ["netcdf", "text", "read-only"])
+def test_a_full_disk_is_one_line_naming_the_file_and_leaves_no_temporary(tmp_path, monkeypatch, kind):
+    """What netCDF4 raises on a full disk (RuntimeError 'NetCDF: HDF error', after a partial file), what a text write
+    raises (OSError ENOSPC) and a folder that cannot be written become one line naming the file and the cure; no
+    temporary file stays behind."""
+    import errno
+    from pathlib import Path
+
+    if kind == "netcdf":
+        def full(self, path, **kwargs):
+            Path(path).write_bytes(b"\x89HDF partial")
+            raise RuntimeError("NetCDF: HDF error")
+
+        monkeypatch.setattr(xr.Dataset, "to_netcdf", full)
+        write, name, reason = lambda: results.write(_ds(), tmp_path / "out.nc"), "out.nc", "NetCDF: HDF error"
+    elif kind == "read-only":  # as results/ made read-only (root writes anyway: simulated)
+        def refused(self, *args, **kwargs):
+            raise PermissionError(errno.EACCES, "Permission denied")
+
+        monkeypatch.setattr(Path, "mkdir", refused)
+        write, name, reason = lambda: results.write(_ds(), tmp_path / "out.nc"), "out.nc", "Permission denied"
+    else:
+        real = Path.write_text
+
+        def full(self, *args, **kwargs):
+            if self.name.endswith(".tmp"):
+                real(self, "partial")
+                raise OSError(errno.ENOSPC, "No space left on device")
+            return real(self, *args, **kwargs)
+
+        monkeypatch.setattr(Path, "write_text", full)
+        write, name, reason = lambda: results.write_text("a,b\n1,2\n", tmp_path / "out.csv"), "out.csv", "No space left on device"
+    with pytest.raises(results.ResultWriteError) as info:
+        write()
+    assert str(info.value) == (f"cannot write {tmp_path / name} ({reason}): free disk space or make {tmp_path} writable, "
+                               "then run snakemake again")
+    assert list(tmp_path.iterdir()) == []

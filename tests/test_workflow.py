@@ -191,6 +191,60 @@ def test_every_variable_a_published_file_may_name_is_written(built):
         assert declared and declared <= written, (paper, sorted(declared - written))
 
 
+def test_a_truncated_table_stops_the_report_naming_it(clone):
+    """A comparison table cut short (head -c: still a valid CSV of fewer rows) stops its report with one line naming the
+    file and the command that rebuilds it; nothing is rendered from it."""
+    target = "results/stiffness/comparison.csv"
+    text = (clone / target).read_bytes()
+    (clone / target).write_bytes(text[: len(text) // 2])
+    report = clone / "results/reports/stiffness.html"
+    before = report.read_bytes()
+    proc = snakemake(clone, "--cores", "1", "results/reports/stiffness.html", check=False)
+    message = proc.stdout + proc.stderr
+    lines = [line for line in message.splitlines() if "does not match its checksum" in line]
+    assert proc.returncode != 0 and lines and target in lines[0] and "snakemake --force" in lines[0], message[-3000:]
+    assert not report.exists() or report.read_bytes() == before
+    assert not list((clone / "results").rglob("*.tmp"))
+
+
+#: Makes every netCDF write and every report's HTML write of a job fail as on a full disk (a partial file first).
+FULL_DISK = """
+import errno, pathlib
+import xarray
+
+def _netcdf(self, path=None, *args, **kwargs):
+    pathlib.Path(path).write_bytes(b"partial")
+    raise RuntimeError("NetCDF: HDF error")
+
+_write_text = pathlib.Path.write_text
+
+def _text(self, *args, **kwargs):
+    if self.name.endswith(".html.tmp"):
+        _write_text(self, "partial")
+        raise OSError(errno.ENOSPC, "No space left on device")
+    return _write_text(self, *args, **kwargs)
+
+xarray.Dataset.to_netcdf = _netcdf
+pathlib.Path.write_text = _text
+"""
+
+
+def test_a_full_disk_stops_a_job_in_one_line_and_leaves_no_temporary(clone, tmp_path):
+    hook = tmp_path / "hook"
+    hook.mkdir()
+    (hook / "sitecustomize.py").write_text(FULL_DISK, encoding="utf-8")
+    env = _env(clone)
+    env["PYTHONPATH"] = f"{hook}{os.pathsep}{env['PYTHONPATH']}"
+    for target, said in (("results/reports/stiffness.html", "(No space left on device)"), ("results/stiffness/stiffness.nc", "(NetCDF: HDF error)")):
+        proc = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "--force", target], cwd=clone, env=env,
+                              capture_output=True, text=True, timeout=900)
+        message = proc.stdout + proc.stderr
+        lines = [line for line in message.splitlines() if f"cannot write {target}" in line or f"cannot write {clone / target}" in line]
+        assert proc.returncode != 0 and lines and said in lines[0] and "free disk space" in lines[0], message[-3000:]
+        assert "Traceback" not in message, message[-3000:]
+        assert not list((clone / "results").rglob("*.tmp")), list((clone / "results").rglob("*.tmp"))
+
+
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel

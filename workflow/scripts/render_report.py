@@ -129,10 +129,12 @@ def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     exporter = HTMLExporter(template_name=template.parent.name, extra_template_basedirs=[str(template.resolve().parent.parent)], exclude_input=True,
                             exclude_input_prompt=True, exclude_output_prompt=True)
     html, _ = exporter.from_notebook_node(nb)
-    output.parent.mkdir(parents=True, exist_ok=True)
-    tmp = output.with_name(output.name + ".tmp")
-    tmp.write_text(html, encoding="utf-8")
-    os.replace(tmp, output)
+    from linkwork.pipeline.results import ResultWriteError, write_text
+
+    try:
+        write_text(html, output)  # atomic, with its checksum beside it; no temporary file left on failure
+    except ResultWriteError as exc:
+        sys.exit(f"render_report: {exc}")
     print(f"render_report: wrote {output.name} in {time.perf_counter() - start:.1f} s", flush=True)
 
 

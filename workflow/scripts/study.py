@@ -1,7 +1,8 @@
 """Script of every study rule: call ``params.study`` ("module:function") with the rule's config values
 (``params.cfg``), its arguments (``params.args``) and its named inputs (read by file type), and write
 what it returns to the rule's outputs in order: a Dataset to netCDF (with provenance), a DataFrame to
-CSV, a dict to JSON.  Prints one line when it starts and one when it has written its outputs.
+CSV, a dict to JSON, each with its checksum beside it (``results.write``); an input that does not match its checksum,
+or an output that cannot be written, stops the job with one line naming the file.  Prints one line when it starts and one when it has written its outputs.
 """
 
 import importlib
@@ -37,17 +38,17 @@ if len(outputs) != len(sm.output):
     sys.exit(f"{label}: {module_name}:{function_name} returned {len(outputs)} objects for {len(sm.output)} outputs")
 extra = {f"argument_{k}": json.dumps(v, sort_keys=True) for k, v in args.items()}
 for obj, path in zip(outputs, sm.output):
-    if hasattr(obj, "to_netcdf"):
-        obj.attrs.update(results.provenance(paper, cfg, study=sm.params.study, **extra))
-        try:
+    try:
+        if hasattr(obj, "to_netcdf"):
+            obj.attrs.update(results.provenance(paper, cfg, study=sm.params.study, **extra))
             results.write(obj, path)
-        except results.NonFiniteResult as exc:
-            sys.exit(f"{label}: {exc}")
-    elif hasattr(obj, "to_csv"):
-        results.write_text(obj.to_csv(index=False, float_format="%.10g"), path)
-    elif isinstance(obj, str):
-        results.write_text(obj, path)
-    else:
-        results.write_text(json.dumps(obj, indent=2, sort_keys=True), path)
+        elif hasattr(obj, "to_csv"):
+            results.write_text(obj.to_csv(index=False, float_format="%.10g"), path)
+        elif isinstance(obj, str):
+            results.write_text(obj, path)
+        else:
+            results.write_text(json.dumps(obj, indent=2, sort_keys=True), path)
+    except (results.NonFiniteResult, results.ResultWriteError) as exc:  # one line: the variable, or the file and the cure
+        sys.exit(f"{label}: {exc}")
 print(f"{label}: wrote {', '.join(sm.output)} in {time.perf_counter() - start:.1f} s", flush=True)
 results.finish_job()  # no interpreter teardown: the outputs are written and closed

@@ -126,19 +126,62 @@ def without_string_widths(ds):
     return out
 
 
+#: The checksum written beside every result (``<file>.sha256``, sha256sum's format): a read compares it, so a truncated
+#: or replaced result is named instead of read.
+CHECKSUM_SUFFIX = ".sha256"
+
+
+class ResultWriteError(RuntimeError):
+    """A result could not be written (full disk, read-only folder); the message is one line naming the file."""
+
+
+def checksum_path(path: str | os.PathLike[str]) -> Path:
+    """The checksum file beside a result."""
+    target = Path(path)
+    return target.with_name(target.name + CHECKSUM_SUFFIX)
+
+
+def _sha256(path: Path) -> str:
+    import hashlib
+
+    return hashlib.sha256(path.read_bytes()).hexdigest()
+
+
+def _cannot_write(target: Path, exc: BaseException) -> ResultWriteError:
+    """One line for a failed write: the file, the system's reason and the cure."""
+    reason = getattr(exc, "strerror", None) or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
+    return ResultWriteError(f"cannot write {target} ({reason}): free disk space or make {target.parent} writable, then run snakemake again")
+
+
+def _publish(tmp: Path, target: Path) -> None:
+    """The finished temporary file ``tmp`` becomes ``target``, its checksum written first (both renamed atomically)."""
+    sidecar = checksum_path(target)
+    side_tmp = sidecar.with_name(sidecar.name + ".tmp")
+    try:
+        side_tmp.write_text(f"{_sha256(tmp)}  {target.name}\n", encoding="utf-8")
+        os.replace(side_tmp, sidecar)
+    finally:
+        if side_tmp.exists():
+            side_tmp.unlink()
+    os.replace(tmp, target)
+
+
 def write(ds, path: str | os.PathLike[str]) -> Path:
-    """Write ``ds`` to netCDF atomically (a temporary file beside it, then rename), after checking units and
-    that it is finite where it must be."""
+    """Write ``ds`` to netCDF atomically (a temporary file beside it, then rename) with its checksum beside it, after
+    checking units and that it is finite where it must be.  A failed write (full disk, read-only folder) leaves no
+    temporary file and raises ResultWriteError naming the file."""
     check_units(ds)
     check_finite(ds, str(path))
     ds = without_string_widths(ds)
     target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(target.name + ".tmp")
     with _uninterrupted():
         try:
+            target.parent.mkdir(parents=True, exist_ok=True)
             ds.to_netcdf(tmp, engine="netcdf4", format="NETCDF4")
-            os.replace(tmp, target)
+            _publish(tmp, target)
+        except (OSError, RuntimeError) as exc:  # netCDF4 reports a full disk as RuntimeError('NetCDF: HDF error')
+            raise _cannot_write(target, exc) from None
         finally:
             if tmp.exists():
                 tmp.unlink()
@@ -146,17 +189,32 @@ def write(ds, path: str | os.PathLike[str]) -> Path:
 
 
 def write_text(text: str, path: str | os.PathLike[str]) -> Path:
-    """Write a text file atomically."""
+    """Write a text file atomically, with its checksum beside it (failures as in ``write``)."""
     target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
     tmp = target.with_name(target.name + ".tmp")
     try:
+        target.parent.mkdir(parents=True, exist_ok=True)
         tmp.write_text(text, encoding="utf-8")
-        os.replace(tmp, target)
+        _publish(tmp, target)
+    except OSError as exc:
+        raise _cannot_write(target, exc) from None
     finally:
         if tmp.exists():
             tmp.unlink()
     return target
+
+
+def verify(path: str | os.PathLike[str]) -> None:
+    """A result whose checksum file is beside it must match it: else UnreadableResult naming the file and the command
+    that rebuilds it.  A file without one (a config file, a result from before checksums) is read as it is."""
+    target = Path(path)
+    sidecar = checksum_path(target)
+    if not sidecar.is_file() or not target.is_file():
+        return
+    expected = sidecar.read_text(encoding="utf-8").split(maxsplit=1)[0] if sidecar.stat().st_size else ""
+    if _sha256(target) != expected:
+        raise UnreadableResult(f"cannot read {target} (it does not match its checksum {sidecar.name}: truncated, or replaced by "
+                               f"another file); rebuild it with: snakemake --force {target}")
 
 
 class UnreadableResult(RuntimeError):
@@ -166,10 +224,11 @@ class UnreadableResult(RuntimeError):
 def load(path: str | os.PathLike[str]) -> Any:
     """Read a rule input by its type: netCDF (loaded Dataset), JSON, YAML (dict) or CSV (DataFrame).
 
-    A file that cannot be read raises UnreadableResult with one line naming the file and the command
-    that rebuilds it.
+    A file that cannot be read, or that does not match the checksum beside it (``verify``), raises UnreadableResult with
+    one line naming the file and the command that rebuilds it.
     """
     target = Path(path)
+    verify(target)
     try:
         if target.suffix == ".nc":
             import xarray as xr
