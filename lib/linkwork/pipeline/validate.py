@@ -228,6 +228,39 @@ def check_names(config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] 
             check_names(value, schema, node["items"], (*path, i))
 
 
+def check_integers(node: Any, schema: Mapping[str, Any], path: tuple = ()) -> None:
+    """A count given as a float (``points: 1200.0``) is refused where the schema asks for an integer: the JSON schema
+    takes an integral float for an integer, and the code would then count with a float."""
+    if isinstance(node, Mapping):
+        for key, value in node.items():
+            check_integers(value, schema, (*path, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            check_integers(value, schema, (*path, i))
+    elif isinstance(node, float) and _types(_schema_at(schema, path)) == {"integer"}:
+        raise ConfigError(f"config key {_key(path)}: value {node!r} is not an integer (a count: write it without the decimal point)")
+
+
+def check_states(node: Any, path: tuple = ()) -> None:
+    """Every state-finding block (``chunk_cycles``, ``min_cycles``, ``max_cycles``, ...: ``engines.states.settle``)
+    can decide within its cap: the shortest judged window and a chunk fit in ``max_cycles``, and so do the whole
+    periods a periodic state is recognised by."""
+    if isinstance(node, Mapping):
+        if {"chunk_cycles", "min_cycles", "max_cycles"} <= set(node):
+            cap = node["max_cycles"]
+            for name in ("chunk_cycles", "min_cycles"):
+                if node[name] > cap:
+                    raise ConfigError(f"config key {_key((*path, name))}: value {node[name]!r} is above {_key((*path, 'max_cycles'))} = {cap!r}")
+            if "max_period" in node and "periods" in node and node["max_period"] * node["periods"] > cap:
+                raise ConfigError(f"config key {_key((*path, 'periods'))}: {node['periods']!r} whole periods of up to {_key((*path, 'max_period'))} = "
+                                  f"{node['max_period']!r} cycles do not fit in {_key((*path, 'max_cycles'))} = {cap!r}")
+        for key, value in node.items():
+            check_states(value, (*path, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            check_states(value, (*path, i))
+
+
 def check_labelled(node: Any, path: tuple = ()) -> None:
     """Every labelled entry is one value of its own range or choices: a range with its low end below its high end
     holding the value, a choice's value among its choices, one name in prose per choice."""
@@ -257,6 +290,8 @@ def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
     check_finite(config)
     check_names(config, schema)
     validate_schema(config, schema)
+    check_integers(config, schema)
+    check_states(config)
     for paper in PAPERS:
         if paper in config:
             importlib.import_module(f"linkwork.papers.{paper}.checks").check(config[paper], paper)

@@ -17,7 +17,8 @@ RESULT_VARIABLES = frozenset({"holds"})
 
 def check(section: Mapping[str, Any], key: str = "clearance") -> None:
     """Positive clearance; viscosity where lubrication is named; friction only with contact; joint effects
-    only with clearance joints; integrator settings complete; the work-precision variant exists; the
+    only with clearance joints, and a clearance joint held by contact or a film; e0 below the clearance; at least two
+    batches in the shortest judged window; integrator settings complete; the work-precision variant exists; the
     linkage assembles."""
     joints = section["joints"]
     if joints["journal_radius_m"] >= joints["bearing_radius_m"]:
@@ -36,6 +37,9 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r}: friction needs contact")
         if (effects and not scene["clearance_joints"]) and set(effects) - {"gravity"}:
             raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r} names joint effects but no clearance joint")
+        if scene["clearance_joints"] and not {"contact", "lubrication"} & set(effects):
+            raise ConfigError(f"config key {key}.scenes.{name}.effects: value {effects!r} names neither contact nor lubrication for its clearance "
+                              f"joints {scene['clearance_joints']!r} (nothing would hold the journal in its bearing)")
     settings = [(f"integrators.{kind}", integ) for kind, integ in section["integrators"].items()]
     settings += [(f"check_integrators.{kind}[{i}]", integ) for kind, group in section["check_integrators"].items() for i, integ in enumerate(group)]
     for where, integ in settings:
@@ -43,6 +47,16 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
         missing = [n for n in needed if n not in integ]
         if missing:
             raise ConfigError(f"config key {key}.{where}: method {integ['method']!r} needs {', '.join(missing)}")
+    clearance = joints["bearing_radius_m"] - joints["journal_radius_m"]
+    e0 = section["assumed"]["e0_m"]
+    for where, value in (("value", e0["value"]), ("range", max(e0.get("range", [e0["value"]])))):
+        if value >= clearance:
+            raise ConfigError(f"config key {key}.assumed.e0_m.{where}: value {value!r} is not below the radial clearance {clearance:.6g} m "
+                              f"({key}.joints: bearing minus journal radius; the film's eccentricity cap 1 - e0/c would be <= 0)")
+    batch, least = section["statistics"]["batch_cycles"], section["states"]["min_cycles"]
+    if 2 * batch > least:
+        raise ConfigError(f"config key {key}.statistics.batch_cycles: value {batch!r} leaves fewer than two batches in the shortest judged window "
+                          f"({key}.states.min_cycles = {least!r} cycles): every confidence interval would be infinite")
     labels = [s["label"] for s in section["states"]["starts"]]
     if len(set(labels)) != len(labels):
         raise ConfigError(f"config key {key}.states.starts: labels {labels!r} repeat")
