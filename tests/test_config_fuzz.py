@@ -133,6 +133,10 @@ CASES = [
     ("batch-above-window", "batch_cycles: 5 ", "batch_cycles: 50 ", ["clearance.statistics.batch_cycles", "50", "fewer than two batches"]),
     ("states-min-above-cap", "max_period: 4, section_tolerance: 5.0e-3, periods: 3, min_cycles: 12,",
      "max_period: 4, section_tolerance: 5.0e-3, periods: 3, min_cycles: 100,", ["beatup.sley_pin.states.min_cycles", "max_cycles = 60"]),
+    # keys YAML reads as something else than a name; a section the workflow reads, deleted
+    ("scene-date-key", "    dry_1: {clearance_joints: [1]", "    2021-01-01: {clearance_joints: [1]", ["clearance.scenes.2021-01-01", "not allowed"]),
+    ("scene-list-key", "    dry_1: {clearance_joints: [1]", "    [a, b]: {clearance_joints: [1]", ["line 305", "a config key is a list, not a name"]),
+    ("root-crosscheck-deleted", "\ncrosscheck: false", "\n", ["crosscheck", "missing"]),
     # a linkage of your own (config linkages): bad descriptions stop before any job with the key named
     ("linkage-unknown-point", "C: {journal: bellcrank.C, bearing: link.C}", "C: {journal: bellcrank.C, bearing: link.X}",
      ["linkages.watt_six_bar_worn_pin.linkage.joints.C.bearing", "unknown point 'X'"]),
@@ -273,6 +277,19 @@ def test_snakemake_stops_every_row_before_any_job(tmp_path):
         assert line and (fragments[0] in line or "invalid" in line), f"{name}: no one-line message\n{message[-2000:]}"
         assert "Traceback" not in message and "Job stats" not in message, f"{name}\n{message[-2000:]}"
         assert not (root / "results").exists() and not (root / ".snakemake" / "linkwork-validated").exists(), name
+
+
+def test_the_validation_memo_tells_a_quoted_date_from_a_date(tmp_path):
+    """The memo's key keeps what YAML read: a quoted date that passed does not let the unquoted one skip validation."""
+    import datetime
+
+    from linkwork.pipeline.validate import validation_key
+
+    schema, lib = PROJECT / "config" / "schema.yaml", PROJECT / "lib"
+    quoted = validation_key({"scenes": {"2021-01-01": 1}}, schema, lib)
+    assert quoted != validation_key({"scenes": {datetime.date(2021, 1, 1): 1}}, schema, lib)
+    assert validation_key({"a": "2021-01-01"}, schema, lib) != validation_key({"a": datetime.date(2021, 1, 1)}, schema, lib)
+    assert quoted == validation_key({"scenes": {"2021-01-01": 1}}, schema, lib)
 
 
 def test_command_line_text_is_read_as_the_schema_asks(schema):

@@ -33,8 +33,11 @@ def _construct_mapping(loader, node, deep=False):
     seen = {}
     for key_node, _ in node.value:
         key = loader.construct_object(key_node, deep=deep)
+        mark = key_node.start_mark
+        if not isinstance(key_node, yaml.ScalarNode):
+            kind = "list" if isinstance(key_node, yaml.SequenceNode) else "mapping"
+            raise ConfigError(f"{mark.name}, line {mark.line + 1}, column {mark.column + 1}: a config key is a {kind}, not a name")
         if key in seen:
-            mark = key_node.start_mark
             raise ConfigError(f"{mark.name}, line {mark.line + 1}: config key {key!r} is given twice in the same section (first at line {seen[key] + 1})")
         seen[key] = key_node.start_mark.line
     return loader.construct_mapping(node, deep=deep)
@@ -392,7 +395,7 @@ def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path, publ
 
     from .deps import closure
 
-    digest = hashlib.sha256(json.dumps(config, default=str).encode())  # in file order: keys may not be comparable
+    digest = hashlib.sha256(json.dumps(_typed(config)).encode())  # in file order: keys may not be comparable
     digest.update(Path(schema_path).read_bytes())
     checks = tuple(f"linkwork.papers.{p}.checks" for p in PAPERS)
     for file in closure("linkwork.pipeline.validate", lib, extra=(*checks, "linkwork.pipeline.published")):
@@ -401,6 +404,18 @@ def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path, publ
         for file in [published_schema(published), *(Path(published) / f"{p}.yaml" for p in PAPERS)]:
             digest.update(str(file).encode() + b"\0" + (file.read_bytes() if file.is_file() else b"missing"))
     return digest.hexdigest()
+
+
+def _typed(node: Any) -> Any:
+    """``node`` as JSON that keeps what YAML read: every mapping as its (key, value) pairs and every value that JSON
+    does not hold (a date, a key that is no string) with its type, so that a quoted and an unquoted date differ."""
+    if isinstance(node, Mapping):
+        return {"map": [[_typed(k), _typed(v)] for k, v in node.items()]}
+    if isinstance(node, list):
+        return [_typed(v) for v in node]
+    if node is None or isinstance(node, (str, bool, int, float)):
+        return node
+    return {"type": type(node).__name__, "repr": repr(node)}
 
 
 def published_schema(published: Path) -> Path:
