@@ -137,6 +137,11 @@ CASES = [
     ("scene-date-key", "    dry_1: {clearance_joints: [1]", "    2021-01-01: {clearance_joints: [1]", ["clearance.scenes.2021-01-01", "not allowed"]),
     ("scene-list-key", "    dry_1: {clearance_joints: [1]", "    [a, b]: {clearance_joints: [1]", ["line 305", "a config key is a list, not a name"]),
     ("root-crosscheck-deleted", "\ncrosscheck: false", "\n", ["crosscheck", "missing"]),
+    # linkages that assemble but cannot run: a change point passed every turn, a clearance four-bar with no dead point
+    ("stiffness-change-point", "    ground_m: 0.170 ", "    ground_m: 0.2379999 ", ["stiffness.linkage", "ground_m=0.2379999", "change-point linkage"]),
+    ("clearance-change-point", "  ground_m: 0.4\n", "  ground_m: 0.248074069840786\n", ["clearance.bodies", "clearance.ground_m 0.248074069840786", "change-point"]),
+    ("clearance-drag-link", "  ground_m: 0.4\n", "  ground_m: 0.1\n", ["clearance.bodies", "double-crank", "need a crank-rocker"]),
+    ("clearance-long-crank", "crank: {length_m: 0.2,", "crank: {length_m: 0.7,", ["clearance.bodies", "crank 0.7 m", "need a crank-rocker"]),
     # a linkage of your own (config linkages): bad descriptions stop before any job with the key named
     ("linkage-unknown-point", "C: {journal: bellcrank.C, bearing: link.C}", "C: {journal: bellcrank.C, bearing: link.X}",
      ["linkages.watt_six_bar_worn_pin.linkage.joints.C.bearing", "unknown point 'X'"]),

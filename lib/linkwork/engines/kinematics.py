@@ -435,6 +435,18 @@ def grashof_class(lengths: tuple[float, float, float, float], rel_tol: float = 1
     return "grashof" if lhs < rhs else "non-grashof"
 
 
+#: Four link lengths whose Grashof sums differ by less than this fraction of their total are refused as a change-point
+#: linkage (config checks): each turn passes a configuration where two links lie nearly in line and the motion is
+#: nearly singular (the stiffness study's pinned share, a clearance run's constraint matrix).
+CHANGE_POINT_MARGIN = 1.0e-3
+
+
+def change_point_distance(lengths: tuple[float, float, float, float]) -> float:
+    """|(p + q) - (s + l)| / (s + l + p + q) of four link lengths (any order): 0 for a change-point linkage."""
+    s = sorted(float(x) for x in lengths)
+    return abs((s[1] + s[2]) - (s[0] + s[3])) / sum(s)
+
+
 def inversion(linkage: FourBar, rel_tol: float = 1.0e-12) -> str:
     """Name of the Grashof inversion: which link is shortest decides the motion.
 

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ...engines.kinematics import FourBar, four_bar
+from ...engines.kinematics import CHANGE_POINT_MARGIN, FourBar, change_point_distance, four_bar, inversion
 from ...pipeline.errors import ConfigError
 
 #: The result variables a published-numbers file's measures may name: what the comparison reads from
@@ -82,3 +82,10 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
         four_bar(lw, np.radians(np.arange(0.0, 360.0, 1.0)))
     except ValueError as exc:
         raise ConfigError(f"config key {key}.bodies: {exc}") from None
+    values = f"crank {lw.crank!r} m, coupler {lw.coupler!r} m, rocker {lw.rocker!r} m, {key}.ground_m {lw.ground!r} m"
+    if change_point_distance(lw.lengths) < CHANGE_POINT_MARGIN:
+        raise ConfigError(f"config key {key}.bodies ({values}): within {CHANGE_POINT_MARGIN:.1%} of a change-point linkage (s + l = p + q): "
+                          "it passes a singular configuration every turn")
+    if inversion(lw) != "crank-rocker":
+        raise ConfigError(f"config key {key}.bodies ({values}): a {inversion(lw)} linkage; the scenes need a crank-rocker (the crank turns "
+                          "fully, the rocker swings between dead points, where every run starts)")

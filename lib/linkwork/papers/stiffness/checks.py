@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ...engines.kinematics import four_bar
+from ...engines.kinematics import CHANGE_POINT_MARGIN, change_point_distance, four_bar
 from ...pipeline.errors import ConfigError
 from ...units import angle_grid_deg, divides_turn
 from .adapter import four_bar as linkage_from_config
@@ -27,6 +27,10 @@ def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
         lw = linkage_from_config(linkage, section["numerics"]["assembly_tol"])
     except ValueError as exc:
         raise ConfigError(f"config key {key}.linkage: {exc}") from None
+    values = ", ".join(f"{k}={linkage[k]!r}" for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
+    if change_point_distance(lw.lengths) < CHANGE_POINT_MARGIN:
+        raise ConfigError(f"config key {key}.linkage ({values}): within {CHANGE_POINT_MARGIN:.1%} of a change-point linkage (s + l = p + q): "
+                          "it passes a singular configuration every turn, where the energy method's stiffness is undefined")
     for grid_key in ("paper_step_deg", "fine_step_deg"):
         step = section["grids"][grid_key]
         if not divides_turn(step):
@@ -34,5 +38,4 @@ def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
         try:
             four_bar(lw, np.radians(angle_grid_deg(step)))
         except ValueError as exc:
-            values = ", ".join(f"{k}={linkage[k]!r}" for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
             raise ConfigError(f"config key {key}.linkage ({values}): {exc}") from None
