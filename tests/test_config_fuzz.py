@@ -328,3 +328,17 @@ def test_snakemake_reads_nested_overrides_and_refuses_a_configfile_with_a_key_tw
     message = proc.stdout + proc.stderr
     assert proc.returncode != 0 and f"linkwork: {extra}, line 3: config key 'crank_speed_rad_s' is given twice" in message, message[-2000:]
     assert "Traceback" not in message and not (root / "results").exists()
+
+
+def test_a_configfile_with_a_syntax_error_is_named_by_the_checker(tmp_path, capsys):
+    """Snakemake reads a --configfile before the workflow and says only that it is not valid YAML; the checker the
+    README points to names the file, the line and the column."""
+    from linkwork.pipeline.validate import main
+
+    bad = tmp_path / "mine.yaml"
+    bad.write_text("clearance:\n  crank_speed_rad_s: [10.0\n", encoding="utf-8")
+    good = tmp_path / "good.yaml"
+    good.write_text("clearance:\n  crank_speed_rad_s: 10.0\n", encoding="utf-8")
+    assert main([str(good)]) == 0
+    assert main([str(bad)]) == 1
+    assert f"linkwork: {bad}, line 3, column 1: not valid YAML" in capsys.readouterr().err

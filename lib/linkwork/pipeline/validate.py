@@ -441,3 +441,28 @@ def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp
     tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
     tmp.write_text(key + "\n", encoding="utf-8")
     os.replace(tmp, stamp)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m linkwork.pipeline.validate FILE ...``: read each YAML file as the workflow does (syntax errors, keys
+    given twice, YAML 1.1 numbers, with file and line).  Snakemake reads a ``--configfile`` before the workflow runs and
+    reports its syntax errors without file or line; this names them."""
+    import sys
+
+    files = sys.argv[1:] if argv is None else argv
+    if not files:
+        print("usage: python -m linkwork.pipeline.validate FILE ...", file=sys.stderr)
+        return 2
+    failed = 0
+    for name in files:
+        try:
+            load_yaml(name)
+            print(f"{name}: reads as YAML")
+        except ConfigError as exc:
+            print(f"linkwork: {exc}", file=sys.stderr)
+            failed = 1
+    return failed
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
