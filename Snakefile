@@ -10,6 +10,7 @@ min_version("9.0")
 sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
+from linkwork.pipeline.results import unwritable  # noqa: E402
 from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
@@ -22,6 +23,8 @@ _root = Path(workflow.basedir)
 try:
     if compilecache.problem():  # the jobs compile into it: a file in its place or no write permission, named now
         raise ConfigError(compilecache.problem())
+    if not workflow.dryrun and unwritable(_root / "results"):  # Snakemake removes a result before rewriting it
+        raise ConfigError(unwritable(_root / "results"))
     coerce_overrides(config, workflow.config_settings.config, load_yaml(_root / "config" / "schema.yaml"))
     for _file in workflow.config_settings.configfiles:  # Snakemake keeps a duplicated key's last value: refuse it, with its line
         load_yaml(_file)

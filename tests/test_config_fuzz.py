@@ -126,9 +126,15 @@ CASES = [
     # rules across keys: a clearance joint held by contact or a film, e0 below the clearance, batches that fit in the
     # shortest judged window, a state search that can decide within its cap
     ("ideal-given-a-clearance-joint", "ideal: {clearance_joints: [], effects: [gravity]}", "ideal: {clearance_joints: [1], effects: [gravity]}",
-     ["clearance.scenes.ideal.effects", "neither contact nor lubrication"]),
+     ["clearance.scenes.ideal", "every claim's reference with ideal joints"]),
     ("clearance-joint-without-effects", "dry_1: {clearance_joints: [1], effects: [contact, friction, gravity]}", "dry_1: {clearance_joints: [1], effects: []}",
      ["clearance.scenes.dry_1.effects", "neither contact nor lubrication"]),
+    ("ideal-with-contact", "ideal: {clearance_joints: [], effects: [gravity]}", "ideal: {clearance_joints: [1], effects: [contact, friction, gravity]}",
+     ["clearance.scenes.ideal", "every claim's reference with ideal joints"]),
+    ("crosscheck-scene-unknown", "      scene: dry_2\n", "      scene: dry_9\n", ["clearance.crosscheck.work_precision.scene", "'dry_9'"]),
+    ("crosscheck-scene-without-reference", "      scene: dry_2\n", "      scene: dry_1\n", ["clearance.crosscheck.work_precision.scene", "'dry_1'", "reference"]),
+    ("crosscheck-dry-scene-lubricated", "dry_scenes: [dry_1, dry_2, dry_both]", "dry_scenes: [dry_1, lubricated_2]",
+     ["clearance.crosscheck.dry_scenes", "'lubricated_2'"]),
     ("e0-above-clearance", "e0_m: {value: 2.5e-6", "e0_m: {value: 6.0e-5", ["clearance.assumed.e0_m.value", "6e-05", "not below the radial clearance"]),
     ("batch-above-window", "batch_cycles: 5 ", "batch_cycles: 50 ", ["clearance.statistics.batch_cycles", "50", "fewer than two batches"]),
     ("states-min-above-cap", "max_period: 4, section_tolerance: 5.0e-3, periods: 3, min_cycles: 12,",

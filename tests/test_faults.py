@@ -48,13 +48,18 @@ def test_compiled_code_is_cached_in_the_cache_folder_never_below_lib(tmp_path):
     assert not _entries(lib), _entries(lib)
 
 
-def test_a_damaged_cache_entry_is_compiled_again_and_named(tmp_path):
+#: Bytes pickle reads as a request for an exabyte (BINBYTES8 with a huge length): it raises MemoryError.
+HUGE = b"\x80\x04\x8e\xff\xff\xff\xff\xff\xff\x00\x00"
+
+
+@pytest.mark.parametrize("damage", ["truncated", "huge"])
+def test_a_damaged_cache_entry_is_compiled_again_and_named(tmp_path, damage):
     cache = tmp_path / "cache"
     first = _compile(PROJECT / "lib", cache).stdout
     damaged = _entries(cache)
     assert damaged
-    for path in damaged:  # truncated, as by a full disk or a killed write
-        path.write_bytes(path.read_bytes()[:10])
+    for path in damaged:  # truncated, as by a full disk or a killed write; or bytes pickle reads as a huge request
+        path.write_bytes(path.read_bytes()[:10] if damage == "truncated" else HUGE)
     again = _compile(PROJECT / "lib", cache)
     assert again.stdout == first
     named = [line for line in again.stderr.splitlines() if "was unreadable" in line]

@@ -124,7 +124,7 @@ def test_every_result_has_its_checksum_and_a_truncated_or_replaced_one_is_named(
     another valid one, stops with one line naming the file and the command that rebuilds it."""
     table = results.write_text("a,b\n" + "".join(f"{i},{i * i}\n" for i in range(1000)), tmp_path / "comparison.csv")
     line = results.checksum_path(table).read_text()
-    assert line == f"{hashlib.sha256(table.read_bytes()).hexdigest()}  comparison.csv\n"
+    assert line == f"{hashlib.sha256(table.read_bytes()).hexdigest()}  {table.resolve()}\n"  # outside the working folder: absolute
     assert len(results.load(table)) == 1000
     table.write_bytes(table.read_bytes()[:3000])  # head -c 3000: still a valid CSV of fewer rows
     with pytest.raises(results.UnreadableResult) as info:
@@ -135,6 +135,10 @@ def test_every_result_has_its_checksum_and_a_truncated_or_replaced_one_is_named(
     first, other = results.write(_ds(), tmp_path / "first.nc"), results.write(_ds() * 2, tmp_path / "other.nc")
     first.write_bytes(other.read_bytes())
     with pytest.raises(results.UnreadableResult, match="first.nc .it does not match its checksum"):
+        results.load(first)
+    first.write_bytes(other.read_bytes())  # another result copied over it with its own checksum
+    results.checksum_path(first).write_bytes(results.checksum_path(other).read_bytes())
+    with pytest.raises(results.UnreadableResult, match="first.nc .its checksum is that of .*other.nc: another result copied over it"):
         results.load(first)
     results.checksum_path(other).unlink()  # no checksum beside it (a config file): read as it is
     assert float(results.load(other).k[1]) == 2.0
@@ -177,3 +181,39 @@ def test_a_full_disk_is_one_line_naming_the_file_and_leaves_no_temporary(tmp_pat
     assert str(info.value) == (f"cannot write {tmp_path / name} ({reason}): free disk space or make {tmp_path} writable, "
                                "then run snakemake again")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_checksum_names_its_result_from_the_project_and_holds_from_another_folder(tmp_path, monkeypatch):
+    """Under Snakemake a checksum names its result from the project's root (results/...): a report reading it from
+    its own folder, or the project moved elsewhere, still matches it."""
+    project = tmp_path / "project"
+    project.mkdir()
+    monkeypatch.chdir(project)
+    path = results.write(_ds(), "results/paper/out.nc")
+    assert results.checksum_path(path).read_text().endswith("  results/paper/out.nc\n")
+    moved = tmp_path / "moved"
+    project.rename(moved)
+    monkeypatch.chdir(tmp_path)
+    assert float(results.load(moved / "results/paper/out.nc").k[2]) == 2.0
+
+
+def test_a_results_folder_that_cannot_be_written_is_named(tmp_path, monkeypatch):
+    """Snakemake deletes a result before its job rewrites it and fails with a traceback in a read-only folder: the probe
+    names the folder first (root writes anywhere, so the refusal is simulated at the probe's file creation)."""
+    import errno
+    import tempfile
+
+    (tmp_path / "results" / "stiffness").mkdir(parents=True)
+    assert results.unwritable(tmp_path / "results") is None
+    assert not list((tmp_path / "results").rglob(".linkwork-probe-*"))
+    real = tempfile.mkstemp
+
+    def refused(*args, dir=None, **kwargs):
+        if str(dir).endswith("stiffness"):
+            raise PermissionError(errno.EPERM, "Operation not permitted")
+        return real(*args, dir=dir, **kwargs)
+
+    monkeypatch.setattr(tempfile, "mkstemp", refused)
+    assert results.unwritable(tmp_path / "results") == (
+        f"{tmp_path / 'results' / 'stiffness'} cannot be written (Operation not permitted): make {tmp_path / 'results'} writable again "
+        f"(chmod -R u+w {tmp_path / 'results'}), then run snakemake")

@@ -9,12 +9,12 @@ overwritten, with one line on stderr naming it; a cache folder that cannot be us
 from __future__ import annotations
 
 import os
-import pickle
 import sys
 from pathlib import Path
 
-#: What reading a damaged cache entry raises (pickle's errors on truncated or overwritten bytes).
-UNREADABLE = (pickle.UnpicklingError, EOFError, ValueError, TypeError, AttributeError, IndexError, KeyError, ImportError)
+#: What reading a damaged cache entry may raise: anything (pickle turns random bytes into any error, MemoryError
+#: included); an entry that cannot be read is compiled again.
+UNREADABLE = (Exception,)
 
 
 def root() -> Path:

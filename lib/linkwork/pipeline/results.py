@@ -153,12 +153,19 @@ def _cannot_write(target: Path, exc: BaseException) -> ResultWriteError:
     return ResultWriteError(f"cannot write {target} ({reason}): free disk space or make {target.parent} writable, then run snakemake again")
 
 
+def _named(target: Path) -> str:
+    """How a checksum line names its result: the path from the working folder (the project's root under Snakemake),
+    so that a result copied over another with its checksum is told apart; an absolute path outside it."""
+    relative = os.path.relpath(target)
+    return str(target.resolve()) if relative.startswith("..") else relative
+
+
 def _publish(tmp: Path, target: Path) -> None:
     """The finished temporary file ``tmp`` becomes ``target``, its checksum written first (both renamed atomically)."""
     sidecar = checksum_path(target)
     side_tmp = sidecar.with_name(sidecar.name + ".tmp")
     try:
-        side_tmp.write_text(f"{_sha256(tmp)}  {target.name}\n", encoding="utf-8")
+        side_tmp.write_text(f"{_sha256(tmp)}  {_named(target)}\n", encoding="utf-8")
         os.replace(side_tmp, sidecar)
     finally:
         if side_tmp.exists():
@@ -204,6 +211,23 @@ def write_text(text: str, path: str | os.PathLike[str]) -> Path:
     return target
 
 
+def unwritable(folder: str | os.PathLike[str]) -> str | None:
+    """Why ``folder`` or a folder below it cannot take a new result (a probe file created and removed in each: file
+    permissions, a read-only mount, an immutable flag), or None.  Snakemake removes a result before its job rewrites
+    it, and fails with a traceback where it cannot: this names the folder first."""
+    import tempfile
+
+    top = Path(folder)
+    for here, _, _ in os.walk(top) if top.is_dir() else ():
+        try:
+            handle, probe = tempfile.mkstemp(dir=here, prefix=".linkwork-probe-")
+            os.close(handle)
+            os.unlink(probe)
+        except OSError as exc:
+            return f"{here} cannot be written ({exc.strerror}): make {top} writable again (chmod -R u+w {top}), then run snakemake"
+    return None
+
+
 def verify(path: str | os.PathLike[str]) -> None:
     """A result whose checksum file is beside it must match it: else UnreadableResult naming the file and the command
     that rebuilds it.  A file without one (a config file, a result from before checksums) is read as it is."""
@@ -211,10 +235,14 @@ def verify(path: str | os.PathLike[str]) -> None:
     sidecar = checksum_path(target)
     if not sidecar.is_file() or not target.is_file():
         return
-    expected = sidecar.read_text(encoding="utf-8").split(maxsplit=1)[0] if sidecar.stat().st_size else ""
+    expected, _, named = sidecar.read_text(encoding="utf-8").strip().partition("  ")
     if _sha256(target) != expected:
         raise UnreadableResult(f"cannot read {target} (it does not match its checksum {sidecar.name}: truncated, or replaced by "
                                f"another file); rebuild it with: snakemake --force {target}")
+    absolute = target.resolve().as_posix()
+    if absolute != named and not absolute.endswith("/" + named):  # read from another folder, or the project moved: the same tail
+        raise UnreadableResult(f"cannot read {target} (its checksum is that of {named}: another result copied over it); "
+                               f"rebuild it with: snakemake --force {target}")
 
 
 class UnreadableResult(RuntimeError):

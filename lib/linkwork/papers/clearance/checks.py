@@ -26,6 +26,10 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             f"config key {key}.joints.journal_radius_m: value {joints['journal_radius_m']!r} is not smaller than "
             f"{key}.joints.bearing_radius_m = {joints['bearing_radius_m']!r} (the clearance must be > 0)"
         )
+    ideal = section["scenes"].get("ideal")
+    if ideal is None or ideal["clearance_joints"]:
+        raise ConfigError(f"config key {key}.scenes.ideal: value {ideal!r}: the scene named ideal is every claim's reference with ideal joints "
+                          "(it must be there, with clearance_joints: [])")
     for name, scene in section["scenes"].items():
         effects = scene["effects"]
         if "lubrication" in effects and joints.get("viscosity_Pa_s", 0.0) <= 0.0:
@@ -76,6 +80,16 @@ def check(section: Mapping[str, Any], key: str = "clearance") -> None:
             raise ConfigError(f"config key {key}.work_precision.reference.{name}.check_rtol: value {ref['check_rtol']!r} equals rtol (the two runs would agree trivially)")
     if wp["dry_error_window_cycles"] > wp["cycles"]:
         raise ConfigError(f"config key {key}.work_precision.dry_error_window_cycles: value {wp['dry_error_window_cycles']!r} is longer than work_precision.cycles ({wp['cycles']!r})")
+    xc = section["crosscheck"]
+    wp_scene = xc["work_precision"]["scene"]
+    if wp_scene not in section["scenes"] or wp_scene not in wp["reference"]:
+        raise ConfigError(f"config key {key}.crosscheck.work_precision.scene: value {wp_scene!r} is not a scene with a reference in "
+                          f"{key}.work_precision.reference (the cross-check uses the same scene, horizon and reference)")
+    for name in xc["dry_scenes"]:
+        scene = section["scenes"].get(name)
+        if scene is None or not scene["clearance_joints"] or "lubrication" in scene["effects"]:
+            raise ConfigError(f"config key {key}.crosscheck.dry_scenes: scene {name!r} is not a dry scene of {key}.scenes "
+                              "(clearance joints with contact, no lubrication)")
     b = section["bodies"]
     lw = FourBar(b["crank"]["length_m"], b["coupler"]["length_m"], b["rocker"]["length_m"], section["ground_m"])
     try:
