@@ -33,6 +33,11 @@ try:
 except ConfigError as exc:
     sys.exit(f"linkwork: {exc}")
 
+# `snakemake --report results/report.html` after a reproduction: the reports and the comparison tables with captions,
+# the jobs' run times and the workflow's graph (workflow/report/).
+report: "workflow/report/workflow.rst"
+
+
 include: "workflow/rules/common.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/beatup.smk"

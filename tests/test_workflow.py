@@ -245,6 +245,20 @@ def test_a_full_disk_stops_a_job_in_one_line_and_leaves_no_temporary(clone, tmp_
         assert not list((clone / "results").rglob("*.tmp")), list((clone / "results").rglob("*.tmp"))
 
 
+def test_snakemakes_own_report_holds_the_reports_and_tables_with_captions(built, tmp_path):
+    """`snakemake --report` after a reproduction: one self-contained page with the workflow's description, every
+    rendered report and every comparison table under their captions (workflow/report/)."""
+    page = tmp_path / "report.html"
+    snakemake(built, "--report", str(page))
+    html = page.read_text(encoding="utf-8")
+    assert "linkwork re-derives five published papers" in html and "Published numbers beside ours" in html
+    assert html.count("The rendered report") >= 1 and "Every published number of the paper beside ours" in html
+    from linkwork.papers import PAPERS
+
+    for name in [*PAPERS, "index", "accuracy", "sweeps"]:
+        assert f"{name}.html" in html, name
+
+
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel

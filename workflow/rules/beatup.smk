@@ -66,7 +66,7 @@ rule beatup_compare:
         uncertainty="results/beatup/uncertainty.nc",
         code=code("linkwork.papers.beatup.findings"),
     output:
-        "results/beatup/comparison.csv",
+        comparison_table("beatup"),
         "results/beatup/findings.nc",
     params:
         study="linkwork.papers.beatup.findings:compare",

@@ -96,7 +96,7 @@ rule clearance_compare:
         laws=expand("results/clearance/contact_law/{variant}.nc", variant=CLEARANCE_VARIANTS),
         code=code("linkwork.papers.clearance.findings"),
     output:
-        "results/clearance/comparison.csv",
+        comparison_table("clearance"),
         "results/clearance/findings.nc",
     params:
         study="linkwork.papers.clearance.findings:compare",

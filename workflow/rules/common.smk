@@ -41,6 +41,12 @@ def code(*entries):
     return code_of(ROOT / "workflow/scripts/study.py", *entries)
 
 
+def comparison_table(paper):
+    """A paper's comparison table as a rule output, shown with its caption in Snakemake's report (snakemake --report)."""
+    return report(f"results/{paper}/comparison.csv", caption="../report/comparison.rst", category="Published numbers beside ours",
+                  labels={"paper": paper, "file": "comparison.csv"})
+
+
 def section(paper, *paths, design=False):
     """Exactly the given key paths of a paper's config section (a rule's params.cfg), each labelled entry reduced to
     its value unless a path names a label field itself; ``design``: every entry keeps its range and choices too (the

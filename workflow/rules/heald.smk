@@ -39,7 +39,7 @@ rule heald_compare:
         uncertainty="results/heald/uncertainty.nc",
         code=code("linkwork.papers.heald.findings"),
     output:
-        "results/heald/comparison.csv",
+        comparison_table("heald"),
         "results/heald/findings.nc",
     params:
         study="linkwork.papers.heald.findings:compare",

@@ -69,7 +69,7 @@ rule report:
     input:
         unpack(report_inputs),
     output:
-        "results/reports/{report}.html",
+        report("results/reports/{report}.html", caption="../report/report.rst", category="Reports", labels={"report": "{report}"}),
     wildcard_constraints:
         report="|".join(REPORT_INPUTS),
     script:

@@ -34,7 +34,7 @@ rule stiffness_compare:
         result="results/stiffness/stiffness.nc",
         code=code("linkwork.papers.stiffness.findings"),
     output:
-        "results/stiffness/comparison.csv",
+        comparison_table("stiffness"),
         "results/stiffness/findings.nc",
     params:
         study="linkwork.papers.stiffness.findings:compare",

@@ -77,7 +77,7 @@ rule transplanter_compare:
         uncertainty="results/transplanter/uncertainty.nc",
         code=code("linkwork.papers.transplanter.findings"),
     output:
-        "results/transplanter/comparison.csv",
+        comparison_table("transplanter"),
         "results/transplanter/findings.nc",
     params:
         study="linkwork.papers.transplanter.findings:compare",
