@@ -19,7 +19,7 @@ from linkwork.papers.heald.dynamics import (
     self_consistent_reactions,
 )
 from linkwork.papers.heald.model import build, kinetostatic_reactions_b, reduced_masses
-from linkwork.papers.heald.studies import joint_forces
+from linkwork.papers.heald.dynamics import joint_forces
 
 CFG = load_yaml("config/config.yaml")["heald"]
 P = parameters(CFG)

@@ -79,7 +79,7 @@ def test_heald_model_b_joint_forces_do_not_see_the_warp_branch(config):
     spring-mass branch driven in velocity (an independent route)."""
     from linkwork.papers.heald.adapter import amplitude, omega_grid
     from linkwork.papers.heald.model import joint_stiffness, model_b_parameters, reduced_masses
-    from linkwork.papers.heald.studies import joint_forces
+    from linkwork.papers.heald.dynamics import joint_forces
     from linkwork.papers.heald.sweep import point_parameters, warp_branch_independence
 
     cfg = _heald_cfg(config)

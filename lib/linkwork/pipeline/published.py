@@ -1,6 +1,6 @@
 """Validate the published-numbers files (``config/published/<paper>.yaml``) like the config, before any job.
 
-Three layers, as for the config: reading (syntax errors and duplicate keys with file and line, ``validate.load_yaml``),
+Three layers, as for the config: reading (syntax errors and duplicate keys with file and line, ``yamlfile.load_yaml``),
 the JSON schema ``config/published.schema.yaml`` (types, tolerances >= 0, relations, measures, no unknown keys), then
 what a schema cannot say: every number finite, the ``paper`` field naming its file, ids unique (a table's cells
 included, as ``compare.expand_tables`` names them), a table row with one value per column and every column described,
@@ -27,7 +27,7 @@ def schema_problems(data: Any, schema: Mapping[str, Any], path: Path) -> list[st
     """One line per schema error of one file (``path`` names it)."""
     import jsonschema
 
-    from .validate import _short
+    from .yamlfile import short as _short
 
     errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(data), key=lambda e: [str(p) for p in e.absolute_path])
     out = []
@@ -102,7 +102,7 @@ def result_variables(paper: str) -> frozenset[str]:
 
 def check_published(folder: Path, schema_path: Path, papers) -> None:
     """Every paper's published file in ``folder`` checked; one ConfigError listing every problem of every file."""
-    from .validate import load_yaml
+    from .yamlfile import load_yaml
 
     schema = load_yaml(schema_path)
     problems = []

@@ -12,7 +12,7 @@ from ...pipeline.accuracy import summary_variables
 from ...pipeline.timing import median_time
 from ...units import RAD_S_PER_RPM
 from .adapter import amplitude, parameters
-from .studies import joint_forces
+from .dynamics import joint_forces
 
 
 def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:

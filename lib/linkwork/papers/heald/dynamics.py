@@ -10,7 +10,21 @@ from collections.abc import Callable, Mapping
 
 import numpy as np
 
-from ...engines.chains import Network, assemble_matrices
+from ...engines.chains import Network, assemble_matrices, solve_network
+from .model import build, drive_frequency
+
+# --- the joint forces of a chain ---
+
+
+def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.ndarray, amplitude: float):
+    """(input force, Q_E, Q_F, singular) at main-shaft frequencies ``omega`` (rad/s) for a drive displacement
+    amplitude (m): the chain is driven at w_d = drive_ratio x omega, V = j w_d X."""
+    wd = drive_frequency(p, omega)
+    r = solve_network(build(model, p, variant), wd, 1j * wd * amplitude)
+    q_e = r.element_force["joint_E"] + r.element_force["joint_E_damping"]
+    q_f = r.element_force["joint_F"] + r.element_force["joint_F_damping"]
+    return r.input_force, q_e, q_f, r.singular
+
 
 # --- damping ratios ------------------------------------------------------------------------------
 
@@ -52,7 +66,6 @@ def damped_modes(net: Network, held: bool = True) -> tuple[np.ndarray, np.ndarra
 def kinetostatic_reactions(model: str, p: Mapping[str, float]) -> tuple[float, float]:
     """(|R_E|, |R_F|) of the ideal-joint chain (pins of stiffness k_n, no clearance) driven with the heald
     stroke ``stroke_D`` at the operating speed ``omega_op``: the kinetostatic reactions (first harmonic)."""
-    from .studies import joint_forces
 
     w = np.array([p["omega_op"]])
     _, q_e, q_f, _ = joint_forces(model, p, "ideal", w, p["stroke_D"])
@@ -68,7 +81,6 @@ def self_consistent_reactions(p: Mapping[str, float], model: str = "A") -> dict[
     """
     from scipy.optimize import root
 
-    from .studies import joint_forces
 
     w = np.array([p["omega_op"]])
 
@@ -153,7 +165,6 @@ def cam_harmonics(rise_fraction: float, harmonics: int, samples: int) -> np.ndar
 
 def harmonic_transfer(model: str, p: Mapping[str, float], omega: np.ndarray, harmonics: int) -> tuple[np.ndarray, np.ndarray]:
     """Q_E and Q_F per metre of drive displacement at h omega, h = 1..harmonics: arrays (speeds, harmonics)."""
-    from .studies import joint_forces
 
     freqs = np.outer(omega, np.arange(1, harmonics + 1))
     _, q_e, q_f, _ = joint_forces(model, p, "elastic", freqs.ravel(), 1.0)

@@ -101,7 +101,8 @@ def numerical_errors(chain: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple
 
 def measure_function(claim: str, model: str, cfg: Mapping[str, Any]):
     """The claim's measure as a function of a parameter dict (the cheapest route to it)."""
-    from .studies import growth_fraction, joint_forces, lowest_resonance
+    from .dynamics import joint_forces
+    from .studies import growth_fraction, lowest_resonance
 
     w, amp = omega_grid(cfg["speeds"]), amplitude(cfg)
     if claim == "force_E_many_times_F":

@@ -11,18 +11,8 @@ import xarray as xr
 from ...engines.chains import resonances, solve_network
 from ...units import RAD_S_PER_RPM
 from .adapter import DRIVE_RATIO, amplitude, omega_grid, parameters, sweep_values
-from .dynamics import cam_harmonics, damped_modes, harmonic_transfer, kinetostatic_reactions, periodic_peaks, self_consistent_reactions
+from .dynamics import cam_harmonics, damped_modes, harmonic_transfer, joint_forces, kinetostatic_reactions, periodic_peaks, self_consistent_reactions
 from .model import JOINTS, build, drive_frequency, eq2_mobility, eq2_node_mass_difference, joint_stiffness, model_b, model_b_parameters, node_mass
-
-
-def joint_forces(model: str, p: Mapping[str, float], variant: str, omega: np.ndarray, amplitude: float):
-    """(input force, Q_E, Q_F, singular) at main-shaft frequencies ``omega`` (rad/s) for a drive displacement
-    amplitude (m): the chain is driven at w_d = drive_ratio x omega, V = j w_d X."""
-    wd = drive_frequency(p, omega)
-    r = solve_network(build(model, p, variant), wd, 1j * wd * amplitude)
-    q_e = r.element_force["joint_E"] + r.element_force["joint_E_damping"]
-    q_f = r.element_force["joint_F"] + r.element_force["joint_F_damping"]
-    return r.input_force, q_e, q_f, r.singular
 
 
 def growth_fraction(model: str, p: Mapping[str, float], omega: np.ndarray, amplitude: float) -> float:

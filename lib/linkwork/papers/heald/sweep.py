@@ -20,7 +20,7 @@ import xarray as xr
 
 from ...pipeline.sweeps import gather, interpret, points_dataset
 from .adapter import amplitude, omega_grid, parameters
-from .studies import joint_forces
+from .dynamics import joint_forces
 
 
 def point_parameters(cfg: Mapping[str, Any], point: Mapping[str, float]) -> dict[str, float]:
