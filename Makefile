@@ -56,7 +56,7 @@ readme: $(STAMP)
 	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.pipeline.readme import replace_block; \
 	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
 
-# Every benchmark (about 40 minutes on 2 cores; the pipeline one dominates), then the README's measured figures.
+# Every benchmark (about 40 minutes on 2 cores; the pipeline one dominates), then the measured figures (docs/measured.md).
 # BASELINE=<git revision> also times that revision's full reproduction beside ours.
 BASELINE ?=
 bench: $(STAMP) browser

@@ -1,8 +1,8 @@
-"""The README's measured figures, rendered from benchmarks/measured/*.json (what the benchmark scripts wrote).
+"""The measured figures (docs/measured.md), rendered from benchmarks/measured/*.json (what the benchmark scripts wrote).
 
-Run: python benchmarks/readme.py   (replaces the block between the README's `measured` markers)
+Run: python benchmarks/readme.py   (replaces the block between the page's `measured` markers)
 
-tests/test_pipeline.py checks that the README holds exactly what this renders from the committed files, so
+tests/test_pipeline.py checks that the page holds exactly what this renders from the committed files, so
 no figure in that section is typed by hand.
 """
 
@@ -249,9 +249,9 @@ def render(measured: Path = MEASURED) -> str:
 
 
 if __name__ == "__main__":
-    path = PROJECT / "README.md"
+    path = PROJECT / "docs" / "measured.md"
     sys.path.insert(0, str(PROJECT / "lib"))
     from linkwork.pipeline.readme import replace_block
 
     path.write_text(replace_block(path.read_text(), render(), START, END))
-    print("README.md: measured figures rendered from benchmarks/measured/", file=sys.stderr)
+    print("docs/measured.md: measured figures rendered from benchmarks/measured/", file=sys.stderr)

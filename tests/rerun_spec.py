@@ -1,7 +1,8 @@
-"""The README's rerun table, rendered from tests/rerun_spec.yaml (the specification the workflow test checks).
+"""The rerun table of docs/parameters.md, rendered from tests/rerun_spec.yaml (the specification the workflow test
+checks).
 
-Run `python tests/rerun_spec.py` to print the table for the README; tests/test_workflow.py asserts that
-the README holds exactly this text.
+Run `python tests/rerun_spec.py` to print the table; tests/test_workflow.py asserts that docs/parameters.md holds
+exactly this text.
 """
 
 from pathlib import Path
