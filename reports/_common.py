@@ -18,12 +18,10 @@ from pathlib import Path
 import pandas as pd
 from IPython.display import HTML, Markdown, display
 
+from linkwork.pipeline.compare import VERDICT_COLOURS  # noqa: F401 (the index's matrix reads it from here)
 from linkwork.pipeline.results import load as load_result
 from linkwork.pipeline.results import verify
 
-#: One colour per verdict class (linkwork.pipeline.compare.VERDICTS), for tables and the index's matrix.
-VERDICT_COLOURS = {"matches": "#a6dba0", "matches as printed": "#d9f0d3", "depends on assumptions": "#c6dbef", "not reconciled": "#9e9ac8",
-                   "undetermined (numerics)": "#fee391", "deviates as printed": "#fcbba1", "deviates": "#ef8a62", "not reproducible": "#d9d9d9"}
 RELATION = {"eq": "±", "ge": "≥", "le": "≤"}
 
 

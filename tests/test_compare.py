@@ -147,3 +147,10 @@ def test_each_scenario_can_carry_its_own_numerical_error_bar():
     borrowed = compare(published, ds, errors={"c": (1.0, "bar")}, uncertainty=study)
     assert borrowed.verdict.tolist() == ["undetermined (numerics)", "undetermined (numerics)"]
     assert borrowed.numerical_source.tolist() == ["bar", "bar (the first scenario's)"]
+
+
+def test_the_verdict_classes_are_listed_once():
+    """Every per-class table (meaning, colour) has exactly the classes of VERDICTS: the list lives in one place."""
+    from linkwork.pipeline.compare import VERDICT_COLOURS, VERDICT_MEANING, VERDICTS
+
+    assert list(VERDICT_MEANING) == list(VERDICTS) and list(VERDICT_COLOURS) == list(VERDICTS)

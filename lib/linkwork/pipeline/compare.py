@@ -67,6 +67,9 @@ VERDICT_MEANING = {
     "deviates": "outside the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit, within it), with our error bar",
     "not reproducible": "the paper lacks what reproducing it needs",
 }
+#: One colour per class, for tables and the index's matrix.
+VERDICT_COLOURS = {"matches": "#a6dba0", "matches as printed": "#d9f0d3", "depends on assumptions": "#c6dbef", "not reconciled": "#9e9ac8",
+                   "undetermined (numerics)": "#fee391", "deviates as printed": "#fcbba1", "deviates": "#ef8a62", "not reproducible": "#d9d9d9"}
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
     "model", "scenario", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance", "tolerance_source",
