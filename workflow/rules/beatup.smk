@@ -6,6 +6,9 @@ SIXBAR_FRAME = [f"sixbar.{k}" for k in ("l2_m", "l3_m", "l4_m", "l5_m", "l6_m", 
 # by the motion study, its choices and labels by the comparison (which computes both senses), never its reason.
 SIXBAR_MECHANISM = ["sixbar.l1_m", *SIXBAR_FRAME]
 SENSE_CHOICE = ["sixbar.crank_sense.value", "sixbar.crank_sense.choices", "sixbar.crank_sense.choice_labels"]
+UNCERTAINTY["beatup"] = {
+    "cfg": lambda index: section("beatup", "sixbar", "printed_rounding", "grids", "numerics.scan_points", "numerics.root_xtol_rad", "uncertainty", design=True),
+}
 
 
 rule beatup_sixbar:

@@ -1,10 +1,52 @@
 # Paper "clearance": four-bar with clearance joints and lubrication (multibody engine, scenes).
+import importlib
 import importlib.util
 from linkwork.papers.clearance import adapter as clearance_adapter
 
 CLEARANCE = config["clearance"]
 CLEARANCE_VARIANTS = list(CLEARANCE["variants"])
 CLEARANCE_SCENES = list(CLEARANCE["scenes"])
+# Its input-uncertainty batches: each moves the samples of one variant that enter the same scenes, continuing those
+# scenes from their nominal states; a batch reads only the keys of the scenes its samples move (no check reruns: they
+# take the nominal error bar), and its moved values travel as arguments (a range edit reruns its batches).
+CLEARANCE_UNCERTAINTY = importlib.import_module("linkwork.papers.clearance.uncertainty").batch_jobs(CLEARANCE)
+
+
+def clearance_uncertainty_cfg(index):
+    job = CLEARANCE_UNCERTAINTY[index]
+    keys = {k for s in job["scenes"] for k in clearance_adapter.scene_keys(CLEARANCE, job["variant"], s) if not k.startswith("check_integrators.")}
+    return section("clearance", *sorted(keys))
+
+
+UNCERTAINTY["clearance"] = {
+    "cfg": clearance_uncertainty_cfg,
+    "args": lambda index: {"samples": CLEARANCE_UNCERTAINTY[index]["samples"], "variant": CLEARANCE_UNCERTAINTY[index]["variant"]},
+    # the gather judges the claims (threshold, variants), so a threshold edit reruns no scene
+    "gather_cfg": lambda: section("clearance", "claims", "assumed", "uncertainty", "states.starts", "statistics.confidence",
+                                  *(f"variants.{v}" for v in CLEARANCE_VARIANTS), design=True),
+    "batch_count": lambda: len(CLEARANCE_UNCERTAINTY),
+    "batch_inputs": lambda index: {"nominal": [f"results/clearance/{CLEARANCE_UNCERTAINTY[index]['variant']}/{s}.nc"
+                                               for s in CLEARANCE_UNCERTAINTY[index]["scenes"]]},
+    "gather_inputs": lambda: {"claims": "results/clearance/claims.nc"},  # the nominal deviations
+}
+
+
+def clearance_sweep_cfg():
+    """The paper's config values a point of the clearance sweep reads (the swept clearance and speed come as the point)."""
+    spec = config["sweeps"]["clearance"]
+    scene = CLEARANCE["scenes"][spec["scene"]]
+    keys = clearance_adapter.model_keys(CLEARANCE, spec["variant"], spec["scene"])
+    keys = [k for k in keys if k != "crank_speed_rad_s" and (k != "joints.journal_radius_m" or "lubrication" in scene["effects"])]
+    return section("clearance", *keys, "numerics.points_per_cycle", f"integrators.{clearance_adapter.integrator_kind(scene)}", "states", "statistics",
+                   "claims.ripple_cutoff_hz")
+
+
+SWEEP["clearance"] = {
+    "cfg": clearance_sweep_cfg,
+    "reference": lambda: {"clearance_m": CLEARANCE["joints"]["bearing_radius_m"] - CLEARANCE["joints"]["journal_radius_m"],
+                          "crank_speed_rad_s": CLEARANCE["crank_speed_rad_s"]},
+}
+REPORT_PRIORITY["clearance"] = GATE_PRIORITY  # the longest report: out of the tail
 
 
 def clearance_studies_compared():

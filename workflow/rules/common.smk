@@ -41,6 +41,20 @@ def code(*entries):
     return code_of(ROOT / "workflow/scripts/study.py", *entries)
 
 
+# What each paper tells the shared rule files, filled in by the paper's own rule file (the shared files name no paper):
+# UNCERTAINTY[paper]: its input-uncertainty study (uncertainty.smk): "cfg" (batch index -> the config values a batch
+#   reads) and, where they differ from the default, "args" (index -> the batch's arguments; default {"index": index}),
+#   "gather_cfg" (() -> the gather's values; default: batch 0's), "batch_count" (() -> batches; default: from the
+#   design's sample count), "batch_inputs" (index -> named inputs; default: the published numbers), "gather_inputs"
+#   (() -> named inputs besides the batches and the published numbers).  A paper without an entry has no assumed input.
+# SWEEP[name]: its sweep (sweeps.smk): "cfg" (() -> the paper's values a point reads), "reference" (() -> the grid
+#   point the paragraph refers to), optionally "gather_inputs" and "gather_cfg" (() -> what the gather also reads).
+# REPORT_PRIORITY[report]: a report that must not wait in the tail (default 0).
+UNCERTAINTY = {}
+SWEEP = {}
+REPORT_PRIORITY = {}
+
+
 def comparison_table(paper):
     """A paper's comparison table as a rule output, shown with its caption in Snakemake's report (snakemake --report)."""
     return report(f"results/{paper}/comparison.csv", caption="../report/comparison.rst", category="Published numbers beside ours",

@@ -4,6 +4,24 @@
 # study (the accuracy study and the sweep drive the chain at the shaft frequency: grid studies on its own axis)
 HEALD_CHAIN = ["parameters", "excitation", "speeds"]
 HEALD_MODEL = [*HEALD_CHAIN, "drive"]
+UNCERTAINTY["heald"] = {"cfg": lambda index: section("heald", *HEALD_MODEL, "models", "uncertainty", design=True)}
+
+
+def heald_sweep_cfg():
+    """The paper's config values a point of the heald sweep reads (the swept clearance and reaction come as the point)."""
+    swept = ("clearance_E", "clearance_F", "reaction_E")
+    return section("heald", *(f"parameters.{p}" for p in config["heald"]["parameters"] if p not in swept), "excitation", "speeds")
+
+
+SWEEP["heald"] = {
+    "cfg": heald_sweep_cfg,
+    "reference": lambda: {"clearance_m": config["heald"]["parameters"]["clearance_E"]["value"],
+                          "reaction_ratio_EF": config["heald"]["parameters"]["reaction_E"]["value"] / config["heald"]["parameters"]["reaction_F"]["value"]},
+    # the gather draws the map's threshold from the published claim, and shows that the warp branch cannot change
+    # Q_E, Q_F in model B (the paper's values it reads itself)
+    "gather_inputs": lambda: {"published": "config/published/heald.yaml"},
+    "gather_cfg": lambda: {"paper": heald_sweep_cfg()},
+}
 
 
 rule heald_chain:

@@ -65,7 +65,7 @@ def report_inputs(wildcards):
 
 
 rule report:
-    priority: lambda wildcards: GATE_PRIORITY if wildcards.report == "clearance" else 0  # the longest report: out of the tail
+    priority: lambda wildcards: REPORT_PRIORITY.get(wildcards.report, 0)
     input:
         unpack(report_inputs),
     output:

@@ -3,12 +3,6 @@
 from linkwork.pipeline.sweeps import batches as sweep_batches, grid as sweep_grid
 
 SWEEPS = [s for s in config["sweeps"] if s != "grid"]
-# What a sweep's gather reads besides its points: the published file where the map's threshold is a claim's.
-SWEEP_GATHER_INPUTS = {"heald": {"published": "config/published/heald.yaml"}}
-# ... and the paper's values it reads itself (the heald gather shows that the warp branch cannot change Q_E, Q_F in model B).
-SWEEP_GATHER_CFG = {"heald": lambda: {"paper": sweep_cfg("heald")}}
-
-
 def sweep_axes(name):
     return config["sweeps"][name][config["sweeps"]["grid"]]
 
@@ -19,28 +13,13 @@ def sweep_jobs(name):
 
 
 def sweep_cfg(name):
-    """The paper's config values a point of this sweep reads (the swept values themselves come as the point)."""
-    spec = config["sweeps"][name]
-    if name == "clearance":
-        scene = config["clearance"]["scenes"][spec["scene"]]
-        keys = clearance_adapter.model_keys(config["clearance"], spec["variant"], spec["scene"])
-        keys = [k for k in keys if k != "crank_speed_rad_s" and (k != "joints.journal_radius_m" or "lubrication" in scene["effects"])]
-        return section("clearance", *keys, "numerics.points_per_cycle", f"integrators.{clearance_adapter.integrator_kind(scene)}", "states", "statistics", "claims.ripple_cutoff_hz")
-    if name == "heald":
-        swept = ("clearance_E", "clearance_F", "reaction_E")
-        return section("heald", *(f"parameters.{p}" for p in config["heald"]["parameters"] if p not in swept), "excitation", "speeds")
-    raise ValueError(f"no sweep named {name!r}")
+    """The paper's config values a point of this sweep reads (the paper's SWEEP entry; the swept values come as the point)."""
+    return SWEEP[name]["cfg"]()
 
 
 def sweep_reference(name):
     """The grid point the paragraph and the colour scale refer to: the paper's configured (nominal) values."""
-    if name == "clearance":
-        joints = config["clearance"]["joints"]
-        return {"clearance_m": joints["bearing_radius_m"] - joints["journal_radius_m"], "crank_speed_rad_s": config["clearance"]["crank_speed_rad_s"]}
-    if name == "heald":
-        p = config["heald"]["parameters"]
-        return {"clearance_m": p["clearance_E"]["value"], "reaction_ratio_EF": p["reaction_E"]["value"] / p["reaction_F"]["value"]}
-    raise ValueError(f"no sweep named {name!r}")
+    return SWEEP[name]["reference"]()
 
 
 def sweep_spec(name):
@@ -51,7 +30,7 @@ def sweep_spec(name):
 def sweep_gather_inputs(wildcards):
     name = wildcards.sweep
     return {"points": expand("results/sweeps/{sweep}/job_{index}.nc", sweep=name, index=range(len(sweep_jobs(name)))),
-            "code": code(f"linkwork.papers.{name}.sweep"), **SWEEP_GATHER_INPUTS.get(name, {})}
+            "code": code(f"linkwork.papers.{name}.sweep"), **SWEEP[name].get("gather_inputs", lambda: {})()}
 
 
 def sweep_args(wildcards):
@@ -86,6 +65,6 @@ rule sweep_gather:
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.sweep}.sweep:gathered",
         cfg=lambda wildcards: {"grid": config["sweeps"]["grid"], "axes": sweep_axes(wildcards.sweep), "spec": sweep_spec(wildcards.sweep),
-                               "reference": sweep_reference(wildcards.sweep), **SWEEP_GATHER_CFG.get(wildcards.sweep, lambda: {})()},
+                               "reference": sweep_reference(wildcards.sweep), **SWEEP[wildcards.sweep].get("gather_cfg", lambda: {})()},
     script:
         STUDY

@@ -8,6 +8,12 @@ TRANSPLANTER_COMPARED = ["fe.compared_solution", *TRANSPLANTER_DYNAMIC, "initial
 TRANSPLANTER_PROBLEM = [*TRANSPLANTER_MODEL, "material.safety_factor", *TRANSPLANTER_MATERIAL("yield_Pa"), "minimum_diameter_m",
                         "fe.angle_step_deg", "optimization.angle_step_deg", "optimization.peak_spread_steps", "optimization.exchange_rounds",
                         "optimization.reference_diameter_m"]
+UNCERTAINTY["transplanter"] = {  # its samples and its searches' evaluations start from our optimum
+    "cfg": lambda index: section("transplanter", *TRANSPLANTER_PROBLEM, *TRANSPLANTER_COMPARED, "initial_diameters_m", "fe.angle_step_deg",
+                                 "optimization.slsqp_ftol", "uncertainty", design=True),
+    "batch_inputs": lambda index: {"published": "config/published/transplanter.yaml", "optim": "results/transplanter/optim.nc"},
+    "gather_inputs": lambda: {"optim": "results/transplanter/optim.nc"},
+}
 
 
 rule transplanter_optim:
