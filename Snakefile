@@ -11,6 +11,7 @@ sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
 from linkwork.pipeline.results import unwritable  # noqa: E402
+from linkwork.papers import PAPERS  # noqa: E402
 from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
@@ -39,11 +40,8 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/stiffness.smk"
-include: "workflow/rules/beatup.smk"
-include: "workflow/rules/heald.smk"
-include: "workflow/rules/transplanter.smk"
-include: "workflow/rules/clearance.smk"
+for _paper in PAPERS:  # each paper's own rules; it registers what the shared files below need (common.smk)
+    include: f"workflow/rules/{_paper}.smk"
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/uncertainty.smk"

@@ -19,7 +19,7 @@ import pandas as pd
 from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, load, md, provenance, table,
                      verdict_figure, verdict_legend)
 
-from linkwork.papers import CITATIONS
+from linkwork.papers.beatup import CITATION
 
 files = inputs()
 ds = load(files["result"])
@@ -115,7 +115,7 @@ caption(f"The sley over one crank turn from the front dead centre, for the crank
         f"{pub['rate_peak_1']['tolerance']['abs']:g}° reading. Both the back dead centre and the velocity peaks fall on the printed positions in one sense only.")
 
 # %%
-md(f"**Paper.** {esc(CITATIONS['beatup'])}")
+md(f"**Paper.** {esc(CITATION)}")
 
 # %% [markdown]
 # **What the paper does.** The sley of the GN721 flexible-rapier loom is driven by a crank-rocker ABCD in series with a

@@ -19,10 +19,10 @@ import numpy as np
 import pandas as pd
 from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, show_log_log, table
 
-from linkwork.papers import CITATIONS
+from linkwork.papers.clearance import CITATION
 from linkwork.papers.clearance.words import CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
 
-md(f"**Paper.** {esc(CITATIONS['clearance'])}")
+md(f"**Paper.** {esc(CITATION)}")
 NAMES = QUANTITY_WORDS
 UNITS = {"rocker_acceleration": "rad/s²", "crank_torque": "N·m"}
 OUTCOME = {1: "holds", 0: "fails", -1: "undetermined"}

@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 from _common import answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
 
-from linkwork.papers import CITATIONS
+from linkwork.papers.heald import CITATION
 from linkwork.units import RAD_S_PER_RPM
 
 files = inputs()
@@ -83,7 +83,7 @@ caption("The paper's three claims against our two chain models. Grey: what each 
         "frequency. The verdict over the ranges is at the right" + (" (per drive frequency, in the legend's order)" if per_scenario else "") + ". Units: force ratio and band fraction dimensionless, frequency in rad/s.")
 
 # %%
-md(f"**Paper.** {esc(CITATIONS['heald'])}")
+md(f"**Paper.** {esc(CITATION)}")
 if fnd.attrs.get("notes"):
     md(f"**What the counts do not show.** {esc(fnd.attrs['notes'])}")
 

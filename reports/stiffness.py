@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt
 import pandas as pd
 from _common import answer, caption, comparison_table, esc, inputs, load, md, provenance, table, verdict_figure
 
-from linkwork.papers import CITATIONS
+from linkwork.papers.stiffness import CITATION
 
 files = inputs()
 ds = load(files["result"])
@@ -80,7 +80,7 @@ caption(
 )
 
 # %%
-md(f"**Paper.** {esc(CITATIONS['stiffness'])}")
+md(f"**Paper.** {esc(CITATION)}")
 
 # %% [markdown]
 # **What the paper does.** The needle crank-rocker of a tufted-carpet loom

@@ -13,9 +13,9 @@
 # %%
 from _common import esc, md
 
-from linkwork.papers import CITATIONS
+from linkwork.papers.transplanter import CITATION
 
-md(f"**Paper.** {esc(CITATIONS['transplanter'])}")
+md(f"**Paper.** {esc(CITATION)}")
 
 # %% [markdown]
 # **What the paper does.** It takes the transplanter's four-bar: crank AB, coupler BC, rocker CD, and the planting arm

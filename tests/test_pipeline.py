@@ -192,7 +192,7 @@ def test_reports_only_load_and_format(name):
     text = (PROJECT / "reports" / f"{name}.py").read_text()
     imports = [line for line in text.splitlines() if line.startswith(("import ", "from "))]
     allowed = ("import json", "import textwrap", "import matplotlib.pyplot as plt", "from matplotlib.patches import", "import numpy as np",
-               "import pandas as pd", "from _common import", "from linkwork.papers import PAPERS", "from linkwork.papers import CITATIONS",
+               "import pandas as pd", "from _common import", "from linkwork.papers import PAPERS", f"from linkwork.papers.{name} import CITATION",
                # presentation constants: the verdict classes' names and meanings, the clearance paper's words for its code names
                "from linkwork.pipeline.compare import VERDICT", "from linkwork.papers.clearance.words import",
                "from linkwork.units import")  # unit conversions at the report's boundary
@@ -209,9 +209,10 @@ def test_only_the_declared_reports_show_wall_times(name):
     from linkwork.pipeline.fingerprint import MEASURED_REPORTS
 
     script = (PROJECT / "reports" / f"{name}.py").read_text()
-    rules = (PROJECT / "workflow" / "rules" / "reports.smk").read_text()
-    entry = next(line for line in rules.splitlines() if line.lstrip().startswith((f'"{name}": ', f'"{name}":')))
-    block = rules[rules.index(entry):].split("\n    \"", 1)[0]  # the entry up to the next report's key
+    rules = "\n".join(p.read_text() for p in sorted((PROJECT / "workflow" / "rules").glob("*.smk")))
+    entry = f'REPORT_INPUTS["{name}"] = '  # each report's inputs are registered once (a paper's by its own rule file)
+    assert rules.count(entry) == 1, name
+    block = rules[rules.index(entry):].split("\n\n", 1)[0]  # the registration up to the next blank line
     reads = "timings" in script or "time_s" in script or "timings" in block
     assert reads == (name in MEASURED_REPORTS), f"reports/{name}.py: reads wall times {reads}, declared {name in MEASURED_REPORTS}"
 
@@ -369,3 +370,20 @@ def test_assumptions_hold_every_labelled_entry_whole():
     assert list(ds.entry.values) == ["a", "b.c", "g"]
     assert list(ds.range.values) == ["", "0.01–0.05", "gravity off / gravity on"]
     assert list(ds.reason.values) == ["printed", "r", "g"] and ds.range_reason.values[1] == "rr"
+
+
+def test_papers_are_found_by_their_packages_and_a_module_reading_them_depends_on_each(tmp_path):
+    """A package with TITLE, CITATION and ORDER in its __init__ is a paper, in ORDER; a paper's own modules do not import
+    its siblings, and a module that reads PAPERS has every paper's __init__ in its import closure."""
+    import subprocess
+    import sys
+
+    from linkwork.papers import CITATIONS, PAPERS
+
+    assert list(PAPERS) == ["stiffness", "beatup", "clearance", "transplanter", "heald"] and set(CITATIONS) == set(PAPERS)
+    probe = "import sys, linkwork.papers.stiffness.studies; print(sorted(m for m in sys.modules if m.count('.') == 2 and m.startswith('linkwork.papers.')))"
+    out = subprocess.run([sys.executable, "-c", probe], env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")}, capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "['linkwork.papers.stiffness']"
+    lib = PROJECT / "lib"
+    readme = {str(p.relative_to(lib)) for p in closure("linkwork.pipeline.readme", lib)}
+    assert {f"linkwork/papers/{p}/__init__.py" for p in PAPERS} <= readme

@@ -259,6 +259,111 @@ def test_snakemakes_own_report_holds_the_reports_and_tables_with_captions(built,
         assert f"{name}.html" in html, name
 
 
+#: A sixth paper, as a maintainer would add one: its package, its rule file, its report and its published numbers;
+#: no shared file is edited.
+TOY_PAPER = {
+    "lib/linkwork/papers/toy/__init__.py": '''"""Paper ``toy``: a test's."""
+
+TITLE = "Toy 2026: one printed number"
+CITATION = "A. Toy, One printed number, a test's journal 1(1), 2026"
+ORDER = 6
+''',
+    "lib/linkwork/papers/toy/studies.py": '''"""The toy paper's study."""
+
+import xarray as xr
+
+
+def study(cfg):
+    """Rule study: the toy paper's one number."""
+    return xr.Dataset({"answer": ((), 42.0, {"units": "1", "long_name": "the answer"})})
+''',
+    "lib/linkwork/papers/toy/checks.py": '''"""The toy paper's checks: none (it has no config section)."""
+
+RESULT_VARIABLES = frozenset({"answer"})
+
+
+def check(section, key="toy"):
+    """Nothing to check."""
+''',
+    "lib/linkwork/papers/toy/findings.py": '''"""The toy paper's number beside ours."""
+
+from ...pipeline.compare import compare_datasets, counts_dataset, findings_attrs
+
+
+def compare(cfg, published, result):
+    """Rule study: the comparison table and the findings."""
+    table = compare_datasets(published, [result])
+    findings = counts_dataset(table)
+    findings.attrs.update(findings_attrs("Toy 2026", "", "", "It holds up: its one number is ours."))
+    return table, findings
+''',
+    "workflow/rules/toy.smk": '''# Paper "toy": one printed number (a test's).
+
+
+rule toy:
+    input:
+        code=code("linkwork.papers.toy.studies"),
+    output:
+        "results/toy/result.nc",
+    params:
+        study="linkwork.papers.toy.studies:study",
+        cfg={},
+    script:
+        STUDY
+
+
+rule toy_compare:
+    input:
+        published="config/published/toy.yaml",
+        result="results/toy/result.nc",
+        code=code("linkwork.papers.toy.findings"),
+    output:
+        comparison_table("toy"),
+        "results/toy/findings.nc",
+    params:
+        study="linkwork.papers.toy.findings:compare",
+        cfg={},
+    script:
+        STUDY
+
+
+REPORT_INPUTS["toy"] = paper_report("toy", result="results/toy/result.nc")
+''',
+    "reports/toy.py": '''# %% [markdown]
+# # The toy paper, reproduced
+
+# %%
+from _common import answer, comparison_table, inputs, load
+
+files = inputs()
+answer(load(files["findings"]))
+comparison_table(load(files["comparison"]))
+''',
+    "config/published/toy.yaml": '''paper: toy
+quantities:
+  - {id: answer, quantity: the printed number, value: 42.0, unit: "1", where: "p. 1", tolerance: {abs: 0.5}, measure: {variable: answer, reduce: value}}
+''',
+}
+
+
+def test_a_sixth_paper_joins_the_dag_the_index_and_the_findings_without_a_shared_edit(clone):
+    """The toy paper's own files only: a dry run plans its jobs and the reports across papers, and a run puts it in the
+    index and the README's findings.  No rule file names a paper in a condition."""
+    shared = {p: p.read_bytes() for p in (clone / "workflow").rglob("*") if p.is_file()}
+    for rel, text in TOY_PAPER.items():
+        (clone / rel).parent.mkdir(parents=True, exist_ok=True)
+        (clone / rel).write_text(text, encoding="utf-8")
+    assert all(p.read_bytes() == data for p, data in shared.items())  # nothing shared was touched
+    planned = job_listing(clone)
+    assert {"toy", "toy_compare", "assumptions:toy", "report:toy", "report:index", "readme_findings"} <= {j.split("/")[0] for j in planned}, sorted(planned)
+    snakemake(clone, "--cores", "2", "results/reports/index.html", "results/readme_findings.md", "results/reports/toy.html")
+    assert "Toy 2026: one printed number" in (clone / "results/readme_findings.md").read_text()
+    assert "toy.html" in (clone / "results/reports/index.html").read_text()
+    assert "It holds up: its one number is ours." in (clone / "results/reports/toy.html").read_text()
+    for rules in (clone / "workflow").rglob("*.smk"):
+        assert "paper ==" not in rules.read_text(), rules
+
+
 def test_real_run_builds_every_output(built):
     for rel in OUTPUTS:
         assert (built / rel).stat().st_size > 0, rel

@@ -77,3 +77,10 @@ rule beatup_compare:
             "numerics.scan_points", "numerics.root_xtol_rad"),
     script:
         STUDY
+
+
+# the inputs of the paper's report (reports.smk renders it)
+REPORT_INPUTS["beatup"] = paper_report(
+    "beatup", result="results/beatup/sixbar.nc", window="results/beatup/window.nc",
+    accuracy="results/beatup/accuracy.nc", sley_pin="results/beatup/sley_pin.nc",
+)

@@ -220,3 +220,13 @@ rule clearance_crosscheck_summary:
         cfg=section("clearance", "variants"),
     script:
         STUDY
+
+
+# the inputs of the paper's report (reports.smk renders it)
+REPORT_INPUTS["clearance"] = paper_report(
+    "clearance", result="results/clearance/claims.nc", accuracy="results/clearance/accuracy.nc",
+    scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
+    sweep="results/sweeps/clearance.nc",
+    **(CROSSCHECK_RESULTS if config["crosscheck"] else {}),
+)
+ACCURACY_REPORT_INPUTS.update(CROSSCHECK_WP if config["crosscheck"] else {})

@@ -50,9 +50,22 @@ def code(*entries):
 # SWEEP[name]: its sweep (sweeps.smk): "cfg" (() -> the paper's values a point reads), "reference" (() -> the grid
 #   point the paragraph refers to), optionally "gather_inputs" and "gather_cfg" (() -> what the gather also reads).
 # REPORT_PRIORITY[report]: a report that must not wait in the tail (default 0).
+# REPORT_INPUTS[report]: the files a report reads, by the names the report uses (a paper: ``paper_report``; the
+#   renderer passes them by name, reports.smk adds the reports across papers).
+# ACCURACY_REPORT_INPUTS: what the accuracy report also reads (a paper's extra work-precision study).
 UNCERTAINTY = {}
 SWEEP = {}
 REPORT_PRIORITY = {}
+REPORT_INPUTS = {}
+ACCURACY_REPORT_INPUTS = {}
+
+
+def paper_report(paper, **results):
+    """A paper report's inputs: its results by name, and the files every paper report reads (call it after the paper's
+    UNCERTAINTY entry)."""
+    uncertainty = {"uncertainty": f"results/{paper}/uncertainty.nc"} if paper in UNCERTAINTY else {}
+    return {**results, **uncertainty, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
+            "published": f"config/published/{paper}.yaml", "assumptions": f"results/{paper}/assumptions.nc"}
 
 
 def comparison_table(paper):
@@ -70,7 +83,7 @@ def section(paper, *paths, design=False):
 
 def assumptions_cfg(paper):
     """Every labelled entry of a paper's section, whole (the assumptions rule: the reports' reasons and ranges)."""
-    return labelled_entries(config[paper])
+    return labelled_entries(config.get(paper, {}))  # a paper without a config section has no labelled entry
 
 # On a cluster (profiles/slurm) these run on the submitting host: each reads finished results and computes for
 # about a second (benchmarks/measured/job_resources.json), less than a submission costs. Locally: no effect.

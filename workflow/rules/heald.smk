@@ -79,3 +79,7 @@ rule heald_contact:
         cfg=section("heald", "parameters", "drive.frequency.value", "cam.rise_fraction.value", "cam.harmonics", "cam.samples", "contact", design=True),
     script:
         STUDY
+
+
+# the inputs of the paper's report (reports.smk renders it)
+REPORT_INPUTS["heald"] = paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc", contact="results/heald/contact.nc")

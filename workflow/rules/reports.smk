@@ -1,13 +1,8 @@
 # Reports: jupytext percent scripts executed and rendered to self-contained HTML.
-# REPORT_INPUTS is the one place that says which files a report reads; the renderer passes them by name.
+# REPORT_INPUTS (common.smk: each paper's rule file registers its report's, this file the reports across papers) is
+# the one place that says which files a report reads; the renderer passes them by name.
 # Wall times (the *timings.json side files) are read by the accuracy report alone (MEASURED_REPORTS): every other
 # report is a function of deterministic results and renders to the same bytes on every rerun and every machine.
-
-
-def paper_report(paper, **results):
-    uncertainty = {"uncertainty": f"results/{paper}/uncertainty.nc"} if paper in UNCERTAIN_PAPERS else {}
-    return {**results, **uncertainty, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
-            "published": f"config/published/{paper}.yaml", "assumptions": f"results/{paper}/assumptions.nc"}
 
 
 rule assumptions:
@@ -27,30 +22,13 @@ rule assumptions:
         STUDY
 
 
-REPORT_INPUTS = {
-    "stiffness": paper_report("stiffness", result="results/stiffness/stiffness.nc"),
-    "beatup": paper_report(
-        "beatup", result="results/beatup/sixbar.nc", window="results/beatup/window.nc",
-        accuracy="results/beatup/accuracy.nc", sley_pin="results/beatup/sley_pin.nc",
-    ),
-    "heald": paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc", contact="results/heald/contact.nc"),
-    "transplanter": paper_report(
-        "transplanter", result="results/transplanter/ked.nc", optim="results/transplanter/optim.nc",
-        at_published="results/transplanter/at_published.nc", accuracy="results/transplanter/accuracy.nc",
-    ),
-    "clearance": paper_report(
-        "clearance", result="results/clearance/claims.nc", accuracy="results/clearance/accuracy.nc",
-        scenes=expand("results/clearance/{variant}/{scene}.nc", variant=CLEARANCE_VARIANTS, scene=CLEARANCE_SCENES),
-        sweep="results/sweeps/clearance.nc",
-        **(CROSSCHECK_RESULTS if config["crosscheck"] else {}),
-    ),
-    "accuracy": {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json", **(CROSSCHECK_WP if config["crosscheck"] else {})},
-    "sweeps": {"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"},
-    # the index links to the paper reports but reads only their comparison files: it renders beside them
-    "index": {
-        **{f"comparison_{p}": f"results/{p}/comparison.csv" for p in PAPERS},
-        **{f"findings_{p}": f"results/{p}/findings.nc" for p in PAPERS},
-    },
+# the reports across papers (each paper's own report is registered by its rule file)
+REPORT_INPUTS["accuracy"] = {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json", **ACCURACY_REPORT_INPUTS}
+REPORT_INPUTS["sweeps"] = {"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"}
+# the index links to the paper reports but reads only their comparison files: it renders beside them
+REPORT_INPUTS["index"] = {
+    **{f"comparison_{p}": f"results/{p}/comparison.csv" for p in PAPERS},
+    **{f"findings_{p}": f"results/{p}/findings.nc" for p in PAPERS},
 }
 
 

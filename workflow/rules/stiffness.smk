@@ -41,3 +41,7 @@ rule stiffness_compare:
         cfg=section("stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa", "axial_negligible_share"),
     script:
         STUDY
+
+
+# the inputs of the paper's report (reports.smk renders it)
+REPORT_INPUTS["stiffness"] = paper_report("stiffness", result="results/stiffness/stiffness.nc")

@@ -90,3 +90,10 @@ rule transplanter_compare:
         cfg=section("transplanter", "minimum_diameter_m"),
     script:
         STUDY
+
+
+# the inputs of the paper's report (reports.smk renders it)
+REPORT_INPUTS["transplanter"] = paper_report(
+    "transplanter", result="results/transplanter/ked.nc", optim="results/transplanter/optim.nc",
+    at_published="results/transplanter/at_published.nc", accuracy="results/transplanter/accuracy.nc",
+)

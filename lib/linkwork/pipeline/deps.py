@@ -6,7 +6,7 @@ exactly the rules that can execute it.  Imports are read statically, nothing is 
 ``import`` / ``from ... import`` statement at the start of a line, at any indentation (lazy
 imports inside functions count), absolute ``linkwork...`` ones, relative ones inside the package,
 and sibling modules of the entry file (a report's ``_common``).  A module's parent packages count
-too (their ``__init__`` runs on import).  The scan is a line match, not a parse, because it runs on
+too (their ``__init__`` runs on import); a package whose names import every subpackage it finds says so (``_DISCOVERS``).  The scan is a line match, not a parse, because it runs on
 every Snakemake invocation: a docstring line that reads like an import statement can only add a
 dependency, never hide one.  Standard library only.
 """
@@ -20,6 +20,10 @@ from pathlib import Path
 _IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(\.*[\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]+)|import[ \t]+([^\n#]+))", re.M)
 
 PACKAGE = "linkwork"
+#: A package's __init__ that holds ``linkwork-deps: NAME ... import every subpackage`` imports every subpackage it finds
+#: when one of those names is read (``linkwork.papers``: PAPERS, CITATIONS): a module importing such a name has every
+#: subpackage's __init__ in its closure.
+_DISCOVERS = re.compile(r"linkwork-deps:((?:\s+[A-Za-z_]\w*)+)\s+import every subpackage")
 
 
 @lru_cache(maxsize=None)
@@ -73,6 +77,16 @@ def _imported_names(file: Path, name: str | None) -> list[str]:
 
 
 @lru_cache(maxsize=None)
+def _discovering(package: str, lib: Path) -> frozenset[str]:
+    """The names of ``package`` whose reading imports every subpackage (its __init__'s ``linkwork-deps`` line)."""
+    file = module_file(package, lib) if package else None
+    if file is None or file.name != "__init__.py":
+        return frozenset()
+    found = _DISCOVERS.search(file.read_text(encoding="utf-8"))
+    return frozenset(found.group(1).split()) if found else frozenset()
+
+
+@lru_cache(maxsize=None)
 def closure(entry: str | Path, lib: str | Path, extra: tuple[str | Path, ...] = ()) -> list[Path]:
     """Every file in the import closure of ``entry``: lib modules, sibling helpers and the entry itself.
 
@@ -100,6 +114,10 @@ def closure(entry: str | Path, lib: str | Path, extra: tuple[str | Path, ...] = 
         done.add(file)
         seen[file] = None
         for imported in _imported_names(file, name):
+            package, _, attribute = imported.rpartition(".")
+            if attribute in _discovering(package, lib):  # a name whose reading imports every subpackage
+                for sub in sorted(module_file(package, lib).parent.glob("*/__init__.py")):
+                    todo.append((sub, f"{package}.{sub.parent.name}", None))
             parts = imported.split(".")
             for k in range(1, len(parts) + 1):  # the module and its parent packages
                 target = module_file(".".join(parts[:k]), lib)

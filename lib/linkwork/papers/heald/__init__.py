@@ -1,1 +1,9 @@
-"""Paper ``heald``: see linkwork.papers."""
+"""Paper ``heald``: its title, source and place in the report order (found by ``linkwork.papers``)."""
+
+TITLE = "Grigoriev, Kheylo 2021: mechanical chains for a heald motion"
+CITATION = (
+    'V.A. Grigoriev, S.V. Kheylo, "The mechanical chains for dynamic estimation of joint-rod heald motion'
+    ' mechanisms of weaving machines", Izvestiya VUZov, Tekhnologiya Tekstil\'noi Promyshlennosti 2021(3),'
+    " DOI 10.47367/0021-3497_2021_3_117 (seed 004_911fbc8eddce308f.txt)"
+)
+ORDER = 5

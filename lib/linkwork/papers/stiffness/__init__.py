@@ -1,1 +1,9 @@
-"""Paper ``stiffness``: see linkwork.papers."""
+"""Paper ``stiffness``: its title, source and place in the report order (found by ``linkwork.papers``)."""
+
+TITLE = "Huang, Wu, Li 2022: equivalent stiffness of a coupled four-bar (energy method)"
+CITATION = (
+    'Huang Shuang, Wu Xin, Li Peixing, "Equivalent Stiffness Calculation of Coupled Four Bar Linkage", '
+    "Journal of Light Industry Machinery 40(4):6-11, 2022, DOI 10.3969/j.issn.1005-2895.2022.04.002 (seed"
+    " 000_3b8cde48dccf5fc1.txt)"
+)
+ORDER = 1
