@@ -53,7 +53,7 @@ slurm-proof: $(STAMP)
 
 readme: $(STAMP)
 	$(BIN)/snakemake results/readme_findings.md
-	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.pipeline.readme import replace_block; \
+	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.project.readme import replace_block; \
 	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
 
 # Every benchmark (about 40 minutes on 2 cores; the pipeline one dominates), then the measured figures (docs/measured.md).

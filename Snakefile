@@ -12,7 +12,7 @@ from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
 from linkwork.pipeline.results import unwritable  # noqa: E402
 from linkwork.papers import PAPERS  # noqa: E402
-from linkwork.pipeline.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
+from linkwork.project.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
 # --config/--configfile values override it (--config's text read as the numbers the schema asks for; a --configfile

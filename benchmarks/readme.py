@@ -251,7 +251,7 @@ def render(measured: Path = MEASURED) -> str:
 if __name__ == "__main__":
     path = PROJECT / "docs" / "measured.md"
     sys.path.insert(0, str(PROJECT / "lib"))
-    from linkwork.pipeline.readme import replace_block
+    from linkwork.project.readme import replace_block
 
     path.write_text(replace_block(path.read_text(), render(), START, END))
     print("docs/measured.md: measured figures rendered from benchmarks/measured/", file=sys.stderr)

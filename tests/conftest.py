@@ -31,7 +31,7 @@ def stiffness_published():
 def expect_config_error(config, schema, *fragments):
     """validate_config must fail with a message containing every fragment."""
     from linkwork.pipeline.errors import ConfigError
-    from linkwork.pipeline.validate import validate_config
+    from linkwork.project.validate import validate_config
 
     with pytest.raises(ConfigError) as info:
         validate_config(config, schema)

@@ -6,7 +6,7 @@ import pytest
 
 import yaml
 
-from linkwork.pipeline.validate import validate_config
+from linkwork.project.validate import validate_config
 
 
 def test_project_config_is_valid(config, schema):

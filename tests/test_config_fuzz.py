@@ -19,8 +19,8 @@ from test_workflow import copy_project, snakemake
 
 from linkwork.papers import PAPERS
 from linkwork.pipeline.errors import ConfigError
-from linkwork.pipeline.published import check_published
-from linkwork.pipeline.validate import load_yaml, published_schema, validate_config
+from linkwork.project.published import check_published
+from linkwork.project.validate import load_yaml, published_schema, validate_config
 
 PROJECT = Path(__file__).resolve().parents[1]
 CONFIG_TEXT = (PROJECT / "config" / "config.yaml").read_text(encoding="utf-8")
@@ -294,7 +294,7 @@ def test_the_validation_memo_tells_a_quoted_date_from_a_date(tmp_path):
     """The memo's key keeps what YAML read: a quoted date that passed does not let the unquoted one skip validation."""
     import datetime
 
-    from linkwork.pipeline.validate import validation_key
+    from linkwork.project.validate import validation_key
 
     schema, lib = PROJECT / "config" / "schema.yaml", PROJECT / "lib"
     quoted = validation_key({"scenes": {"2021-01-01": 1}}, schema, lib)
@@ -307,7 +307,7 @@ def test_command_line_text_is_read_as_the_schema_asks(schema):
     """Snakemake hands nested --config values and ``false`` over as text: they become the schema's numbers and
     booleans at their keys; text the schema wants as text, or that is no number, stays text (the schema check then
     names it)."""
-    from linkwork.pipeline.validate import coerce_overrides
+    from linkwork.project.validate import coerce_overrides
 
     given = {"crosscheck": "false", "clearance": {"numerics": {"points_per_cycle": "360"}, "joints": {"restitution": "0.8"},
                                                   "scenes": {"dry_1": {"integrator": "explicit"}}},
@@ -339,7 +339,7 @@ def test_snakemake_reads_nested_overrides_and_refuses_a_configfile_with_a_key_tw
 def test_a_configfile_with_a_syntax_error_is_named_by_the_checker(tmp_path, capsys):
     """Snakemake reads a --configfile before the workflow and says only that it is not valid YAML; the checker the
     README points to names the file, the line and the column."""
-    from linkwork.pipeline.validate import main
+    from linkwork.project.validate import main
 
     bad = tmp_path / "mine.yaml"
     bad.write_text("clearance:\n  crank_speed_rad_s: [10.0\n", encoding="utf-8")

@@ -91,8 +91,35 @@ def test_the_circle_finder_finds_a_circle():
 
 def test_the_graph_sees_imports_inside_functions():
     graph = import_graph()
-    assert "linkwork.pipeline.published" in graph["linkwork.pipeline.validate"]  # imported inside validate_once
+    assert "linkwork.project.published" in graph["linkwork.project.validate"]  # imported inside validate_once
 
 
 def test_no_import_circle_in_the_library():
     assert circles(import_graph()) == []
+
+
+#: The library's layers, lowest first: a module imports only from its own layer or the ones below it.
+LAYERS = (("linkwork", "linkwork.units", "linkwork.configformat", "linkwork.compilecache"), ("linkwork.engines",), ("linkwork.pipeline",),
+          ("linkwork.papers",), ("linkwork.project",))
+
+
+def _layer(module: str) -> int:
+    """The index of the deepest layer prefix that names ``module``."""
+    best = -1
+    for i, prefixes in enumerate(LAYERS):
+        if any(module == p or module.startswith(p + ".") for p in prefixes if p != "linkwork") or module == "linkwork" and i == 0:
+            best = i
+    return best
+
+
+def test_every_import_points_downward():
+    """Engines know no pipeline, the toolkit (pipeline) knows no paper, papers know not the project layer that knows
+    them all (validation, the README's findings); the package registry linkwork.papers is read from above only."""
+    upward = [(m, t) for m, targets in import_graph().items() for t in targets
+              if _layer(t) > _layer(m) and not (m.startswith("linkwork.papers.") and t == "linkwork.papers")]
+    assert upward == []
+
+
+def test_the_layer_check_sees_an_upward_import():
+    assert _layer("linkwork.pipeline.compare") == 2 and _layer("linkwork.papers.heald.studies") == 3 and _layer("linkwork.units") == 0
+    assert _layer("linkwork.project.validate") > _layer("linkwork.papers.heald")

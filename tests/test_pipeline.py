@@ -16,8 +16,8 @@ from linkwork.pipeline.compare import where_true
 from linkwork.pipeline.deps import closure
 from linkwork.pipeline.errors import ConfigError
 from linkwork.pipeline.sweeps import gather, grid, point_dataset
-from linkwork.pipeline.validate import load_yaml as read_config
-from linkwork.pipeline.validate import merge_overrides, validate_once
+from linkwork.project.validate import load_yaml as read_config
+from linkwork.project.validate import merge_overrides, validate_once
 
 
 def test_pick_copies_exactly_the_named_paths():
@@ -385,5 +385,5 @@ def test_papers_are_found_by_their_packages_and_a_module_reading_them_depends_on
     out = subprocess.run([sys.executable, "-c", probe], env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")}, capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "['linkwork.papers.stiffness']"
     lib = PROJECT / "lib"
-    readme = {str(p.relative_to(lib)) for p in closure("linkwork.pipeline.readme", lib)}
+    readme = {str(p.relative_to(lib)) for p in closure("linkwork.project.readme", lib)}
     assert {f"linkwork/papers/{p}/__init__.py" for p in PAPERS} <= readme

@@ -308,7 +308,7 @@ def test_the_stress_row_names_the_solution_compared():
 
 def test_readme_prints_the_published_objective_to_its_digits():
     """SS = 21.9665 is printed with all six digits in the README; numbers printed with fewer keep the five-digit form."""
-    from linkwork.pipeline.readme import _digits, _num, _num_like
+    from linkwork.project.readme import _digits, _num, _num_like
 
     assert (_digits(21.9665), _digits(3460000.0), _digits(0.0034), _digits(41.89), _digits(0.1 + 0.2)) == (6, 3, 2, 4, 0)
     assert _num_like(21.9665, 21.9665) == "21.9665"
@@ -322,7 +322,7 @@ def test_gravity_is_a_named_scenario_read_by_the_model(config, schema):
     """Gravity is a labelled choice (off, on), valid under the schema, never a range to sample; the model reads
     each choice's value: 'on' is the 'off' response plus the static sag under g (linear superposition)."""
     from linkwork.pipeline.uncertainty import labelled_inputs
-    from linkwork.pipeline.validate import validate_config
+    from linkwork.project.validate import validate_config
     from linkwork.papers.transplanter.adapter import gravity
     from linkwork.papers.transplanter.uncertainty import inputs
 

@@ -490,7 +490,7 @@ NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 
 def test_readme_findings_are_what_a_fresh_run_computes(built):
     """Every number and verdict of the README's findings block equals the block the run generated (numbers to 1e-3)."""
-    from linkwork.pipeline.readme import END, START
+    from linkwork.project.readme import END, START
 
     readme = (PROJECT / "README.md").read_text()
     mine = readme[readme.index(START): readme.index(END) + len(END)]

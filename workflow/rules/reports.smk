@@ -58,11 +58,11 @@ rule readme_findings:
     input:
         **{f"findings_{p}": f"results/{p}/findings.nc" for p in PAPERS},
         **{f"comparison_{p}": f"results/{p}/comparison.csv" for p in PAPERS},
-        code=code("linkwork.pipeline.readme"),
+        code=code("linkwork.project.readme"),
     output:
         "results/readme_findings.md",
     params:
-        study="linkwork.pipeline.readme:generated",
+        study="linkwork.project.readme:generated",
         cfg={},
     script:
         STUDY

@@ -1,2 +1,3 @@
-"""Pipeline plumbing beside the papers: config validation, results I/O with provenance, comparison
-with published numbers and verdicts, sweeps, the accuracy summary, timing and code dependencies."""
+"""The toolkit the papers use: results I/O with provenance and checksums, comparison with published numbers and
+verdicts, input uncertainty and bounded searches, sweeps, the accuracy summary, timing, code dependencies and the YAML
+reader.  It knows no paper (what does is ``linkwork.project``)."""

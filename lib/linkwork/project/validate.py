@@ -17,10 +17,10 @@ from pathlib import Path
 from typing import Any
 
 from ..papers import PAPERS
-from .errors import ConfigError
-from .yamlfile import key_path as _key
-from .yamlfile import load_yaml
-from .yamlfile import short as _short
+from ..pipeline.errors import ConfigError
+from ..pipeline.yamlfile import key_path as _key
+from ..pipeline.yamlfile import load_yaml
+from ..pipeline.yamlfile import short as _short
 
 _NUMBERLIKE = re.compile(r"^\s*[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?\s*$")
 def _schema_message(error) -> str:
@@ -76,7 +76,7 @@ def check_sweeps(section: Mapping[str, Any], config: Mapping[str, Any], key: str
             points = math.prod(len(v) for v in section[sweep][grid].values())
             if points > SWEEP_POINTS_LIMIT:
                 raise ConfigError(f"config key {key}.{sweep}.{grid}: {points} grid points exceed the size guard {SWEEP_POINTS_LIMIT} "
-                                  "(each is a job; raise SWEEP_POINTS_LIMIT in lib/linkwork/pipeline/validate.py for a cluster)")
+                                  "(each is a job; raise SWEEP_POINTS_LIMIT in lib/linkwork/project/validate.py for a cluster)")
 
 
 def check_finite(node: Any, path: tuple = ()) -> None:
@@ -288,12 +288,12 @@ def validation_key(config: Mapping[str, Any], schema_path: Path, lib: Path, publ
     import hashlib
     import json
 
-    from .deps import closure
+    from ..pipeline.deps import closure
 
     digest = hashlib.sha256(json.dumps(_typed(config)).encode())  # in file order: keys may not be comparable
     digest.update(Path(schema_path).read_bytes())
     checks = tuple(f"linkwork.papers.{p}.checks" for p in PAPERS)
-    for file in closure("linkwork.pipeline.validate", lib, extra=(*checks, "linkwork.pipeline.published")):
+    for file in closure("linkwork.project.validate", lib, extra=(*checks, "linkwork.project.published")):
         digest.update(str(file).encode() + b"\0" + Path(file).read_bytes())
     if published is not None:
         for file in [published_schema(published), *(Path(published) / f"{p}.yaml" for p in PAPERS)]:
@@ -320,7 +320,7 @@ def published_schema(published: Path) -> Path:
 
 def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path, published: Path | None = None) -> None:
     """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key);
-    ``published``: the folder of the papers' published-numbers files, validated too (``linkwork.pipeline.published``).
+    ``published``: the folder of the papers' published-numbers files, validated too (``linkwork.project.published``).
 
     A passed validation is remembered so that a no-op run stays fast; any change to what it read runs it again.
     """
@@ -339,14 +339,14 @@ def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m linkwork.pipeline.validate FILE ...``: read each YAML file as the workflow does (syntax errors, keys
+    """``python -m linkwork.project.validate FILE ...``: read each YAML file as the workflow does (syntax errors, keys
     given twice, YAML 1.1 numbers, with file and line).  Snakemake reads a ``--configfile`` before the workflow runs and
     reports its syntax errors without file or line; this names them."""
     import sys
 
     files = sys.argv[1:] if argv is None else argv
     if not files:
-        print("usage: python -m linkwork.pipeline.validate FILE ...", file=sys.stderr)
+        print("usage: python -m linkwork.project.validate FILE ...", file=sys.stderr)
         return 2
     failed = 0
     for name in files:

@@ -16,7 +16,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .errors import ConfigError
+from ..pipeline.errors import ConfigError
 
 
 def _where(path: Path, parts) -> str:
@@ -27,7 +27,7 @@ def schema_problems(data: Any, schema: Mapping[str, Any], path: Path) -> list[st
     """One line per schema error of one file (``path`` names it)."""
     import jsonschema
 
-    from .yamlfile import short as _short
+    from ..pipeline.yamlfile import short as _short
 
     errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(data), key=lambda e: [str(p) for p in e.absolute_path])
     out = []
@@ -102,7 +102,7 @@ def result_variables(paper: str) -> frozenset[str]:
 
 def check_published(folder: Path, schema_path: Path, papers) -> None:
     """Every paper's published file in ``folder`` checked; one ConfigError listing every problem of every file."""
-    from .yamlfile import load_yaml
+    from ..pipeline.yamlfile import load_yaml
 
     schema = load_yaml(schema_path)
     problems = []
