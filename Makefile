@@ -31,7 +31,7 @@ browser:
 	  { echo "make test needs Chromium for the report test: install Debian's chromium (apt-get install chromium)"; exit 1; }
 
 # Exudyn beside linkwork: the optional extra (also in the test extra), then the reproduction with the cross-check
-# in the clearance report (results/clearance/crosscheck.nc).  A later bare `snakemake` renders the report without it.
+# in the clearance report (results/clearance/crosscheck/).  A later bare `snakemake` renders the report without it.
 crosscheck: $(STAMP)
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[crosscheck]'
 	PATH="$(BIN):$$PATH" snakemake --config crosscheck=True
@@ -45,7 +45,7 @@ slurm: $(STAMP)
 
 # Proof on a real scheduler (root, Debian): a single-node SLURM stood up and torn down by the script, the full DAG
 # through profiles/slurm beside a local run, byte for byte; it prints the figures (RECORD=1: also into
-# benchmarks/measured/slurm.json and the README).
+# benchmarks/measured/slurm.json, rendered into docs/measured.md).
 RECORD ?=
 slurm-proof: $(STAMP)
 	$(BIN)/python benchmarks/slurm_single_node.py $(if $(RECORD),--record)
@@ -56,7 +56,8 @@ readme: $(STAMP)
 	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.project.readme import replace_block; \
 	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
 
-# Every benchmark (about 40 minutes on 2 cores; the pipeline one dominates), then the measured figures (docs/measured.md).
+# The main benchmarks (about 40 minutes on 2 cores; the pipeline one dominates), then the measured figures (docs/measured.md);
+# the others (benchmarks/*.py) run alone, each writing its own file.
 # BASELINE=<git revision> also times that revision's full reproduction beside ours.
 BASELINE ?=
 bench: $(STAMP) browser
