@@ -14,6 +14,7 @@ import math
 import os
 import re
 from pathlib import Path
+from types import SimpleNamespace
 
 import pandas as pd
 from IPython.display import HTML, Markdown, display
@@ -31,6 +32,13 @@ def inputs() -> dict[str, Path | list[Path]]:
     if not given:
         raise SystemExit("this report is rendered by the pipeline: run `snakemake results/reports/<name>.html`")
     return {k: [Path(p) for p in v] if isinstance(v, list) else Path(v) for k, v in given.items()}
+
+
+def loaded() -> SimpleNamespace:
+    """Every input of the report read by its type (``load``), as attributes named as the rule names them (a list input
+    as a list): the one place a report's standard inputs (result, comparison, findings, published, uncertainty, ...) are
+    read."""
+    return SimpleNamespace(**{k: [load(p) for p in v] if isinstance(v, list) else load(v) for k, v in inputs().items()})
 
 
 def load(path: Path):

@@ -16,20 +16,13 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, load, md, provenance, table,
+from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, loaded, md, provenance, table,
                      verdict_figure, verdict_legend)
 
 from linkwork.papers.beatup import CITATION
 
-files = inputs()
-ds = load(files["result"])
-win = load(files["window"])
-acc = load(files["accuracy"])
-cmp = load(files["comparison"])
-fnd = load(files["findings"])
-unc = load(files["uncertainty"])
-published = load(files["published"])
-sley = load(files["sley_pin"])
+files, got = inputs(), loaded()
+ds, win, acc, cmp, fnd, unc, published, sley = got.result, got.window, got.accuracy, got.comparison, got.findings, got.uncertainty, got.published, got.sley_pin
 cfg = json.loads(ds.attrs["config_json"])
 win_cfg = json.loads(win.attrs["config_json"])
 pub = {q["id"]: q for q in published["quantities"]}

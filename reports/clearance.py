@@ -17,7 +17,7 @@ import textwrap
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, md, oat_table, provenance, show_log_log, table
+from _common import answer, assumed, caption, comparison_table, design_text, esc, inputs, load, loaded, md, oat_table, provenance, show_log_log, table
 
 from linkwork.papers.clearance import CITATION
 from linkwork.papers.clearance.words import CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
@@ -26,17 +26,10 @@ md(f"**Paper.** {esc(CITATION)}")
 NAMES = QUANTITY_WORDS
 UNITS = {"rocker_acceleration": "rad/s²", "crank_torque": "N·m"}
 OUTCOME = {1: "holds", 0: "fails", -1: "undetermined"}
-files = inputs()
-claims = load(files["result"])
-wp = load(files["accuracy"])
-cmp = load(files["comparison"])
-fnd = load(files["findings"])
-unc = load(files["uncertainty"])
+files, got = inputs(), loaded()
+claims, wp, cmp, fnd, unc = got.result, got.accuracy, got.comparison, got.findings, got.uncertainty
 variants = [str(v) for v in claims.variant.values]
-scenes = {}
-for path in files["scenes"]:
-    ds = load(path)
-    scenes[(ds.attrs["variant"], ds.attrs["scene"])] = ds
+scenes = {(ds.attrs["variant"], ds.attrs["scene"]): ds for ds in got.scenes}
 claims_cfg = json.loads(claims.attrs["config_json"])
 dry_cfg = json.loads(scenes[(variants[0], "dry_both")].attrs["config_json"])
 lub_cfg = json.loads(scenes[(variants[0], "lubricated_both")].attrs["config_json"])

@@ -16,18 +16,13 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, loaded, md, oat_table, provenance, table, verdict_figure
 
 from linkwork.papers.heald import CITATION
 from linkwork.units import RAD_S_PER_RPM
 
-files = inputs()
-ds = load(files["result"])
-acc = load(files["accuracy"])
-contact = load(files["contact"])
-cmp = load(files["comparison"])
-fnd = load(files["findings"])
-unc = load(files["uncertainty"])
+files, got = inputs(), loaded()
+ds, acc, contact, cmp, fnd, unc = got.result, got.accuracy, got.contact, got.comparison, got.findings, got.uncertainty
 cfg = json.loads(ds.attrs["config_json"])
 models = [str(m) for m in ds.model.values]
 many = float(fnd.many_times)

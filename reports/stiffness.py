@@ -15,15 +15,12 @@ import json
 
 import matplotlib.pyplot as plt
 import pandas as pd
-from _common import answer, caption, comparison_table, esc, inputs, load, md, provenance, table, verdict_figure
+from _common import answer, caption, comparison_table, esc, inputs, loaded, md, provenance, table, verdict_figure
 
 from linkwork.papers.stiffness import CITATION
 
-files = inputs()
-ds = load(files["result"])
-cmp_all = load(files["comparison"])
-fnd = load(files["findings"])
-published = load(files["published"])
+files, got = inputs(), loaded()
+ds, cmp_all, fnd, published = got.result, got.comparison, got.findings, got.published
 cfg = json.loads(ds.attrs["config_json"])
 forms = [str(f) for f in ds.form.values]  # the paper's rigid-frame forms (joints A and B welded)
 all_forms = [str(f) for f in fnd.form.values]  # the same, and the pinned mechanism

@@ -36,20 +36,14 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, load, md, oat_table, provenance, table, verdict_figure
+from _common import answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, loaded, md, oat_table, provenance, table, verdict_figure
 
-files = inputs()
-ked = load(files["result"])
-opt = load(files["optim"])
-pub_pt = load(files["at_published"])
-acc = load(files["accuracy"])
-cmp = load(files["comparison"])
-fnd = load(files["findings"])
-unc = load(files["uncertainty"])
+files, got = inputs(), loaded()
+ked, opt, pub_pt, acc, cmp, fnd, unc = got.result, got.optim, got.at_published, got.accuracy, got.comparison, got.findings, got.uncertainty
 cfg = json.loads(opt.attrs["config_json"])
-pub = {q["id"]: q["value"] for q in load(files["published"])["quantities"]}
+pub = {q["id"]: q["value"] for q in got.published["quantities"]}
 base = pub_pt.sel(case="baseline")
-tol = {q["id"]: q["tolerance"].get("abs") for q in load(files["published"])["quantities"]}
+tol = {q["id"]: q["tolerance"].get("abs") for q in got.published["quantities"]}
 compared = json.loads(pub_pt.attrs["config_json"])["fe"]["compared_solution"]["value"]
 material = cfg["materials"][cfg["material"]["name"]]
 ked_cfg = json.loads(ked.attrs["config_json"])
