@@ -16,8 +16,8 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, loaded, md, provenance, table,
-                     verdict_figure, verdict_legend)
+from _common import (answer, assumed, caption, consistent_sets_table, design_text, esc, inputs, key_words, loaded, md, provenance,
+                     show_log_log, table, verdict_figure, verdict_legend)
 
 from linkwork.papers.beatup import CITATION
 
@@ -561,12 +561,8 @@ derivative_label = {"theta6_rate": "sley rate θ6' (rad/rad)", "theta6_accel": "
 for k, name in enumerate(acc.derivative.values):
     ax.loglog(steps, acc.error.values[k], "o-", label=derivative_label[str(name)])
 ax.axvline(cfg["numerics"]["fd_step_deg"], color="k", ls=":", lw=1, label="step used for the Table 1 checks")
-ax.set_xlabel("central-difference step (deg of crank)")
-ax.set_ylabel("max |FD − analytic| over a turn\n(rad/rad for θ6', rad/rad² for θ6'')")
-ax.legend(fontsize=8)
-ax.grid(alpha=0.3, which="both")
-plt.show()
-caption("Central-difference error of the sley rate and acceleration against the analytic ones versus the step; the dotted line is the step used for the Table 1 checks. Derivatives per unit of increasing θ1 (Table 1's convention); the errors do not depend on the sense.")
+show_log_log(ax, "central-difference step (deg of crank)", "max |FD − analytic| over a turn\n(rad/rad for θ6', rad/rad² for θ6'')",
+             "Central-difference error of the sley rate and acceleration against the analytic ones versus the step; the dotted line is the step used for the Table 1 checks. Derivatives per unit of increasing θ1 (Table 1's convention); the errors do not depend on the sense.")
 md(
     f"Central differences reach at best {float(acc.best_error.sel(derivative='theta6_rate')):.1e} for θ6' and "
     f"{float(acc.best_error.sel(derivative='theta6_accel')):.1e} for θ6''. Truncation error falls as h² until round-off takes "

@@ -16,7 +16,8 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, loaded, md, oat_table, provenance, table, verdict_figure
+from _common import (answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, loaded, md, oat_table, provenance,
+                     show_log_log, table, verdict_figure)
 
 from linkwork.papers.heald import CITATION
 from linkwork.units import RAD_S_PER_RPM
@@ -580,12 +581,8 @@ pts = acc.grid_points.values
 fig, ax = plt.subplots(figsize=(7, 4), constrained_layout=True)
 ax.loglog(pts, acc.peak_error, "o-")
 ax.axvline(float(acc.pipeline_density), color="k", ls=":", lw=1, label="density of the pipeline's grid")
-ax.set_xlabel("points of a uniform grid over the band")
-ax.set_ylabel("relative error of the peak force")
-ax.legend(fontsize=8)
-ax.grid(alpha=0.3, which="both")
-plt.show()
-caption("Relative error of the peak input force on a uniform frequency grid over the study band, against the number of points; dotted: the density of the pipeline's grid.")
+show_log_log(ax, "points of a uniform grid over the band", "relative error of the peak force",
+             "Relative error of the peak input force on a uniform frequency grid over the study band, against the number of points; dotted: the density of the pipeline's grid.")
 md(
     f"The reference is the peak of |{acc.attrs['quantity']}| (model {acc.attrs['model']}) located by bounded Brent "
     f"search in {int(acc.reference_evaluations)} force evaluations: {float(acc.reference_peak):.3f} N at "
