@@ -16,7 +16,7 @@ SI units inside (kg, m, Pa); the compared solution (quasi-static or dynamic) is 
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -27,13 +27,18 @@ from .model import MEMBERS, bar_mass
 from .studies import report_grid, solve
 
 RESPONSES = ("peak stress", "largest tip displacement")
+#: The members the conclusion names: their diameters are "the important factors" (``governing_elasticity``).
+GOVERNING = ("arm", "coupler")
 
 
-def elasticities(response: Callable[[np.ndarray], np.ndarray], x, rel_step: float) -> np.ndarray:
-    """d ln y_j / d ln x_i (responses j x inputs i) by central differences in ln x with the step ``rel_step``."""
+def elasticities(
+    response: Callable[[np.ndarray], np.ndarray], x, rel_step: float, inputs: Sequence[int] | None = None
+) -> np.ndarray:
+    """d ln y_j / d ln x_i (responses j x inputs i) by central differences in ln x with the step ``rel_step``;
+    ``inputs``: the indices i differentiated, in this order (default: every one), two evaluations each."""
     x = np.asarray(x, dtype=float)
     out = []
-    for i in range(x.size):
+    for i in range(x.size) if inputs is None else inputs:
         up, down = x.copy(), x.copy()
         up[i] *= np.exp(rel_step)
         down[i] *= np.exp(-rel_step)
@@ -41,10 +46,10 @@ def elasticities(response: Callable[[np.ndarray], np.ndarray], x, rel_step: floa
     return np.array(out).T
 
 
-def governing_elasticity(e: np.ndarray, governing=("arm", "coupler")) -> np.ndarray:
-    """Per response (rows of ``e``), the smallest |elasticity| among the ``governing`` members: each of them moves the
-    response by at least this many per cent per per cent of its diameter."""
-    inside = [MEMBERS.index(m) for m in governing]
+def governing_elasticity(e: np.ndarray, governing=GOVERNING, members=MEMBERS) -> np.ndarray:
+    """Per response (rows of ``e``, whose columns are ``members``), the smallest |elasticity| among the ``governing``
+    members: each of them moves the response by at least this many per cent per per cent of its diameter."""
+    inside = [list(members).index(m) for m in governing]
     return np.abs(np.atleast_2d(e))[:, inside].min(axis=1)
 
 
@@ -58,18 +63,30 @@ def responses(cfg: Mapping[str, Any], diameters, solution: str) -> np.ndarray:
     return response_values(solve(cfg, np.asarray(diameters, dtype=float), solution, report_grid(cfg)))
 
 
-def claim_measures(cfg: Mapping[str, Any], published_m, solution: str, at_published=None) -> dict[str, Any]:
+def claim_measures(
+    cfg: Mapping[str, Any], published_m, solution: str, at_published=None, every_member: bool = True
+) -> dict[str, Any]:
     """The claims' measures at the published optimum ``published_m`` (m) against the initial diameters, in the
     ``solution``: masses (kg), distortions (m), their ratios, the elasticities (response, member) and the
     governing members' smallest |elasticity| per response.  ``at_published``: the responses there
-    (``response_values``) where the caller has solved that point already."""
+    (``response_values``) where the caller has solved that point already.  Without ``every_member`` only the
+    governing members are differentiated (what the compared measure reads: four solves instead of eight) and the
+    elasticity matrix is left out."""
     initial = np.array(cfg["initial_diameters_m"], dtype=float)
     published = np.asarray(published_m, dtype=float)
     lengths, density = member_lengths(cfg), material_of(cfg).density
-    at_published = responses(cfg, published, solution) if at_published is None else np.asarray(at_published, dtype=float)
+    at_published = (
+        responses(cfg, published, solution) if at_published is None else np.asarray(at_published, dtype=float)
+    )
     at_initial = responses(cfg, initial, solution)
-    e = elasticities(lambda d: responses(cfg, d, solution), published, float(cfg["claims"]["elasticity_step"]))
-    return {
+    members = MEMBERS if every_member else GOVERNING
+    e = elasticities(
+        lambda d: responses(cfg, d, solution),
+        published,
+        float(cfg["claims"]["elasticity_step"]),
+        [MEMBERS.index(m) for m in members],
+    )
+    out = {
         "mass_initial": bar_mass(lengths, initial, density),
         "mass_published": bar_mass(lengths, published, density),
         "mass_ratio": bar_mass(lengths, published, density) / bar_mass(lengths, initial, density),
@@ -77,6 +94,6 @@ def claim_measures(cfg: Mapping[str, Any], published_m, solution: str, at_publis
         "distortion_published": float(at_published[1]),
         "distortion_ratio": float(at_published[1] / at_initial[1]),
         "stress_initial": float(at_initial[0]),
-        "elasticity": e,
-        "governing_elasticity": governing_elasticity(e),
+        "governing_elasticity": governing_elasticity(e, GOVERNING, members),
     }
+    return {**out, "elasticity": e} if every_member else out

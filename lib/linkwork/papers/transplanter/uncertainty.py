@@ -19,7 +19,14 @@ from typing import Any
 from ...pipeline.search import searcher
 from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
-PROPAGATED = ("youngs_modulus_Pa", "density_kg_m3", "gravity_m_s2", "reference_diameter_m", "compared_solution", "damping_ratio")
+PROPAGATED = (
+    "youngs_modulus_Pa",
+    "density_kg_m3",
+    "gravity_m_s2",
+    "reference_diameter_m",
+    "compared_solution",
+    "damping_ratio",
+)
 
 
 def inputs(cfg: Mapping[str, Any]) -> list[Input]:
@@ -28,7 +35,9 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     return [i for i in found if i.path.split(".")[-2] in PROPAGATED]
 
 
-def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Sequence[float], optimise: bool = True) -> list[Any]:
+def results(
+    cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Sequence[float], optimise: bool = True
+) -> list[Any]:
     """Our optimum (SLSQP from the diameters ``start_m``, m; NaN without ``optimise``), our model at the published
     optimum and the claims' measures there (claims.claim_measures), at one sample."""
     import numpy as np
@@ -42,15 +51,23 @@ def results(cfg: Mapping[str, Any], published: Mapping[str, Any], start_m: Seque
     from .studies import SUMMARY_ATTRS, optimise_on_report_grid, report_grid, solve, summary
 
     run = lambda prob, x: slsqp(prob, x, cfg["optimization"]["slsqp_ftol"])  # noqa: E731
-    x = optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)[0] if optimise else np.full(len(MEMBERS), np.nan)
+    x = (
+        optimise_on_report_grid(cfg, np.array(start_m, dtype=float), run, run)[0]
+        if optimise
+        else np.full(len(MEMBERS), np.nan)
+    )
     published_m = np.array(published["optimum_diameters_mm"], dtype=float) / 1e3
     solved = solve(cfg, published_m, compared_solution(cfg), report_grid(cfg))
     at = summary(solved)
     data = {"d_opt": ("member", x * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP)"})}
     data.update({k: ("case", [at[k]], {"units": u, "long_name": n}) for k, (u, n) in SUMMARY_ATTRS.items()})
-    data.update(claim_variables(claim_measures(cfg, published_m, compared_solution(cfg), response_values(solved))))  # the claims' measures
-    coords = {"member": ("member", np.array(MEMBERS, dtype=object)), "case": ("case", np.array(["baseline"], dtype=object)),
-              "response": ("response", np.array(RESPONSES, dtype=object))}
+    measures = claim_measures(cfg, published_m, compared_solution(cfg), response_values(solved), every_member=False)
+    data.update(claim_variables(measures))  # the compared claims' measures (the governing members' elasticity)
+    coords = {
+        "member": ("member", np.array(MEMBERS, dtype=object)),
+        "case": ("case", np.array(["baseline"], dtype=object)),
+        "response": ("response", np.array(RESPONSES, dtype=object)),
+    }
     return [xr.Dataset(data, coords=coords)]
 
 
