@@ -27,12 +27,23 @@ try:
     if not workflow.dryrun and unwritable(_root / "results"):  # Snakemake removes a result before rewriting it
         raise ConfigError(unwritable(_root / "results"))
     coerce_overrides(config, workflow.config_settings.config, load_yaml(_root / "config" / "schema.yaml"))
-    for _file in workflow.config_settings.configfiles:  # Snakemake keeps a duplicated key's last value: refuse it, with its line
+    for (
+        _file
+    ) in (
+        workflow.config_settings.configfiles
+    ):  # Snakemake keeps a duplicated key's last value: refuse it, with its line
         load_yaml(_file)
     merge_overrides(config, load_yaml(_root / "config" / "config.yaml"))
-    validate_once(config, _root / "config" / "schema.yaml", _root / "lib", _root / ".snakemake" / "linkwork-validated", _root / "config" / "published")
+    validate_once(
+        config,
+        _root / "config" / "schema.yaml",
+        _root / "lib",
+        _root / ".snakemake" / "linkwork-validated",
+        _root / "config" / "published",
+    )
 except ConfigError as exc:
     sys.exit(f"linkwork: {exc}")
+
 
 # `snakemake --report results/report.html` after a reproduction: the reports and the comparison tables with captions,
 # the jobs' run times and the workflow's graph (workflow/report/).
@@ -40,8 +51,13 @@ report: "workflow/report/workflow.rst"
 
 
 include: "workflow/rules/common.smk"
+
+
 for _paper in PAPERS:  # each paper's own rules; it registers what the shared files below need (common.smk)
+
     include: f"workflow/rules/{_paper}.smk"
+
+
 include: "workflow/rules/accuracy.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/uncertainty.smk"

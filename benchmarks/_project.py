@@ -22,7 +22,11 @@ def project_copy() -> Iterator[tuple[Path, dict[str, str]]]:
     """(root of a fresh copy without results/, environment that runs this Python and the copy's lib)."""
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
-        env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(root / "lib"))
+        env = dict(
+            os.environ,
+            PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
+            PYTHONPATH=str(root / "lib"),
+        )
         for name in COPIED:
             src = PROJECT / name
             if src.is_dir():
@@ -39,9 +43,20 @@ def machine() -> dict[str, object]:
 
     model = ""
     with contextlib.suppress(OSError):
-        model = next((line.split(":", 1)[1].strip() for line in Path("/proc/cpuinfo").read_text().splitlines() if line.startswith("model name")), "")
-    return {"cpu_count": os.cpu_count(), "cpu_model": model or platform.processor(), "python": platform.python_version(),
-            "date": datetime.datetime.now(datetime.timezone.utc).date().isoformat()}
+        model = next(
+            (
+                line.split(":", 1)[1].strip()
+                for line in Path("/proc/cpuinfo").read_text().splitlines()
+                if line.startswith("model name")
+            ),
+            "",
+        )
+    return {
+        "cpu_count": os.cpu_count(),
+        "cpu_model": model or platform.processor(),
+        "python": platform.python_version(),
+        "date": datetime.datetime.now(datetime.timezone.utc).date().isoformat(),
+    }
 
 
 def write_figures(name: str, figures: dict[str, object], method: str) -> Path:

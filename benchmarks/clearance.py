@@ -47,7 +47,11 @@ def pure_python_rhs(linkage, gravity):
     kernel_src = Path(kernels.__file__).read_text().replace("from numba import njit", "")
     exec(compile(kernel_src, "kernels_py", "exec"), ns)
     scene_src = generate_source(linkage, gravity)
-    scene_src = "\n".join(line for line in scene_src.splitlines() if not line.startswith(("from numba", "from linkwork", "    hertz_damping_factor, friction_coefficient, film")))
+    scene_src = "\n".join(
+        line
+        for line in scene_src.splitlines()
+        if not line.startswith(("from numba", "from linkwork", "    hertz_damping_factor, friction_coefficient, film"))
+    )
     exec(compile(scene_src, "scene_py", "exec"), ns)
     return ns["rhs"], ns["N_DIAG"]
 
@@ -59,7 +63,16 @@ def baseline_run(rhs_py, n_diag, joints, y0, params, t, setting):
     latched, counts, diag = np.zeros(len(joints)), np.zeros(4, dtype=np.int64), np.zeros(n_diag)
     was = np.zeros(len(joints), dtype=bool)
     fun = lambda tt, y: rhs_py(tt, y, params, latched, counts, diag)  # noqa: E731
-    solver = RK45(fun, t[0], y0, t[-1], rtol=setting["rtol"], atol=setting["atol"], max_step=setting["max_step_s"], first_step=setting["first_step_s"])
+    solver = RK45(
+        fun,
+        t[0],
+        y0,
+        t[-1],
+        rtol=setting["rtol"],
+        atol=setting["atol"],
+        max_step=setting["max_step_s"],
+        first_step=setting["first_step_s"],
+    )
     out = np.empty(t.size)
     out[0] = fun(t[0], y0)[17]
     i = 1
@@ -102,7 +115,11 @@ def main() -> None:
     ours = integrate(p, joints, effects, t, setting)[1][:, 0]
     ours_err = np.abs(ours[early] - ref).max() / scale
     ours_time = median_time(lambda: integrate(p, joints, effects, t, setting), 5)
-    print(f"ours (compiled dopri5, rtol={setting['rtol']:g}): {ours_time:.3f} s; error over the first half cycle {ours_err:.2e}", flush=True)
+    print(
+        f"ours (compiled dopri5, rtol={setting['rtol']:g}): {ours_time:.3f} s; error over the first half cycle"
+        f" {ours_err:.2e}",
+        flush=True,
+    )
 
     rhs_py, n_diag = pure_python_rhs(lk, gravity)
     y0 = initial_state(p, joints)
@@ -111,23 +128,40 @@ def main() -> None:
     base, nfev = baseline_run(rhs_py, n_diag, joints, y0, params, t, setting)
     base_time = time.perf_counter() - t0
     base_err = np.abs(base[early] - ref).max() / scale
-    print(f"pure Python + scipy RK45 (same rtol, atol, latching): {base_time:.1f} s, {nfev} evaluations; error {base_err:.2e}", flush=True)
+    print(
+        f"pure Python + scipy RK45 (same rtol, atol, latching): {base_time:.1f} s, {nfev} evaluations; error"
+        f" {base_err:.2e}",
+        flush=True,
+    )
     speedup = base_time / ours_time
     print(f"speed-up at equal accuracy: {speedup:.0f}x (target >= 20x)", flush=True)
     baseline = {"time_s": base_time, "error": base_err, "nfev": int(nfev), "rtol": setting["rtol"]}
     scene_times = {}
     for variant in section["variants"]:
-        for scene in section["scenes"]:
+        for name in section["scenes"]:
             t0 = time.perf_counter()
-            scene_dataset(pick(section, scene_keys(section, variant, scene)), variant, scene)
-            scene_times[f"{variant}/{scene}"] = time.perf_counter() - t0
+            scene_dataset(pick(section, scene_keys(section, variant, name)), variant, name)
+            scene_times[f"{variant}/{name}"] = time.perf_counter() - t0
     worst = max(scene_times.values())
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(f"slowest pipeline scene: {worst:.2f} s (target <= 10 s); peak RSS of this process {peak_mb:.0f} MB (target <= 1 GB)")
-    write_figures("clearance", {"scene": f"{args.variant}/{args.scene}", "ours_time_s": ours_time, "ours_error": ours_err,
-                                "baseline": baseline, "speedup": speedup, "scene_times_s": scene_times, "peak_rss_mb": peak_mb,
-                                "targets": {"speedup": 20, "slowest_scene_s": 10, "peak_rss_mb": 1024}},
-                  __doc__.split("Method:", 1)[1].split("Figures go")[0])
+    print(
+        f"slowest pipeline scene: {worst:.2f} s (target <= 10 s); peak RSS of this process {peak_mb:.0f} MB (target <="
+        " 1 GB)"
+    )
+    write_figures(
+        "clearance",
+        {
+            "scene": f"{args.variant}/{args.scene}",
+            "ours_time_s": ours_time,
+            "ours_error": ours_err,
+            "baseline": baseline,
+            "speedup": speedup,
+            "scene_times_s": scene_times,
+            "peak_rss_mb": peak_mb,
+            "targets": {"speedup": 20, "slowest_scene_s": 10, "peak_rss_mb": 1024},
+        },
+        __doc__.split("Method:", 1)[1].split("Figures go")[0],
+    )
     if speedup < 20 or worst > 10 or peak_mb > 1024:
         sys.exit("a clearance benchmark missed its target")
 

@@ -43,7 +43,11 @@ def timed_turns(run: Run, period: float, per: int, turns: int) -> dict[str, floa
         t0 = time.perf_counter()
         run.advance(t)
         seconds.append(time.perf_counter() - t0)
-    return {"s_per_turn": statistics.median(seconds), "steps_per_turn": (run.steps - steps) / turns, "rejected_per_turn": (run.rejected - rejected) / turns}
+    return {
+        "s_per_turn": statistics.median(seconds),
+        "steps_per_turn": (run.steps - steps) / turns,
+        "rejected_per_turn": (run.rejected - rejected) / turns,
+    }
 
 
 def scene_figures(section, variant: str, scene: str, warm: int, turns: int) -> dict[str, object]:
@@ -77,14 +81,25 @@ def main() -> None:
                 continue
             f = scene_figures(section, variant, scene, args.warm_turns, args.timed_turns)
             scenes[f"{variant}/{scene}"] = f
-            line = f"{variant}/{scene} ({f['integrator']}): {1e3 * f['pipeline']['s_per_turn']:.0f} ms a turn at {section['numerics']['points_per_cycle']} points, " \
-                   f"{1e3 * f['coarse']['s_per_turn']:.0f} ms at {COARSE}"
+            line = (
+                f"{variant}/{scene} ({f['integrator']}): {1e3 * f['pipeline']['s_per_turn']:.0f} ms a turn at"
+                f" {section['numerics']['points_per_cycle']} points, {1e3 * f['coarse']['s_per_turn']:.0f} ms at"
+                f" {COARSE}"
+            )
             if "dopri5" in f:
                 line += f"; dopri5 at the same rtol {1e3 * f['dopri5']['s_per_turn']:.0f} ms"
             print(line, flush=True)
-    write_figures("clearance_turns", {"points_per_cycle": section["numerics"]["points_per_cycle"], "coarse_points": COARSE,
-                                      "warm_turns": args.warm_turns, "timed_turns": args.timed_turns, "scenes": scenes},
-                  __doc__.split("Method:", 1)[1].split("Figures go")[0])
+    write_figures(
+        "clearance_turns",
+        {
+            "points_per_cycle": section["numerics"]["points_per_cycle"],
+            "coarse_points": COARSE,
+            "warm_turns": args.warm_turns,
+            "timed_turns": args.timed_turns,
+            "scenes": scenes,
+        },
+        __doc__.split("Method:", 1)[1].split("Figures go")[0],
+    )
 
 
 if __name__ == "__main__":

@@ -93,8 +93,14 @@ def main() -> None:
     rows = {"linkwork": [], "exudyn": []}
     for rtol in RTOLS:
         acc, wall, cpu = _ours(lk, t, rtol, args.repeats)
-        rows["linkwork"].append({"setting": f"dop853 rtol {rtol:.0e}", "error": float(np.abs(acc - ref[1e-13]).max() / scale),
-                                 "wall_s_per_simulated_s": wall / window, "cpu_s_per_simulated_s": cpu / window})
+        rows["linkwork"].append(
+            {
+                "setting": f"dop853 rtol {rtol:.0e}",
+                "error": float(np.abs(acc - ref[1e-13]).max() / scale),
+                "wall_s_per_simulated_s": wall / window,
+                "cpu_s_per_simulated_s": cpu / window,
+            }
+        )
         print(rows["linkwork"][-1], flush=True)
     version = ""
     for step in STEPS:

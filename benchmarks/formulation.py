@@ -14,9 +14,9 @@ compiled DOP853 (the same source).
 
 Method (time.perf_counter; one process, numba-compiled, compile excluded):
 1. agreement: both formulations from the dead point with the journal centred, DOP853 at rtol 1e-11, sampled at 720
-   points a turn over the first 0.02 turn (the first impacts): max |e_joint - e_engine| / c over the clearance joints, against the engine's
-   own difference between rtol 1e-11 and 1e-12 (its floor); and the rocker acceleration and crank torque over the
-   same window (max difference over the engine's range);
+   points a turn over the first 0.02 turn (the first impacts): max |e_joint - e_engine| / c over the clearance joints,
+   against the engine's own difference between rtol 1e-11 and 1e-12 (its floor); and the rocker acceleration and crank
+   torque over the same window (max difference over the engine's range);
 2. cost: each formulation from the same start, after --warm turns, --turns turns each timed alone at the pipeline's
    integrator setting and sampling (clearance.integrators.explicit, numerics.points_per_cycle): the median seconds and
    the steps a turn (the two runs part after the first impacts, as any two runs of this scene do, so their turns are
@@ -51,9 +51,25 @@ N_REDUCED = 5  # theta3, theta4, their rates, the driver's work
 
 
 #: The benchmark's own parameter layout (name, length): the four-bar's data the joint-coordinate sources read.
-LAYOUT = (("mass", 9), ("ground", 1), ("l", 3), ("omega", 1), ("phi0", 1), ("gravity", 1), ("clearance", 1), ("r_journal", 1),
-          ("r_bearing", 1), ("restitution", 1), ("friction", 1), ("v0", 1), ("v1", 1), ("floor", 1), ("elastic_law", 1),
-          ("elastic_stiffness", 1), ("elastic_exponent", 1))
+LAYOUT = (
+    ("mass", 9),
+    ("ground", 1),
+    ("l", 3),
+    ("omega", 1),
+    ("phi0", 1),
+    ("gravity", 1),
+    ("clearance", 1),
+    ("r_journal", 1),
+    ("r_bearing", 1),
+    ("restitution", 1),
+    ("friction", 1),
+    ("v0", 1),
+    ("v1", 1),
+    ("floor", 1),
+    ("elastic_law", 1),
+    ("elastic_stiffness", 1),
+    ("elastic_exponent", 1),
+)
 
 
 def bench_pack(p) -> np.ndarray:
@@ -61,12 +77,25 @@ def bench_pack(p) -> np.ndarray:
     from linkwork.engines.multibody.linkage import ELASTIC_LAWS
 
     m, j = p.masses, p.inertias
-    values = {"mass": [m[0], m[0], j[0], m[1], m[1], j[1], m[2], m[2], j[2]], "ground": [p.ground], "l": list(p.lengths),
-              "omega": [p.crank_speed], "phi0": [start_angle(p)], "gravity": [p.gravity], "clearance": [p.clearance],
-              "r_journal": [p.journal_radius], "r_bearing": [p.bearing_radius], "restitution": [p.restitution],
-              "friction": [p.friction], "v0": [p.v0], "v1": [p.v1], "floor": [p.impact_velocity_floor],
-              "elastic_law": [float(ELASTIC_LAWS[p.elastic_law])], "elastic_stiffness": [p.elastic_stiffness],
-              "elastic_exponent": [p.elastic_exponent]}
+    values = {
+        "mass": [m[0], m[0], j[0], m[1], m[1], j[1], m[2], m[2], j[2]],
+        "ground": [p.ground],
+        "l": list(p.lengths),
+        "omega": [p.crank_speed],
+        "phi0": [start_angle(p)],
+        "gravity": [p.gravity],
+        "clearance": [p.clearance],
+        "r_journal": [p.journal_radius],
+        "r_bearing": [p.bearing_radius],
+        "restitution": [p.restitution],
+        "friction": [p.friction],
+        "v0": [p.v0],
+        "v1": [p.v1],
+        "floor": [p.impact_velocity_floor],
+        "elastic_law": [float(ELASTIC_LAWS[p.elastic_law])],
+        "elastic_stiffness": [p.elastic_stiffness],
+        "elastic_exponent": [p.elastic_exponent],
+    }
     return np.array([v for name, _ in LAYOUT for v in values[name]], dtype=float)
 
 
@@ -84,10 +113,11 @@ def _names(lengths):
 
 def _head(joints: tuple[int, ...], n_state: int, P, idx) -> str:
     """Imports, constants, ``rhs`` and the start of ``rhs_into`` up to the bodies' absolute coordinates."""
-    return f'''
+    return f"""
 import numpy as np
 from numba import njit
-from linkwork.engines.multibody.kernels import clearance_state, hertz_damping_factor, friction_coefficient, elastic_contact, apply_force, body_trig
+from linkwork.engines.multibody.kernels import (clearance_state, hertz_damping_factor, friction_coefficient,
+    elastic_contact, apply_force, body_trig)
 NC = 0
 N_DIAG = {model.DIAG_FIXED + model.DIAG_PER_JOINT * len(joints)}
 JOINTS = {tuple(joints)}
@@ -113,7 +143,7 @@ def rhs_into(t, y, p, latched, counts, diag, w, out):
     th2 = {P('phi0')} + om * t
     mass = p[{idx['mass']}:{idx['mass'] + 9}]
     potential = 0.0
-'''
+"""
 
 
 def _forces(P, law, contacts) -> str:
@@ -128,8 +158,9 @@ def _forces(P, law, contacts) -> str:
 '''
     for k, bj, jx, bb, bx in contacts:
         o = model.DIAG_FIXED + model.DIAG_PER_JOINT * k
-        out += f'''
-    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, 0.0, {bb}, {bx}, 0.0, {P('clearance')}, {P('r_journal')}, {P('r_bearing')})
+        out += f"""
+    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, 0.0, {bb}, {bx}, 0.0,
+        {P('clearance')}, {P('r_journal')}, {P('r_bearing')})
     fn = 0.0
     ft = 0.0
     if delta > 0.0:
@@ -152,7 +183,7 @@ def _forces(P, law, contacts) -> str:
     diag[{o + 3}] = fn
     diag[{o + 4}] = 0.0
     diag[{o + 5}] = 0.0
-'''
+"""
     return out
 
 
@@ -300,12 +331,19 @@ def measure(section, scene: str, warm: int, turns: int) -> dict[str, object]:
     integ = section["integrators"]["explicit"]
     per = section["numerics"]["points_per_cycle"]
     cost = {}
-    for name, run in (("engine", Run(*scene_of(p, joints, effects), integ, y0=y0)), ("joint", JointRun(p, integ, y0, joints))):
+    for name, run in (
+        ("engine", Run(*scene_of(p, joints, effects), integ, y0=y0)),
+        ("joint", JointRun(p, integ, y0, joints)),
+    ):
         timed_turns(run, period, per, warm)
         cost[name] = timed_turns(run, period, per, turns)
         print(scene, name, cost[name], flush=True)
     cost["speedup"] = cost["engine"]["s_per_turn"] / cost["joint"]["s_per_turn"]
-    return {"agreement": agreement, "cost": cost, "states": {"engine": 19, "joint": int(JointRun(p, integ, y0, joints).y.size)}}
+    return {
+        "agreement": agreement,
+        "cost": cost,
+        "states": {"engine": 19, "joint": int(JointRun(p, integ, y0, joints).y.size)},
+    }
 
 
 def main() -> None:

@@ -41,22 +41,47 @@ def main() -> None:
     linkage = FourBar(0.015, 0.138, 0.115, 0.170)
     alpha = np.linspace(0.0, 2 * np.pi, 1_000_000)
     figures = {"kinematics_1e6_s": timed(lambda: four_bar(linkage, alpha), args.repeats)}
-    print(f"kinematics, 1e6 crank angles (positions, rates, accelerations): {figures['kinematics_1e6_s']['median']:.3f} s", flush=True)
+    print(
+        "kinematics, 1e6 crank angles (positions, rates, accelerations):"
+        f" {figures['kinematics_1e6_s']['median']:.3f} s",
+        flush=True,
+    )
 
     with project_copy() as (root, env):
         run = lambda *cmd: subprocess.run(cmd, cwd=root, env=env, check=True, capture_output=True)  # noqa: E731
         print("building the stiffness report once ...", flush=True)
         run(sys.executable, "-m", "snakemake", "results/reports/stiffness.html", "--cores", "1")
         figures["stiffness_job_s"] = timed(
-            lambda: run(sys.executable, "-m", "snakemake", "results/stiffness/stiffness.nc", "--cores", "1", "--forcerun", "stiffness"),
+            lambda: run(
+                sys.executable,
+                "-m",
+                "snakemake",
+                "results/stiffness/stiffness.nc",
+                "--cores",
+                "1",
+                "--forcerun",
+                "stiffness",
+            ),
             args.repeats,
         )
-        print(f"stiffness rule end to end (snakemake start-up included): {figures['stiffness_job_s']['median']:.2f} s", flush=True)
+        print(
+            f"stiffness rule end to end (snakemake start-up included): {figures['stiffness_job_s']['median']:.2f} s",
+            flush=True,
+        )
         figures["report_render_s"] = timed(
             lambda: run(
-                sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", "results/bench.html",
-                "--input", "result=results/stiffness/stiffness.nc", "--input", "comparison=results/stiffness/comparison.csv",
-                "--input", "findings=results/stiffness/findings.nc", "--input", "published=config/published/stiffness.yaml",
+                sys.executable,
+                "workflow/scripts/render_report.py",
+                "reports/stiffness.py",
+                "results/bench.html",
+                "--input",
+                "result=results/stiffness/stiffness.nc",
+                "--input",
+                "comparison=results/stiffness/comparison.csv",
+                "--input",
+                "findings=results/stiffness/findings.nc",
+                "--input",
+                "published=config/published/stiffness.yaml",
             ),
             args.repeats,
         )

@@ -19,7 +19,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _project import project_copy, write_figures  # noqa: E402
 
-HOOK = '''
+HOOK = """
 import atexit, json, os, resource, sys, time
 _start = time.perf_counter()
 _main = sys.modules.get("__main__")  # the script's module: IPython (the report renderer) later replaces the entry
@@ -28,20 +28,26 @@ def _record():
     job = getattr(_main, "snakemake", None)
     if job is None:
         return
-    rss_kb = max(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)
+    own, children = resource.getrusage(resource.RUSAGE_SELF), resource.getrusage(resource.RUSAGE_CHILDREN)
+    rss_kb = max(own.ru_maxrss, children.ru_maxrss)
     row = {"rule": job.rule, "rss_mb": rss_kb / 1024, "wall_s": time.perf_counter() - _start}
     with open(os.path.join(os.environ["LINKWORK_RESOURCES_DIR"], f"{os.getpid()}.json"), "w") as f:
         json.dump(row, f)
 
 atexit.register(_record)
-'''
+"""
 
 
 def main() -> None:
     with project_copy() as (root, env), tempfile.TemporaryDirectory() as hook, tempfile.TemporaryDirectory() as rows, \
             tempfile.TemporaryDirectory() as cache:
         Path(hook, "sitecustomize.py").write_text(HOOK)
-        env = {**env, "PYTHONPATH": f"{hook}:{env['PYTHONPATH']}", "LINKWORK_RESOURCES_DIR": rows, "LINKWORK_CACHE": cache}
+        env = {
+            **env,
+            "PYTHONPATH": f"{hook}:{env['PYTHONPATH']}",
+            "LINKWORK_RESOURCES_DIR": rows,
+            "LINKWORK_CACHE": cache,
+        }
         print("job_resources: the full reproduction with a per-job recorder ...", flush=True)
         subprocess.run([sys.executable, "-m", "snakemake", "--quiet", "rules"], cwd=root, env=env, check=True)
         per_rule: dict[str, dict[str, float]] = {}
@@ -52,8 +58,15 @@ def main() -> None:
             entry["max_rss_mb"] = max(entry["max_rss_mb"], row["rss_mb"])
             entry["max_wall_s"] = max(entry["max_wall_s"], row["wall_s"])
     for rule, entry in sorted(per_rule.items()):
-        print(f"  {rule:32s} {entry['jobs']:3d} jobs  peak {entry['max_rss_mb']:7.0f} MB  longest {entry['max_wall_s']:6.1f} s")
-    write_figures("job_resources", {"rules": dict(sorted(per_rule.items()))}, __doc__.split("Method:", 1)[1].split("Figures go")[0])
+        print(
+            f"  {rule:32s} {entry['jobs']:3d} jobs  peak {entry['max_rss_mb']:7.0f} MB  longest"
+            f" {entry['max_wall_s']:6.1f} s"
+        )
+    write_figures(
+        "job_resources",
+        {"rules": dict(sorted(per_rule.items()))},
+        __doc__.split("Method:", 1)[1].split("Figures go")[0],
+    )
 
 
 if __name__ == "__main__":

@@ -40,7 +40,10 @@ sys.path.insert(0, str(PROJECT / "lib"))
 from linkwork.pipeline.fingerprint import compare, fingerprints  # noqa: E402
 
 TARGETS = {"full_warm_s": 90.0, "full_cold_s": 120.0, "noop_s": 2.0, "claim_edit_s": 15.0}
-TRIVIAL = 'rule all:\n    input: "x.txt"\nrule x:\n    output: "x.txt"\n    params: cfg={"a": 1}\n    shell: "touch {output}"\n'
+TRIVIAL = (
+    'rule all:\n    input: "x.txt"\nrule x:\n    output: "x.txt"\n    params: cfg={"a": 1}\n    shell: "touch'
+    ' {output}"\n'
+)
 
 
 def main() -> None:
@@ -50,12 +53,18 @@ def main() -> None:
     parser.add_argument("--edit-repeats", type=int, default=3)
     parser.add_argument("--baseline", default="", help="a git revision to time the same way (warm full reproduction)")
     args = parser.parse_args()
-    figures: dict[str, object] = {"full_repeats": args.full_repeats, "noop_repeats": args.noop_repeats, "edit_repeats": args.edit_repeats}
+    figures: dict[str, object] = {
+        "full_repeats": args.full_repeats,
+        "noop_repeats": args.noop_repeats,
+        "edit_repeats": args.edit_repeats,
+    }
     with project_copy() as (root, env), tempfile.TemporaryDirectory() as cold_cache:
 
         def sm(*extra, where=root, environment=env) -> float:
             t0 = time.perf_counter()
-            subprocess.run([sys.executable, "-m", "snakemake", *extra], cwd=where, env=environment, check=True, capture_output=True)
+            subprocess.run(
+                [sys.executable, "-m", "snakemake", *extra], cwd=where, env=environment, check=True, capture_output=True
+            )
             return time.perf_counter() - t0
 
         def clean() -> None:
@@ -68,7 +77,11 @@ def main() -> None:
             warm.append(sm())
         figures["full_warm_runs_s"] = warm
         figures["full_warm_s"] = statistics.median(warm)
-        print(f"full reproduction, warm compile cache: median {figures['full_warm_s']:.0f} s ({', '.join(f'{x:.0f}' for x in warm)} s)", flush=True)
+        print(
+            f"full reproduction, warm compile cache: median {figures['full_warm_s']:.0f} s"
+            f" ({', '.join(f'{x:.0f}' for x in warm)} s)",
+            flush=True,
+        )
 
         clean()
         for cache in root.rglob("__pycache__"):
@@ -92,14 +105,26 @@ def main() -> None:
         assert "close_to_ideal_ratio: 0.2 " in text
         edits = []
         for k in range(args.edit_repeats):
-            config.write_text(text.replace("close_to_ideal_ratio: 0.2 ", "close_to_ideal_ratio: 0.25 " if k % 2 == 0 else "close_to_ideal_ratio: 0.2 "))
+            config.write_text(
+                text.replace(
+                    "close_to_ideal_ratio: 0.2 ",
+                    "close_to_ideal_ratio: 0.25 " if k % 2 == 0 else "close_to_ideal_ratio: 0.2 ",
+                )
+            )
             edits.append(sm())
         config.write_text(text)
         sm()
         figures["claim_edit_s"] = statistics.median(edits)
-        print(f"one-key edit of clearance.claims.close_to_ideal_ratio, then snakemake: median {figures['claim_edit_s']:.1f} s", flush=True)
+        print(
+            "one-key edit of clearance.claims.close_to_ideal_ratio, then snakemake: median"
+            f" {figures['claim_edit_s']:.1f} s",
+            flush=True,
+        )
 
-        job = [sm("results/stiffness/comparison.csv", "--forcerun", "stiffness_compare", "--cores", "1") for _ in range(args.noop_repeats)]
+        job = [
+            sm("results/stiffness/comparison.csv", "--forcerun", "stiffness_compare", "--cores", "1")
+            for _ in range(args.noop_repeats)
+        ]
         figures["small_job_s"] = statistics.median(job)
         figures["job_overhead_s"] = figures["small_job_s"] - figures["noop_s"]
         print(f"one small job (stiffness_compare) end to end: median {figures['small_job_s']:.2f} s, i.e. "
@@ -109,9 +134,16 @@ def main() -> None:
         first = fingerprints(root)
         sm("--forceall")
         split = compare(first, fingerprints(root))
-        figures.update(identical_files=len(split["identical"]), compared_files=len(first), differing=split["differing"] + split["missing"],
-                       measured=split["measured"])
-        print(f"byte-identical reruns: {len(split['identical'])} of {len(first)} netCDF and HTML files identical", flush=True)
+        figures.update(
+            identical_files=len(split["identical"]),
+            compared_files=len(first),
+            differing=split["differing"] + split["missing"],
+            measured=split["measured"],
+        )
+        print(
+            f"byte-identical reruns: {len(split['identical'])} of {len(first)} netCDF and HTML files identical",
+            flush=True,
+        )
         for name in split["measured"]:
             print(f"  differs (shows wall times, declared in linkwork.pipeline.fingerprint): {name}")
         for name in split["differing"] + split["missing"]:
@@ -127,12 +159,18 @@ def main() -> None:
 
 def baseline(rev: str) -> dict[str, object]:
     """The warm full reproduction of git revision ``rev`` (one warm-up run, then one timed run)."""
-    commit = subprocess.run(["git", "rev-parse", "--short", rev], cwd=PROJECT, check=True, capture_output=True, text=True).stdout.strip()
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", rev], cwd=PROJECT, check=True, capture_output=True, text=True
+    ).stdout.strip()
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
         archive = subprocess.run(["git", "archive", commit], cwd=PROJECT, check=True, capture_output=True).stdout
         subprocess.run(["tar", "-x"], cwd=root, input=archive, check=True)
-        env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}", PYTHONPATH=str(root / "lib"))
+        env = dict(
+            os.environ,
+            PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
+            PYTHONPATH=str(root / "lib"),
+        )
         runs = []
         for _ in range(2):
             shutil.rmtree(root / "results", ignore_errors=True)
@@ -140,7 +178,10 @@ def baseline(rev: str) -> dict[str, object]:
             t0 = time.perf_counter()
             subprocess.run([sys.executable, "-m", "snakemake"], cwd=root, env=env, check=True, capture_output=True)
             runs.append(time.perf_counter() - t0)
-    print(f"baseline {commit}: full reproduction, warm compile cache: {runs[1]:.0f} s (warm-up run {runs[0]:.0f} s)", flush=True)
+    print(
+        f"baseline {commit}: full reproduction, warm compile cache: {runs[1]:.0f} s (warm-up run {runs[0]:.0f} s)",
+        flush=True,
+    )
     return {"revision": commit, "full_warm_s": runs[1], "warm_up_run_s": runs[0]}
 
 

@@ -12,7 +12,8 @@ benchmarks/slurm_single_node.py` (or `make slurm-proof`). What it does, in order
 3. makes two fresh clones of this checkout's HEAD, each with an empty compile cache, and runs in one the
    README's local command (`snakemake`) and in the other the README's cluster command (`snakemake --profile
    profiles/slurm --cores 1`, what `make slurm` runs), both timed as whole processes (time.perf_counter);
-4. counts the SLURM submissions (sbatch calls, through a counting sbatch first on PATH), compares every netCDF file and every report of
+4. counts the SLURM submissions (sbatch calls, through a counting sbatch first on PATH), compares every netCDF file and
+every report of
    the two runs byte for byte (linkwork.pipeline.fingerprint: only the reports that show wall times may
    differ), and stops the daemons it started by their process ids;
 5. prints the figures; with --record also writes them to benchmarks/measured/slurm.json (the README's cluster
@@ -63,13 +64,28 @@ def install() -> None:
     if not all(shutil.which(d) or Path(f"/usr/sbin/{d}").exists() for d in DAEMONS):
         say("installing slurm-wlm and munge with apt-get ...")
         run(["apt-get", "update", "-qq"])
-        run(["apt-get", "install", "-y", "-qq", "slurm-wlm", "munge"], env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"},
-            stdout=subprocess.DEVNULL)
+        run(
+            ["apt-get", "install", "-y", "-qq", "slurm-wlm", "munge"],
+            env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"},
+            stdout=subprocess.DEVNULL,
+        )
     try:
         import snakemake_executor_plugin_slurm  # noqa: F401
     except ImportError:
         say("installing the slurm extra (snakemake-executor-plugin-slurm) ...")
-        run([sys.executable, "-m", "pip", "install", "--quiet", "-c", str(PROJECT / "constraints.txt"), "-e", f"{PROJECT}[slurm]"])
+        run(
+            [
+                sys.executable,
+                "-m",
+                "pip",
+                "install",
+                "--quiet",
+                "-c",
+                str(PROJECT / "constraints.txt"),
+                "-e",
+                f"{PROJECT}[slurm]",
+            ]
+        )
 
 
 def free_port() -> int:
@@ -80,7 +96,9 @@ def free_port() -> int:
 
 def node_line() -> tuple[str, int, int]:
     """(node name, CPUs, memory for jobs in MB) of this machine, as slurmd sees it."""
-    fields = dict(item.split("=", 1) for item in run(["slurmd", "-C"], capture_output=True).stdout.split() if "=" in item)
+    fields = dict(
+        item.split("=", 1) for item in run(["slurmd", "-C"], capture_output=True).stdout.split() if "=" in item
+    )
     return fields["NodeName"], int(fields["CPUs"]), int(int(fields["RealMemory"]) * 0.9)
 
 
@@ -146,8 +164,17 @@ def single_node() -> Iterator[dict[str, str]]:
             key.write_bytes(os.urandom(1024))
             key.chmod(0o400)
             MUNGE_SOCKET.parent.mkdir(parents=True, exist_ok=True)
-            run(["munged", "--force", f"--key-file={key}", f"--socket={MUNGE_SOCKET}", f"--pid-file={folder / 'munged.pid'}",
-                 f"--log-file={folder / 'munged.log'}", f"--seed-file={folder / 'munged.seed'}"])
+            run(
+                [
+                    "munged",
+                    "--force",
+                    f"--key-file={key}",
+                    f"--socket={MUNGE_SOCKET}",
+                    f"--pid-file={folder / 'munged.pid'}",
+                    f"--log-file={folder / 'munged.log'}",
+                    f"--seed-file={folder / 'munged.seed'}",
+                ]
+            )
             started["munged"] = pid_of(folder / "munged.pid")
         conf, port = slurm_conf(folder)
         env = {**os.environ, "SLURM_CONF": str(conf)}
@@ -213,7 +240,9 @@ def main() -> None:
     parser.add_argument("--record", action="store_true", help="write the figures to benchmarks/measured/slurm.json")
     args = parser.parse_args()
     install()
-    if subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=PROJECT, capture_output=True, text=True).stdout.strip():
+    if subprocess.run(
+        ["git", "status", "--porcelain", "--untracked-files=no"], cwd=PROJECT, capture_output=True, text=True
+    ).stdout.strip():
         say("note: the checkout has uncommitted changes; the runs use its HEAD commit only")
     work = Path(tempfile.mkdtemp(prefix="linkwork-slurm-runs-"))
     head = run(["git", "rev-parse", "--short", "HEAD"], cwd=PROJECT, capture_output=True).stdout.strip()
@@ -223,17 +252,38 @@ def main() -> None:
     local_s = timed([sys.executable, "-m", "snakemake"], local, env_local, work / "local.log")
     wrapper, tally = counting_sbatch(work)
     with single_node() as slurm_env:
-        env_cluster = {**base, **slurm_env, "PATH": f"{wrapper}{os.pathsep}{base['PATH']}", "PYTHONPATH": str(cluster / "lib"),
-                       "LINKWORK_CACHE": str(work / "cache-slurm")}
-        cluster_s = timed([sys.executable, "-m", "snakemake", "--profile", "profiles/slurm", "--cores", "1"], cluster, env_cluster, work / "slurm.log")
+        env_cluster = {
+            **base,
+            **slurm_env,
+            "PATH": f"{wrapper}{os.pathsep}{base['PATH']}",
+            "PYTHONPATH": str(cluster / "lib"),
+            "LINKWORK_CACHE": str(work / "cache-slurm"),
+        }
+        cluster_s = timed(
+            [sys.executable, "-m", "snakemake", "--profile", "profiles/slurm", "--cores", "1"],
+            cluster,
+            env_cluster,
+            work / "slurm.log",
+        )
     submissions = len(tally.read_text().splitlines())
-    edited = subprocess.run(["git", "status", "--porcelain", "--untracked-files=no"], cwd=cluster, capture_output=True, text=True).stdout.split("\n")
+    edited = subprocess.run(
+        ["git", "status", "--porcelain", "--untracked-files=no"], cwd=cluster, capture_output=True, text=True
+    ).stdout.split("\n")
     edited = [line for line in edited if line.strip()]
     split = compare(fingerprints(local), fingerprints(cluster))
     figures = {
-        "revision": head, "local_s": local_s, "slurm_s": cluster_s, "ratio": cluster_s / local_s, "ratio_target": RATIO_TARGET,
-        "submissions": submissions, "submission_target": SUBMISSION_TARGET, "tracked_files_edited": edited, "identical_files": len(split["identical"]),
-        "compared_files": sum(len(v) for v in split.values()), "measured": split["measured"], "differing": split["differing"] + split["missing"],
+        "revision": head,
+        "local_s": local_s,
+        "slurm_s": cluster_s,
+        "ratio": cluster_s / local_s,
+        "ratio_target": RATIO_TARGET,
+        "submissions": submissions,
+        "submission_target": SUBMISSION_TARGET,
+        "tracked_files_edited": edited,
+        "identical_files": len(split["identical"]),
+        "compared_files": sum(len(v) for v in split.values()),
+        "measured": split["measured"],
+        "differing": split["differing"] + split["missing"],
     }
     say(f"local {local_s:.0f} s, SLURM {cluster_s:.0f} s (ratio {figures['ratio']:.2f}); {submissions} submissions; "
         f"{figures['identical_files']} of {figures['compared_files']} netCDF and HTML files byte-identical")

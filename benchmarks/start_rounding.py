@@ -41,7 +41,11 @@ def _generic_starts() -> None:
 
     def offset_start(p, joints, eccentricity, rate):
         names = [fourbar.JOINT_NAMES[j] for j in joints]
-        return assembly.start_state(fourbar.linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(eccentricity)), dict.fromkeys(names, tuple(rate)))
+        return assembly.start_state(
+            fourbar.linkage(p, joints, ("contact",)),
+            dict.fromkeys(names, tuple(eccentricity)),
+            dict.fromkeys(names, tuple(rate)),
+        )
 
     fourbar.initial_state, fourbar.offset_start = initial_state, offset_start
     settling.initial_state, settling.offset_start = initial_state, offset_start
@@ -55,13 +59,20 @@ def _one(job: tuple[str, str]) -> dict:
 
     section = yaml.safe_load((PROJECT / "config" / "config.yaml").read_text())["clearance"]
     ds = scene_study(section, variant, scene)
-    return {"variant": variant, "scene": scene, "period": ds.state_period.values.tolist(), "transient": ds.state_transient.values.tolist(),
-            "judged_mean": ds.judged_mean.values.tolist(), "numerical_error": ds.numerical_error.values.tolist(),
-            "half_width": ds.judged_half_width.values.tolist()}
+    return {
+        "variant": variant,
+        "scene": scene,
+        "period": ds.state_period.values.tolist(),
+        "transient": ds.state_transient.values.tolist(),
+        "judged_mean": ds.judged_mean.values.tolist(),
+        "numerical_error": ds.numerical_error.values.tolist(),
+        "half_width": ds.judged_half_width.values.tolist(),
+    }
 
 
 def _start_gap(section) -> float:
-    """Largest |generic - paper| over every state component of every start of every dynamic scene (m, rad, m/s, rad/s)."""
+    """Largest |generic - paper| over every state component of every start of every dynamic scene (m, rad, m/s,
+    rad/s)."""
     from linkwork.engines.multibody import assembly
     from linkwork.papers.clearance import fourbar
     from linkwork.papers.clearance.adapter import parameters, scene_effects
@@ -74,11 +85,23 @@ def _start_gap(section) -> float:
                 continue
             p = parameters(section, variant, scene)
             c, w = p.clearance, p.crank_speed
-            gap = max(gap, float(np.abs(fourbar.initial_state(p, joints) - assembly.start_state(fourbar.linkage(p, joints, ("contact",)))).max()))
+            gap = max(
+                gap,
+                float(
+                    np.abs(
+                        fourbar.initial_state(p, joints)
+                        - assembly.start_state(fourbar.linkage(p, joints, ("contact",)))
+                    ).max()
+                ),
+            )
             for start in section["states"]["starts"]:
                 ecc, rate = np.asarray(start["eccentricity"]) * c, np.asarray(start["rate"]) * c * w
                 names = [fourbar.JOINT_NAMES[j] for j in joints]
-                ours = assembly.start_state(fourbar.linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(ecc)), dict.fromkeys(names, tuple(rate)))
+                ours = assembly.start_state(
+                    fourbar.linkage(p, joints, ("contact",)),
+                    dict.fromkeys(names, tuple(ecc)),
+                    dict.fromkeys(names, tuple(rate)),
+                )
                 gap = max(gap, float(np.abs(fourbar.offset_start(p, joints, ecc, rate) - ours).max()))
     return gap
 
@@ -96,7 +119,9 @@ def main() -> None:
     rows, moved, changed, total = [], 0, 0, 0
     for r in runs:
         base = xr.open_dataset(PROJECT / "results" / "clearance" / r["variant"] / f"{r['scene']}.nc")
-        mean, err = np.array(r["judged_mean"]), np.array(r["numerical_error"]) + np.nan_to_num(np.array(r["half_width"]))
+        mean, err = np.array(r["judged_mean"]), np.array(r["numerical_error"]) + np.nan_to_num(
+            np.array(r["half_width"])
+        )
         bar = err + base.numerical_error.values + np.nan_to_num(base.judged_half_width.values)
         diff = np.abs(mean - base.judged_mean.values)
         beyond = diff > bar
@@ -104,9 +129,16 @@ def main() -> None:
         total += beyond.size
         moved += int(beyond.sum())
         changed += sum(state_changed)
-        rows.append({**{k: r[k] for k in ("variant", "scene")}, "period_paper_start": base.state_period.values.tolist(),
-                     "period_generic_start": r["period"], "measures_beyond_bar": int(beyond.sum()), "measures": int(beyond.size),
-                     "largest_move_over_bar": float(np.nanmax(diff / np.where(bar > 0, bar, np.nan)))})
+        rows.append(
+            {
+                **{k: r[k] for k in ("variant", "scene")},
+                "period_paper_start": base.state_period.values.tolist(),
+                "period_generic_start": r["period"],
+                "measures_beyond_bar": int(beyond.sum()),
+                "measures": int(beyond.size),
+                "largest_move_over_bar": float(np.nanmax(diff / np.where(bar > 0, bar, np.nan))),
+            }
+        )
         print(rows[-1], flush=True)
     figures = {"start_gap": _start_gap(section), "scenes": rows, "measures_beyond_bar": moved, "measures": total,
                "starts_with_another_period": changed, "starts": sum(len(r["period"]) for r in runs)}

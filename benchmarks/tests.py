@@ -3,8 +3,8 @@
 Run: python benchmarks/tests.py [--repeats N]
 
 Method: `python -m pytest -q -p no:cacheprovider -m <selection>` in the project, whole process timed with
-time.perf_counter; the numba compile cache as it is on this machine; the test count read from pytest's
-summary line; the README-rendering check of these figures is deselected (see OWN_CHECK).  Figures go to benchmarks/measured/tests.json.
+time.perf_counter; the numba compile cache as it is on this machine; the test count read from pytest's summary line; the
+README-rendering check of these figures is deselected (see OWN_CHECK).  Figures go to benchmarks/measured/tests.json.
 """
 
 from __future__ import annotations
@@ -35,8 +35,23 @@ def main() -> None:
         runs, count = [], 0
         for _ in range(args.repeats):
             t0 = time.perf_counter()
-            done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-m", selection, "--deselect", OWN_CHECK],
-                                  cwd=PROJECT, capture_output=True, text=True)
+            done = subprocess.run(
+                [
+                    sys.executable,
+                    "-m",
+                    "pytest",
+                    "-q",
+                    "-p",
+                    "no:cacheprovider",
+                    "-m",
+                    selection,
+                    "--deselect",
+                    OWN_CHECK,
+                ],
+                cwd=PROJECT,
+                capture_output=True,
+                text=True,
+            )
             runs.append(time.perf_counter() - t0)
             if done.returncode != 0:
                 sys.exit(f"pytest -m {selection!r} failed:\n{done.stdout[-3000:]}")

@@ -52,7 +52,11 @@ def main() -> None:
     figures["optimisation_s"] = time.perf_counter() - t0
     for key, value in figures.items():
         print(f"{key}: {value:.3f} s", flush=True)
-    write_figures("transplanter", {**figures, "repeats": args.repeats, "targets": TARGETS}, __doc__.split("Method:", 1)[1].split("Figures go")[0])
+    write_figures(
+        "transplanter",
+        {**figures, "repeats": args.repeats, "targets": TARGETS},
+        __doc__.split("Method:", 1)[1].split("Figures go")[0],
+    )
     if any(figures[k] > v for k, v in TARGETS.items()):
         sys.exit("a transplanter benchmark missed its target")
 

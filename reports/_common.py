@@ -52,7 +52,8 @@ def load(path: Path):
 
 
 def read_csv(path: Path, **options) -> pd.DataFrame:
-    """A CSV result read with pandas' ``options``, after its checksum (a truncated or replaced table is named, not read)."""
+    """A CSV result read with pandas' ``options``, after its checksum (a truncated or replaced table is named, not
+    read)."""
     verify(path)
     return pd.read_csv(path, **options)
 
@@ -81,11 +82,20 @@ def _colour_verdict(value: str) -> str:
 _TABLES = 0
 
 
-def table(df: pd.DataFrame, formats: dict[str, str] | None = None, caption: str | None = None, html_columns: tuple[str, ...] = ()) -> None:
+def table(
+    df: pd.DataFrame,
+    formats: dict[str, str] | None = None,
+    caption: str | None = None,
+    html_columns: tuple[str, ...] = (),
+) -> None:
     """Show a DataFrame with verdict cells coloured; every cell is escaped except ``html_columns`` (links we build)."""
     global _TABLES
     _TABLES += 1  # a counter, not pandas' random uuid, names the table's CSS ids: a rerun writes the same HTML
-    styler = df.style.set_uuid(f"t{_TABLES}").hide(axis="index").set_properties(**{"text-align": "left", "vertical-align": "top"})
+    styler = (
+        df.style.set_uuid(f"t{_TABLES}")
+        .hide(axis="index")
+        .set_properties(**{"text-align": "left", "vertical-align": "top"})
+    )
     styler = styler.set_table_styles([{"selector": "th", "props": [("text-align", "left")]}])
     verdict_cols = [c for c in df.columns if "verdict" in str(c)]
     if verdict_cols:
@@ -157,22 +167,35 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
     error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
     ``scale`` multiplies every value (a unit change for display, e.g. 1e3 for m -> mm)."""
     scenarios = list(dict.fromkeys(rows["scenario"])) if "scenario" in rows else [""]
-    out = pd.DataFrame({
-        **({"scenario": rows.scenario} if len(scenarios) > 1 else {}),
-        "quantity": rows.quantity,
-        "published": [f"{_num(p * scale, digits)} ({'≥ ' + _num((p - t) * scale, 3) if r == 'ge' else '± ' + _num(t * scale, 2)})"
-                      for p, t, r in zip(rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)))],
-        "tolerance from": rows.tolerance_source,
-        "ours": [_num(v * scale, digits) for v in rows.reproduced],
-        "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
-        "error from": rows.numerical_source,
-        # where no range is shown, the input source says why (no assumed input enters, none propagated there, ...)
-        "over the assumed inputs": [_range(lo * scale, hi * scale, t * scale) if pd.notna(lo) else (src if isinstance(src, str) and src else "–")
-                                    for lo, hi, t, src in zip(rows.input_low, rows.input_high, rows.tolerance, rows.get("input_source", [""] * len(rows)))],
-        "decided by": rows.decided_by.fillna("").map(key_words),
-        "unit": rows.unit,
-        "verdict": rows.verdict,
-    })
+    out = pd.DataFrame(
+        {
+            **({"scenario": rows.scenario} if len(scenarios) > 1 else {}),
+            "quantity": rows.quantity,
+            "published": [
+                f"{_num(p * scale, digits)}"
+                f" ({'≥ ' + _num((p - t) * scale, 3) if r == 'ge' else '± ' + _num(t * scale, 2)})"
+                for p, t, r in zip(rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)))
+            ],
+            "tolerance from": rows.tolerance_source,
+            "ours": [_num(v * scale, digits) for v in rows.reproduced],
+            "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
+            "error from": rows.numerical_source,
+            # where no range is shown, the input source says why (no assumed input enters, none propagated there, ...)
+            "over the assumed inputs": [
+                (
+                    _range(lo * scale, hi * scale, t * scale)
+                    if pd.notna(lo)
+                    else (src if isinstance(src, str) and src else "–")
+                )
+                for lo, hi, t, src in zip(
+                    rows.input_low, rows.input_high, rows.tolerance, rows.get("input_source", [""] * len(rows))
+                )
+            ],
+            "decided by": rows.decided_by.fillna("").map(key_words),
+            "unit": rows.unit,
+            "verdict": rows.verdict,
+        }
+    )
     table(out, caption=caption)
     verdict_legend(rows.verdict)
 
@@ -186,8 +209,16 @@ def verdict_legend(verdicts) -> None:
         md("<small>" + "; ".join(f"*{esc(v)}*: {esc(VERDICT_MEANING[v])}" for v in used) + ".</small>")
 
 
-def oat_table(unc, quantities: dict[str, str], entries: dict[str, dict], model: str = "", scale: dict[str, float] | None = None,
-              caption: str | None = None, scenario: int = 0, skip: set[str] | frozenset = frozenset()) -> None:
+def oat_table(
+    unc,
+    quantities: dict[str, str],
+    entries: dict[str, dict],
+    model: str = "",
+    scale: dict[str, float] | None = None,
+    caption: str | None = None,
+    scenario: int = 0,
+    skip: set[str] | frozenset = frozenset(),
+) -> None:
     """Each assumed input moved alone over its range (in one scenario, the first by default): the range it gives
     each listed quantity, and why that range (from ``entries``, the labelled config entries: ``assumed``).  The
     input column lists config keys (marked as such).
@@ -203,14 +234,24 @@ def oat_table(unc, quantities: dict[str, str], entries: dict[str, dict], model: 
         if str(name).removesuffix(".value") in skip:
             continue
         entry = entries.get(str(name).removesuffix(".value"), {})
-        why = entry.get("range_reason") or entry.get("reason") or str(unc.input_reason.values[k])  # a printed value's rounding: its own text
-        row = {"input (config key)": str(name).removesuffix(".value"), "range": str(unc.input_range.values[k]), "why": why}
+        why = (
+            entry.get("range_reason") or entry.get("reason") or str(unc.input_reason.values[k])
+        )  # a printed value's rounding: its own text
+        row = {
+            "input (config key)": str(name).removesuffix(".value"),
+            "range": str(unc.input_range.values[k]),
+            "why": why,
+        }
         for qid, label in quantities.items():
             q = index[f"{model}|{qid}"]
             f = scale.get(qid, 1.0)
             row[label] = f"{_num(low[k, q] * f, 4)} … {_num(high[k, q] * f, 4)}"
         rows.append(row)
-    table(pd.DataFrame(rows), caption=caption or f"Each assumed input moved alone over its range, the others at their assumed values ({design_text(unc)}).")
+    table(
+        pd.DataFrame(rows),
+        caption=caption
+        or f"Each assumed input moved alone over its range, the others at their assumed values ({design_text(unc)}).",
+    )
 
 
 def consistent_sets_table(unc, cmp: pd.DataFrame, reads: dict[str, set[str]] | None = None) -> None:
@@ -226,7 +267,11 @@ def consistent_sets_table(unc, cmp: pd.DataFrame, reads: dict[str, set[str]] | N
     rows = []
     for n, scen in enumerate(unc.scenario.values):
         for m, model in enumerate(unc.row_model.values):
-            of_model = [k for k, q in enumerate(keys) if q.startswith(f"{model}|") and pd.notna(unc.matched_in_best_set.values[n, k])]
+            of_model = [
+                k
+                for k, q in enumerate(keys)
+                if q.startswith(f"{model}|") and pd.notna(unc.matched_in_best_set.values[n, k])
+            ]
             if not of_model:
                 continue
             best = [name.get(keys[k], keys[k]) for k in of_model if unc.matched_in_best_set.values[n, k] == 1]
@@ -236,15 +281,30 @@ def consistent_sets_table(unc, cmp: pd.DataFrame, reads: dict[str, set[str]] | N
             moved = [f"{names[j]} = {_num(at[j], 4)}" for j in range(at.size)
                      if pd.notna(at[j]) and not math.isclose(at[j], nominal[j], rel_tol=1e-9, abs_tol=0.0)
                      and (reads is None or names[j] in reads.get(str(model), names))]
-            rows.append({**({"scenario": str(scen)} if unc.sizes["scenario"] > 1 else {}), **({"model": str(model)} if str(model) else {}),
-                         "rows matched at once": f"{int(unc.consistent_count.values[n, m])} of {int(unc.consistent_candidates.values[n, m])}",
-                         "matched together": "; ".join(best) or "none",
-                         "not reconciled with them": "; ".join(never) or "none",
-                         "the set: config keys moved from their assumed values": ", ".join(moved) or "none (the assumed values)"})
+            rows.append(
+                {
+                    **({"scenario": str(scen)} if unc.sizes["scenario"] > 1 else {}),
+                    **({"model": str(model)} if str(model) else {}),
+                    "rows matched at once": (
+                        f"{int(unc.consistent_count.values[n, m])} of {int(unc.consistent_candidates.values[n, m])}"
+                    ),
+                    "matched together": "; ".join(best) or "none",
+                    "not reconciled with them": "; ".join(never) or "none",
+                    "the set: config keys moved from their assumed values": (
+                        ", ".join(moved) or "none (the assumed values)"
+                    ),
+                }
+            )
     if rows:
-        table(pd.DataFrame(rows), caption="The best consistent assumption set per scenario: one point of the assumed inputs' box under which most "
-              "of the rows that are not robust deviations match at once (found by bounded searches). A row 'depends on assumptions' only "
-              "if it matches in such a set; a row that matches only where the others fail is 'not reconciled'.")
+        table(
+            pd.DataFrame(rows),
+            caption=(
+                "The best consistent assumption set per scenario: one point of the assumed inputs' box under which most"
+                " of the rows that are not robust deviations match at once (found by bounded searches). A row 'depends"
+                " on assumptions' only if it matches in such a set; a row that matches only where the others fail is"
+                " 'not reconciled'."
+            ),
+        )
 
 
 def design_text(unc) -> str:
@@ -253,12 +313,18 @@ def design_text(unc) -> str:
     lhs = sum(" lhs " in f" {x.split(' | ')[-1]} " for x in labels)
     corners = sum(x.split(" | ")[-1].startswith("corner ") for x in labels)
     scen = unc.sizes.get("scenario", 1)
-    parts = [f"{int(unc.samples)} samples in all" + (f" over {scen} scenarios" if scen > 1 else ""), "nominal and one at a time"]
+    parts = [
+        f"{int(unc.samples)} samples in all" + (f" over {scen} scenarios" if scen > 1 else ""),
+        "nominal and one at a time",
+    ]
     if corners:
         parts.append(f"{corners} box corners")
     parts.append(f"{lhs} Latin-hypercube points" if lhs else "no Latin hypercube")
     if "low_at" in unc:
-        parts.append(f"then bounded searches of each headline value's extremes (at most {int(unc.attrs.get('search_evaluations', 0))} evaluations each)")
+        parts.append(
+            "then bounded searches of each headline value's extremes (at most"
+            f" {int(unc.attrs.get('search_evaluations', 0))} evaluations each)"
+        )
     return "; ".join(parts)
 
 
@@ -312,7 +378,9 @@ def verdict_figure(rows: pd.DataFrame, title: str, note: str = "") -> None:
     moved = np.isfinite(low) & np.isfinite(high) & (low != high)
     if moved.any():
         ax.hlines(y[moved], low[moved], high[moved], color="C0", lw=5, alpha=0.6, label="ours over the assumed inputs")
-    ax.errorbar(nominal, y, xerr=error, fmt="o", color="k", ms=5, capsize=3, label="ours at nominal inputs (± numerical error)")
+    ax.errorbar(
+        nominal, y, xerr=error, fmt="o", color="k", ms=5, capsize=3, label="ours at nominal inputs (± numerical error)"
+    )
     ax.axvline(0, color="k", lw=0.8)
     span = np.nanmax(np.abs(np.concatenate([nominal, low, high, [1.5]])))
     ax.set_xlim(-1.15 * span, 1.15 * span)
@@ -326,7 +394,14 @@ def verdict_figure(rows: pd.DataFrame, title: str, note: str = "") -> None:
     ax.grid(alpha=0.3, axis="x")
     fig.legend(fontsize=8, loc="outside lower center", ncol=2)
     plt.show()
-    caption(f"{title}: for each published number the grey band is the published value ± its tolerance; the dot is ours at the "
-            "nominal inputs with its numerical error bar" + (", the blue bar our range over the assumed inputs" if moved.any() else
-                                                               " (no assumed input moves these values)")
-            + ", all divided by the tolerance." + (f" {note}" if note else ""))
+    caption(
+        f"{title}: for each published number the grey band is the published value ± its tolerance; the dot is ours at"
+        " the nominal inputs with its numerical error bar"
+        + (
+            ", the blue bar our range over the assumed inputs"
+            if moved.any()
+            else " (no assumed input moves these values)"
+        )
+        + ", all divided by the tolerance."
+        + (f" {note}" if note else "")
+    )

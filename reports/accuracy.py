@@ -29,7 +29,14 @@ files = inputs()
 ds = load(files["result"])
 timing = load(files["timings"])
 times = timing["seconds"]
-df = pd.DataFrame({"method": ds.method.values, "setting": ds.setting.values, "error": ds.error.values, "pipeline": ds.pipeline.values.astype(bool)})
+df = pd.DataFrame(
+    {
+        "method": ds.method.values,
+        "setting": ds.setting.values,
+        "error": ds.error.values,
+        "pipeline": ds.pipeline.values.astype(bool),
+    }
+)
 df["time_s"] = [times[f"{m}/{s}"] for m, s in zip(df.method, df.setting)]
 df["setting"] = df.setting.map(in_words)  # the clearance scenes by name, not by code
 df["method"] = df.method.map(in_words)
@@ -40,13 +47,24 @@ n_rows = -(-len(methods) // 3)  # one panel per method, three to a row
 fig, axes = plt.subplots(n_rows, 3, figsize=(16, 4.5 * n_rows), constrained_layout=True, squeeze=False)
 for ax, method in zip(axes.flat, methods):
     sub = df[df.method == method]
-    family = sub.setting.map(lambda x: "mode superposition" if x.endswith("modes") else ("uniform grid" if x.endswith("points") else
-                             x.split()[0] + (" " + x[x.rfind("("):] if x.endswith(")") else "")))
+    family = sub.setting.map(
+        lambda x: (
+            "mode superposition"
+            if x.endswith("modes")
+            else (
+                "uniform grid"
+                if x.endswith("points")
+                else x.split()[0] + (" " + x[x.rfind("(") :] if x.endswith(")") else "")
+            )
+        )
+    )
     for fam in dict.fromkeys(family):
         part = sub[family == fam]
         ax.loglog(part.time_s, part.error, "o-", ms=4, label=fam)
     for _, r in sub.iterrows():
-        ax.annotate(r.setting.replace("central differences ", "").rsplit(" (", 1)[0], (r.time_s, r.error), fontsize=6, alpha=0.8)
+        ax.annotate(
+            r.setting.replace("central differences ", "").rsplit(" (", 1)[0], (r.time_s, r.error), fontsize=6, alpha=0.8
+        )
     pipe = sub[sub.pipeline]
     ax.plot(pipe.time_s, pipe.error, "k*", ms=15, label="pipeline setting")
     ax.set_title(method)
@@ -57,7 +75,10 @@ for ax, method in zip(axes.flat, methods):
 for ax in axes.flat[len(methods):]:
     ax.axis("off")
 plt.show()
-caption("Error against each method's reference versus wall time (log-log), one panel per numerical method; every point is labelled by its setting, the star is the pipeline's setting. Exact methods are entered at 1e-16.")
+caption(
+    "Error against each method's reference versus wall time (log-log), one panel per numerical method; every point is"
+    " labelled by its setting, the star is the pipeline's setting. Exact methods are entered at 1e-16."
+)
 
 # %% [markdown]
 # ## What a user gains or loses by moving each setting
@@ -66,20 +87,45 @@ caption("Error against each method's reference versus wall time (log-log), one p
 # with its time as a multiple of the pipeline's.
 
 # %%
-rows = [(in_words(m), in_words(h["pipeline_setting"]), h["pipeline_error"], h["pipeline_s"], in_words(h["best_other_setting"]), h["best_other_error"],
-         h["best_other_time_ratio"])
-        for m, h in timing["highlights"].items()]
-table(pd.DataFrame(rows, columns=["method", "pipeline setting", "its error", "its time (s)", "most accurate other setting", "its error ", "its time / pipeline's"]),
-      {"its error": "{:.1e}", "its error ": "{:.1e}", "its time (s)": "{:.2e}", "its time / pipeline's": "{:.1f}"})
+rows = [
+    (
+        in_words(m),
+        in_words(h["pipeline_setting"]),
+        h["pipeline_error"],
+        h["pipeline_s"],
+        in_words(h["best_other_setting"]),
+        h["best_other_error"],
+        h["best_other_time_ratio"],
+    )
+    for m, h in timing["highlights"].items()
+]
+table(
+    pd.DataFrame(
+        rows,
+        columns=[
+            "method",
+            "pipeline setting",
+            "its error",
+            "its time (s)",
+            "most accurate other setting",
+            "its error ",
+            "its time / pipeline's",
+        ],
+    ),
+    {"its error": "{:.1e}", "its error ": "{:.1e}", "its time (s)": "{:.2e}", "its time / pipeline's": "{:.1f}"},
+)
 md(
-    "Reading the table: where the most accurate other setting is both less accurate and slower, the pipeline's choice "
-    "dominates (analytic derivatives, the closed-form strain energy, K⁻¹F instead of mode superposition). Where it is more "
-    "accurate, its time ratio is the price of that accuracy. Errors are relative to each method's own reference "
-    "(a finer setting or an exact route); exact methods are entered at 1e-16."
+    "Reading the table: where the most accurate other setting is both less accurate and slower, the pipeline's choice"
+    " dominates (analytic derivatives, the closed-form strain energy, K⁻¹F instead of mode superposition). Where it is"
+    " more accurate, its time ratio is the price of that accuracy. Errors are relative to each method's own reference"
+    " (a finer setting or an exact route); exact methods are entered at 1e-16."
 )
 
 # %%
-table(df.sort_values(["method", "time_s"]).rename(columns={"time_s": "wall time (s)"}), {"error": "{:.1e}", "wall time (s)": "{:.2e}"})
+table(
+    df.sort_values(["method", "time_s"]).rename(columns={"time_s": "wall time (s)"}),
+    {"error": "{:.1e}", "wall time (s)": "{:.2e}"},
+)
 
 # %% [markdown]
 # ## Integrators side by side: linkwork, scipy and Exudyn on one clearance scene
@@ -107,17 +153,31 @@ if "crosscheck_wp" in files:
         origin = "linkwork, compiled" if m in ("dopri5", "rk4") else "scipy on the compiled right-hand side"
         ax.loglog(t[ok], np.maximum(e[ok], 1e-16), "o-", label=f"{m} ({origin})")
     ax.loglog(xw.exudyn_time_s.values, xw.exudyn_error.values, "s--", label="Exudyn (Newmark, fixed step)")
-    show_log_log(ax, "wall time (s)", "relative error of the RMS deviation from ideal",
-                 f"Work-precision on {in_words(xw.attrs['scene'])} ({xw.attrs['variant']}) against {xw.attrs['reference']}: error of the claims' measure versus "
-                 "wall time; tolerances from loose (left) to tight (right) for the adaptive integrators, steps for Exudyn.")
+    show_log_log(
+        ax,
+        "wall time (s)",
+        "relative error of the RMS deviation from ideal",
+        f"Work-precision on {in_words(xw.attrs['scene'])} ({xw.attrs['variant']}) against {xw.attrs['reference']}:"
+        " error of the claims' measure versus wall time; tolerances from loose (left) to tight (right) for the"
+        " adaptive integrators, steps for Exudyn.",
+    )
     r = xw.time_ratio_at_equal_error
-    rows = [(str(m), *(f"{v:.1f}" if np.isfinite(v) else "not reached" for v in r.sel(compared_method=m).values)) for m in r.compared_method.values]
+    rows = [
+        (str(m), *(f"{v:.1f}" if np.isfinite(v) else "not reached" for v in r.sel(compared_method=m).values))
+        for m in r.compared_method.values
+    ]
     table(pd.DataFrame(rows, columns=["method", *[f"at the error of {s}" for s in r.dopri5_setting.values]]), {})
-    md("*Table: at the error linkwork's compiled Dormand–Prince reaches with each of its settings, the least wall time any setting of "
-       "the method needs to be at least as accurate, as a multiple of linkwork's least time (the work-precision fronts; the error "
-       "of single settings does not fall monotonically with the tolerance in a scene with impacts).*")
+    md(
+        "*Table: at the error linkwork's compiled Dormand–Prince reaches with each of its settings, the least wall time"
+        " any setting of the method needs to be at least as accurate, as a multiple of linkwork's least time (the"
+        " work-precision fronts; the error of single settings does not fall monotonically with the tolerance in a scene"
+        " with impacts).*"
+    )
     medians = ", ".join(f"{m}: {v:.1f}×" for m, v in zip(xw.compared_method.values, xw.median_time_ratio.values))
-    md(f"**Decision: {xw.attrs['decision']}** (median over linkwork's error levels; {medians}). scipy steps from Python, so every "
-       "step pays the interpreter around the compiled right-hand side; Exudyn's clearance joint is its own compiled contact.")
+    md(
+        f"**Decision: {xw.attrs['decision']}** (median over linkwork's error levels; {medians}). scipy steps from"
+        " Python, so every step pays the interpreter around the compiled right-hand side; Exudyn's clearance joint is"
+        " its own compiled contact."
+    )
 else:
     md("This render ran without the cross-check: run `make crosscheck` to add the side-by-side study.")

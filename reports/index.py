@@ -39,11 +39,15 @@ for paper, title in PAPERS.items():
     comparison = read_csv(files[f"comparison_{paper}"], keep_default_na=False, na_values=[""])
     models = [str(m) for m in findings.count_model.values]
     defensible = findings.attrs["defensible_model"] or models[0]
-    rows.append({
-        "paper": f'<a href="{paper}.html">{esc(title)}</a>',
-        "does it hold up?": esc(findings.attrs["answer"]),
-        "headline rows (defensible model, nominal reading)": (f"{esc(defensible)}: " if defensible else "") + counts(findings, defensible),
-    })
+    rows.append(
+        {
+            "paper": f'<a href="{paper}.html">{esc(title)}</a>',
+            "does it hold up?": esc(findings.attrs["answer"]),
+            "headline rows (defensible model, nominal reading)": (
+                (f"{esc(defensible)}: " if defensible else "") + counts(findings, defensible)
+            ),
+        }
+    )
     headline = comparison[comparison.role == "headline"]
     scenario = headline["scenario"] if "scenario" in headline else pd.Series([""] * len(headline), index=headline.index)
     for (model, scen), part in headline.groupby([headline.model, scenario], sort=False):
@@ -66,13 +70,20 @@ ax.tick_params(length=0)
 for side in ax.spines.values():
     side.set_visible(False)
 used = [v for v in VERDICTS if any(v in b[3] for b in blocks)]
-fig.legend(handles=[Patch(color=VERDICT_COLOURS[v], label=v) for v in used], loc="outside lower center", ncol=4, fontsize=8)
+fig.legend(
+    handles=[Patch(color=VERDICT_COLOURS[v], label=v) for v in used], loc="outside lower center", ncol=4, fontsize=8
+)
 ax.set_title("Every paper's headline verdicts, per model variant and named scenario")
 plt.show()
-caption("One line per paper, model variant and named scenario (a discrete modelling choice, judged apart); one cell per "
-        "published headline number or claim, coloured by its verdict class. The classes: "
-        + "; ".join(f"{v}: {VERDICT_MEANING[v]}" for v in used) + ".")
+caption(
+    "One line per paper, model variant and named scenario (a discrete modelling choice, judged apart); one cell per "
+    "published headline number or claim, coloured by its verdict class. The classes: "
+    + "; ".join(f"{v}: {VERDICT_MEANING[v]}" for v in used)
+    + "."
+)
 
 # %%
-md('What accuracy costs in time, for every numerical method of the pipeline: <a href="accuracy.html">accuracy report</a>. '
-   'Parameter sweeps: <a href="sweeps.html">sweeps report</a>.')
+md(
+    'What accuracy costs in time, for every numerical method of the pipeline: <a href="accuracy.html">accuracy'
+    ' report</a>. Parameter sweeps: <a href="sweeps.html">sweeps report</a>.'
+)

@@ -36,10 +36,32 @@ import json
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, loaded, md, oat_table, provenance, table, verdict_figure
+from _common import (
+    answer,
+    assumed,
+    caption,
+    comparison_table,
+    consistent_sets_table,
+    esc,
+    inputs,
+    loaded,
+    md,
+    oat_table,
+    provenance,
+    table,
+    verdict_figure,
+)
 
 files, got = inputs(), loaded()
-ked, opt, pub_pt, acc, cmp, fnd, unc = got.result, got.optim, got.at_published, got.accuracy, got.comparison, got.findings, got.uncertainty
+ked, opt, pub_pt, acc, cmp, fnd, unc = (
+    got.result,
+    got.optim,
+    got.at_published,
+    got.accuracy,
+    got.comparison,
+    got.findings,
+    got.uncertainty,
+)
 cfg = json.loads(opt.attrs["config_json"])
 pub = {q["id"]: q["value"] for q in got.published["quantities"]}
 base = pub_pt.sel(case="baseline")
@@ -61,8 +83,20 @@ answer(fnd)
 fig, ax = plt.subplots(figsize=(8, 4.2), constrained_layout=True)
 members = [str(m) for m in fnd.member.values]
 xpos = np.arange(len(members))
-ax.bar(xpos - 0.2, fnd.inertia_stress_published, 0.4, color="C1", label="the paper's optimum (" + ", ".join(f"{v:.2f}" for v in pub_pt.published_diameter.values) + " mm)")
-ax.bar(xpos + 0.2, fnd.inertia_stress_ours, 0.4, color="C0", label="our optimum (" + ", ".join(f"{v:.2f}" for v in opt.d_opt.values) + " mm)")
+ax.bar(
+    xpos - 0.2,
+    fnd.inertia_stress_published,
+    0.4,
+    color="C1",
+    label="the paper's optimum (" + ", ".join(f"{v:.2f}" for v in pub_pt.published_diameter.values) + " mm)",
+)
+ax.bar(
+    xpos + 0.2,
+    fnd.inertia_stress_ours,
+    0.4,
+    color="C0",
+    label="our optimum (" + ", ".join(f"{v:.2f}" for v in opt.d_opt.values) + " mm)",
+)
 ax.axhline(float(fnd.allowable), color="k", ls=":", label=f"allowable {float(fnd.allowable):.1f} MPa")
 ax.set_yscale("log")
 ax.set_xticks(xpos, [f"{m} ({j})" for m, j in zip(members, ("AB", "BC", "CD", "BE"))])
@@ -71,40 +105,54 @@ ax.set_title("member stress under the inertia loads alone (quasi-static, no grav
 ax.grid(alpha=0.3, axis="y", which="both")
 ax.legend(fontsize=8)
 plt.show()
-caption("Largest stress of each member over a crank revolution (MPa, log scale) under the links' own inertia, the only load the paper "
-        f"names, at the paper's optimum and at ours, against the allowable {float(fnd.allowable):.1f} MPa (dotted). The rocker and the crank stay "
-        f"far below it at the printed diameters, so shrinking them lowers the objective until they reach the {float(cfg['minimum_diameter_m']) * 1e3:g} mm "
-        "bound: the printed optimum needs a load the paper does not give.")
+caption(
+    "Largest stress of each member over a crank revolution (MPa, log scale) under the links' own inertia, the only"
+    f" load the paper names, at the paper's optimum and at ours, against the allowable {float(fnd.allowable):.1f} MPa"
+    " (dotted). The rocker and the crank stay far below it at the printed diameters, so shrinking them lowers the"
+    f" objective until they reach the {float(cfg['minimum_diameter_m']) * 1e3:g} mm bound: the printed optimum needs a"
+    " load the paper does not give."
+)
 
 # %% [markdown]
 # ## Summary
 
 # %%
-md(
-    f"""
+md(f"""
 * **The 35 coordinates reproduce** with the 8-coordinate element: 9 elements on 10 nodes (AB 1, BC 2, CD 2, BE 4),
   shared translations at the pins, the arm welded to the coupler, fixed pivots, the crank's slope held by the drive,
   and zero curvature (moment) at the pins and at the free tip. Our mesh has **{int(ked.coordinates)}** coordinates.
-* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm), {esc(compared)} solution, {gravity_word}, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
-  tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed {pub['Uy'] * 1e3:g}), Ux = {float(base.Ux) * 1e3:.2f} mm (printed {pub['Ux'] * 1e3:g}),
-  distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
+* **Our model at the paper's optimum** ({', '.join(f'{v:g}' for v in pub_pt.published_diameter.values)} mm),
+{esc(compared)} solution, {gravity_word}, E = {material['youngs_modulus_Pa']['value'] / 1e9:g} GPa:
+  tip Uy = {float(base.Uy) * 1e3:.2f} mm (printed {pub['Uy'] * 1e3:g}), Ux = {float(base.Ux) * 1e3:.2f} mm (printed
+  {pub['Ux'] * 1e3:g}),
+  distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress
+  {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
   Section 3 has the verdicts; section 4 shows which assumptions move these numbers.
 * **The optimal diameters are not reproducible: they need a load the paper does not print** (section 3a). Our optimum is
-  ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm by the paper's method (SLSQP on the same objective: ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm).
-  With the stresses of our model, the paper's point is {"" if int(fnd.published_point_stationary) else "not "}stationary: dSS/dx = ({', '.join(f'{v:+.2f}' for v in pub_pt.gradient_SS.values)}) per mm{
+  ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm by the paper's method (SLSQP on the same objective:
+  ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm).
+  With the stresses of our model, the paper's point is
+  {"" if int(fnd.published_point_stationary) else "not "}stationary: dSS/dx =
+  ({', '.join(f'{v:+.2f}' for v in pub_pt.gradient_SS.values)}) per mm{
   ", all positive, so every diameter wants to shrink" if int(fnd.published_gradient_all_positive) else ""}.
-* **The claims in words** (section 3b): the mass of the four bars falls from {float(fnd.mass_initial):.1f} g at the initial {initial_mm} mm to
-  {float(fnd.mass_published):.1f} g at the paper's optimum ({float(fnd.mass_ours):.1f} g at ours), and the lighter design's largest tip
+* **The claims in words** (section 3b): the mass of the four bars falls from {float(fnd.mass_initial):.1f} g at the
+initial {initial_mm} mm to
+  {float(fnd.mass_published):.1f} g at the paper's optimum ({float(fnd.mass_ours):.1f} g at ours), and the lighter
+  design's largest tip
   displacement is {float(fnd.distortion_ratio):.2f} times the initial design's.
-* **SS = {pub['SS']:.4f} cannot be checked.** [x_S1] and r(k) are not printed. With [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm (assumed), our SY + SZ at
-  the paper's optimum is {float(pub_pt.SY_SZ_at_published):.4f}, and r = {float(pub_pt.r_consistent):.4f} would make SS = {pub['SS']:.4f}
+* **SS = {pub['SS']:.4f} cannot be checked.** [x_S1] and r(k) are not printed. With [x_S1] =
+{cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm (assumed), our SY + SZ at
+  the paper's optimum is {float(pub_pt.SY_SZ_at_published):.4f}, and r = {float(pub_pt.r_consistent):.4f} would make SS
+  = {pub['SS']:.4f}
   (printed, like the paper, to four decimals).
 * **One crank-angle grid.** Every stress maximum in this report, the optimiser's constraint included, is taken on the
-  {opt.attrs['angle_step_deg']:g}° grid ({opt.attrs['grid_angles']} angles). The optimiser evaluates {opt.attrs['active_angles']} of them (every
-  {opt.attrs['coarse_angle_step_deg']:g}° and the grid points near each member's peak) and checks the whole grid at its optimum
-  ({opt.attrs['exchange_rounds']} exchange rounds were needed); there the constraints g₅–g₈ are {', '.join(f'{v:.1e}' for v in opt.constraints_opt.values[4:])} (≥ 0: feasible).
-"""
-)
+  {opt.attrs['angle_step_deg']:g}° grid ({opt.attrs['grid_angles']} angles). The optimiser evaluates
+  {opt.attrs['active_angles']} of them (every
+  {opt.attrs['coarse_angle_step_deg']:g}° and the grid points near each member's peak) and checks the whole grid at its
+  optimum
+  ({opt.attrs['exchange_rounds']} exchange rounds were needed); there the constraints g₅–g₈ are
+  {', '.join(f'{v:.1e}' for v in opt.constraints_opt.values[4:])} (≥ 0: feasible).
+""")
 
 # %% [markdown]
 # ## 1. Parameters and material
@@ -113,34 +161,63 @@ md(
 g = cfg["geometry"]
 rows = [
     ("crank speed n", cfg["crank_speed_rpm"], "r/min", "sourced (Sec. 2)"),
-    ("AB, BC, CD, BE", ", ".join(f"{g[k] * 1e3:.1f}" for k in ("crank_m", "coupler_m", "rocker_m", "arm_m")), "mm", "sourced"),
+    (
+        "AB, BC, CD, BE",
+        ", ".join(f"{g[k] * 1e3:.1f}" for k in ("crank_m", "coupler_m", "rocker_m", "arm_m")),
+        "mm",
+        "sourced",
+    ),
     ("pivot D", f"({g['pivot_D_m'][0]:.4f}, {g['pivot_D_m'][1]:.4f})", "m", "sourced"),
     ("angle BC–BE", g["arm_angle_deg"], "deg", "sourced"),
     ("arm side, branch", f"{g['arm_side']:+d}, {g['branch']:+d}", "", "chosen below"),
 ]
-MATERIAL_NAMES = {"yield_Pa": ("yield strength", "Pa"), "youngs_modulus_Pa": ("Young's modulus", "Pa"), "density_kg_m3": ("density", "kg/m³")}
+MATERIAL_NAMES = {
+    "yield_Pa": ("yield strength", "Pa"),
+    "youngs_modulus_Pa": ("Young's modulus", "Pa"),
+    "density_kg_m3": ("density", "kg/m³"),
+}
 for key in material:
     name, unit = MATERIAL_NAMES.get(key, (key, ""))
     v = entries[f"materials.{cfg['material']['name']}.{key}"]
     rows.append((name, f"{v['value']:g}", unit, f"{v['status']}: {v['reason']}"))
-rows.append(("safety factor", cfg["material"]["safety_factor"], "", f"sourced (allowable {float(opt.allowable):.1f} MPa)"))
-rows.append(("[x_S1]", cfg["optimization"]["reference_diameter_m"]["value"], "m", entries["optimization.reference_diameter_m"]["reason"]))
+rows.append(
+    ("safety factor", cfg["material"]["safety_factor"], "", f"sourced (allowable {float(opt.allowable):.1f} MPa)")
+)
+rows.append(
+    (
+        "[x_S1]",
+        cfg["optimization"]["reference_diameter_m"]["value"],
+        "m",
+        entries["optimization.reference_diameter_m"]["reason"],
+    )
+)
 table(pd.DataFrame(rows, columns=["parameter", "value", "unit", "source"]))
 
 # %% [markdown]
 # ### Which assembly: arm side and four-bar branch
 #
-# The paper draws the mechanism but gives neither the assembly branch nor the side of BC on which the printed arm angle is
+# The paper draws the mechanism but gives neither the assembly branch nor the side of BC on which the printed arm angle
+# is
 # measured. Here are the four combinations, evaluated at the published optimum:
 
 # %%
-RESPONSES = {"Ux (mm)": ("Ux", 1e3), "Uy (mm)": ("Uy", 1e3), "distortion (mm)": ("distortion", 1e3), "max stress (MPa)": ("stress_max", 1.0)}
+RESPONSES = {
+    "Ux (mm)": ("Ux", 1e3),
+    "Uy (mm)": ("Uy", 1e3),
+    "distortion (mm)": ("distortion", 1e3),
+    "max stress (MPa)": ("stress_max", 1.0),
+}
 
 
 def responses_frame(column: str, labels, suffix: str = "") -> pd.DataFrame:
     """One row per label: the tip deformations (mm) and the largest stress (MPa) of the variables ``<name><suffix>`` at
     the published optimum."""
-    return pd.DataFrame({column: labels, **{head: pub_pt[f"{name}{suffix}"].values * scale for head, (name, scale) in RESPONSES.items()}})
+    return pd.DataFrame(
+        {
+            column: labels,
+            **{head: pub_pt[f"{name}{suffix}"].values * scale for head, (name, scale) in RESPONSES.items()},
+        }
+    )
 
 
 asm = responses_frame("assembly", pub_pt.assembly.values, "_assembly")
@@ -166,7 +243,10 @@ ax.set_title("tip trajectory; linkage at crank angles 0, 90, 180, 270°")
 ax.grid(alpha=0.3)
 ax.legend(fontsize=8)
 plt.show()
-caption("Rigid path of the planting-arm tip E over a crank revolution, with the linkage (black) and the arm (red) drawn at four crank angles; pivots A and D marked.")
+caption(
+    "Rigid path of the planting-arm tip E over a crank revolution, with the linkage (black) and the arm (red) drawn at"
+    " four crank angles; pivots A and D marked."
+)
 
 # %% [markdown]
 # ## 2. Deformation and stress over a revolution
@@ -174,8 +254,12 @@ caption("Rigid path of the planting-arm tip E over a crank revolution, with the 
 # %%
 fig, axes = plt.subplots(2, 3, figsize=(15, 7.5), sharex=True, constrained_layout=True)
 th = ked.crank_angle.values
-panels = [(str(dset), ked.sel(diameters=dset), ked.diameter.sel(diameters=dset).values) for dset in ked.diameters.values]
-curves_pub = pub_pt[["Ux_curve", "Uy_curve", "stress_curve"]].rename({"Ux_curve": "Ux", "Uy_curve": "Uy", "stress_curve": "stress"})
+panels = [
+    (str(dset), ked.sel(diameters=dset), ked.diameter.sel(diameters=dset).values) for dset in ked.diameters.values
+]
+curves_pub = pub_pt[["Ux_curve", "Uy_curve", "stress_curve"]].rename(
+    {"Ux_curve": "Ux", "Uy_curve": "Uy", "stress_curve": "stress"}
+)
 panels.append(("the paper's optimum", curves_pub, pub_pt.published_diameter.values))
 for j, (label, data, diam) in enumerate(panels):
     for sol, ls in (("quasi-static", "-"), ("dynamic", "--")):
@@ -183,7 +267,12 @@ for j, (label, data, diam) in enumerate(panels):
         axes[0, j].plot(data.crank_angle, s.Ux * 1e3, "C0" + ls, label=f"Ux {sol}")
         axes[0, j].plot(data.crank_angle, s.Uy * 1e3, "C1" + ls, label=f"Uy {sol}")
         for m_i, member in enumerate(data.member.values):
-            axes[1, j].plot(data.crank_angle, s.stress.sel(member=member), f"C{m_i}" + ls, label=f"{member} {sol}" if sol == "quasi-static" else None)
+            axes[1, j].plot(
+                data.crank_angle,
+                s.stress.sel(member=member),
+                f"C{m_i}" + ls,
+                label=f"{member} {sol}" if sol == "quasi-static" else None,
+            )
     d = ", ".join(f"{v:.2f}" for v in diam)
     axes[0, j].set_title(f"{label} ({d} mm)\ntip deformation", fontsize=10)
     axes[1, j].set_title("largest member stress (dashed: dynamic)", fontsize=10)
@@ -194,49 +283,75 @@ for j, (label, data, diam) in enumerate(panels):
 # the published values belong to the paper's optimum: marked in its column
 axes[0, 2].axhline(pub["Ux"] * 1e3, color="C0", ls="-.", lw=1.2, label=f"published Ux {pub['Ux'] * 1e3:g} mm")
 axes[0, 2].axhline(pub["Uy"] * 1e3, color="C1", ls="-.", lw=1.2, label=f"published Uy {pub['Uy'] * 1e3:g} mm")
-axes[1, 2].axhline(pub["stress_max"], color="C3", ls="-.", lw=1.2, label=f"published max stress {pub['stress_max']:g} MPa")
+axes[1, 2].axhline(
+    pub["stress_max"], color="C3", ls="-.", lw=1.2, label=f"published max stress {pub['stress_max']:g} MPa"
+)
 for ax in axes.ravel():
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7)
 plt.show()
-caption("Elastic tip displacement (top) and the largest stress per member (bottom) over a crank revolution for the initial diameters, "
-        "our optimal diameters and the paper's optimal diameters (right; its printed Ux, Uy and maximum stress dash-dotted); solid: quasi-static, "
-        "dashed: dynamic (Newmark); dotted: the allowable stress. All on the same crank-angle grid as the optimiser's constraint.")
-md(
-    f"**Ux read along and across the arm.** The paper calls U_X the *axial* deformation. At the paper's optimum the tip's "
-    f"elastic displacement along the arm BE reaches {float(pub_pt.U_along_arm) * 1e3:+.2f} mm and across it "
-    f"{float(pub_pt.U_across_arm) * 1e3:+.2f} mm (signed extremes, {esc(compared)} solution), against the printed {pub['Ux'] * 1e3:+g} mm "
-    f"(± {tol['Ux'] * 1e3:g}) and our global-x {float(base.Ux) * 1e3:+.2f} mm: "
-    + ("neither reading explains the printed value." if all(abs(v - pub["Ux"]) > tol["Ux"] for v in (float(pub_pt.U_along_arm), float(pub_pt.U_across_arm)))
-       else "one reading agrees with the printed value within its last digit.")
+caption(
+    "Elastic tip displacement (top) and the largest stress per member (bottom) over a crank revolution for the initial"
+    " diameters, our optimal diameters and the paper's optimal diameters (right; its printed Ux, Uy and maximum stress"
+    " dash-dotted); solid: quasi-static, dashed: dynamic (Newmark); dotted: the allowable stress. All on the same"
+    " crank-angle grid as the optimiser's constraint."
 )
 md(
-    f"Natural frequencies at crank angle 0: {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='initial').values)} rad/s (initial) "
-    f"and {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='optimal').values)} rad/s (optimal), against a crank speed "
-    f"of {float(ked.crank_speed):.1f} rad/s. Resonance warning: {esc(ked.attrs['resonance_warning'])}. "
-    f"The dynamic solution runs {json.loads(ked.attrs['config_json'])['fe']['revolutions']} revolutions; the last two differ by "
-    f"{', '.join(f'{v:.1e}' for v in ked.periodicity.values)} of the tip response range. "
-    + (f"**Warning: {esc(ked.attrs['validity_warnings'])}.**" if ked.attrs["validity_warnings"] else
-       f"The largest elastic tip deflection is {ked.attrs['validity_tip_deflection_over_arm']:.2g} of the arm length, inside "
-       f"small-deflection beam theory (limit {ked.attrs['validity_deflection_limit']:g}).")
+    "**Ux read along and across the arm.** The paper calls U_X the *axial* deformation. At the paper's optimum the"
+    f" tip's elastic displacement along the arm BE reaches {float(pub_pt.U_along_arm) * 1e3:+.2f} mm and across it"
+    f" {float(pub_pt.U_across_arm) * 1e3:+.2f} mm (signed extremes, {esc(compared)} solution), against the printed"
+    f" {pub['Ux'] * 1e3:+g} mm (± {tol['Ux'] * 1e3:g}) and our global-x {float(base.Ux) * 1e3:+.2f} mm: "
+    + (
+        "neither reading explains the printed value."
+        if all(abs(v - pub["Ux"]) > tol["Ux"] for v in (float(pub_pt.U_along_arm), float(pub_pt.U_across_arm)))
+        else "one reading agrees with the printed value within its last digit."
+    )
+)
+md(
+    "Natural frequencies at crank angle 0:"
+    f" {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='initial').values)} rad/s (initial) and"
+    f" {', '.join(f'{v:.0f}' for v in ked.natural_frequency.sel(diameters='optimal').values)} rad/s (optimal), against"
+    f" a crank speed of {float(ked.crank_speed):.1f} rad/s. Resonance warning: {esc(ked.attrs['resonance_warning'])}."
+    f" The dynamic solution runs {json.loads(ked.attrs['config_json'])['fe']['revolutions']} revolutions; the last two"
+    f" differ by {', '.join(f'{v:.1e}' for v in ked.periodicity.values)} of the tip response range. "
+    + (
+        f"**Warning: {esc(ked.attrs['validity_warnings'])}.**"
+        if ked.attrs["validity_warnings"]
+        else (
+            f"The largest elastic tip deflection is {ked.attrs['validity_tip_deflection_over_arm']:.2g} of the arm"
+            f" length, inside small-deflection beam theory (limit {ked.attrs['validity_deflection_limit']:g})."
+        )
+    )
 )
 md(
     "**Our finding, not the paper's claim: "
-    + ("the optimum found on the quasi-static model is not safe dynamically.**" if float(fnd.optimum_dynamic_excess) > 0 else
-       "the optimum found on the quasi-static model stays safe dynamically.**")
-    + f" The paper makes no claim on this: its results (Sec. 2) state only that its design meets the maximum-stress requirement "
-    f"(printed maximum dynamic stress {pub['stress_max']:g} MPa against the allowable {float(fnd.allowable):.1f} MPa). Its eq. (7) writes the "
-    "response as free vibration plus the particular solution without saying which part its printed numbers include, and it does "
-    "not ask whether a design sized on one part stays safe with the other. The finding is therefore shown here and in the "
-    "answer, but not counted among the verdicts. At our optimum the quasi-static peak stress is "
-    f"{float(fnd.optimum_quasi_static_peak):.2f} MPa (allowable "
-    f"{float(fnd.allowable):.1f} MPa) and the dynamic solution's {float(fnd.optimum_dynamic_peak):.2f} ± {float(fnd.optimum_dynamic_error):.2f} MPa "
-    f"({float(fnd.optimum_dynamic_excess):+.0%} against the allowable), {float(fnd.optimum_dynamic_low):.2f}–{float(fnd.optimum_dynamic_high):.2f} MPa "
-    f"over the damping range: **{esc(fnd.attrs['optimum_dynamic_finding'])}**"
-    + (f"; the damping ratio at which the dynamic peak equals the allowable is {float(fnd.damping_threshold):.4f}." if ked.attrs["damping_threshold_crossings"]
-       else "; no damping ratio in the range brings the dynamic peak to the allowable.")
-    + (" The thin members let the arm vibrate at its first mode; the paper's constraint (16), evaluated on the particular "
-       "solution alone, does not guard against this." if float(fnd.optimum_dynamic_excess) > 0 else "")
+    + (
+        "the optimum found on the quasi-static model is not safe dynamically.**"
+        if float(fnd.optimum_dynamic_excess) > 0
+        else "the optimum found on the quasi-static model stays safe dynamically.**"
+    )
+    + " The paper makes no claim on this: its results (Sec. 2) state only that its design meets the maximum-stress"
+    f" requirement (printed maximum dynamic stress {pub['stress_max']:g} MPa against the allowable"
+    f" {float(fnd.allowable):.1f} MPa). Its eq. (7) writes the response as free vibration plus the particular"
+    " solution without saying which part its printed numbers include, and it does not ask whether a design sized on"
+    " one part stays safe with the other. The finding is therefore shown here and in the answer, but not counted"
+    f" among the verdicts. At our optimum the quasi-static peak stress is {float(fnd.optimum_quasi_static_peak):.2f}"
+    f" MPa (allowable {float(fnd.allowable):.1f} MPa) and the dynamic solution's"
+    f" {float(fnd.optimum_dynamic_peak):.2f} ± {float(fnd.optimum_dynamic_error):.2f} MPa"
+    f" ({float(fnd.optimum_dynamic_excess):+.0%} against the allowable),"
+    f" {float(fnd.optimum_dynamic_low):.2f}–{float(fnd.optimum_dynamic_high):.2f} MPa over the damping range:"
+    f" **{esc(fnd.attrs['optimum_dynamic_finding'])}**"
+    + (
+        f"; the damping ratio at which the dynamic peak equals the allowable is {float(fnd.damping_threshold):.4f}."
+        if ked.attrs["damping_threshold_crossings"]
+        else "; no damping ratio in the range brings the dynamic peak to the allowable."
+    )
+    + (
+        " The thin members let the arm vibrate at its first mode; the paper's constraint (16), evaluated on the"
+        " particular solution alone, does not guard against this."
+        if float(fnd.optimum_dynamic_excess) > 0
+        else ""
+    )
 )
 
 # %% [markdown]
@@ -247,23 +362,45 @@ md(
 # %%
 zeta = entries["fe.damping_ratio"]
 md(
-    f"**Assumed Rayleigh damping.** C = α M + β K with the damping ratio ζ = {float(ked.damping_ratio):g} at the first two natural "
-    f"frequencies ({esc(zeta['status'])}: {esc(zeta['reason'])}; range {zeta['range'][0]:g}–{zeta['range'][1]:g}, "
-    f"{esc(zeta.get('range_reason', ''))}). At our optimum α = {float(ked.rayleigh_alpha.sel(diameters='optimal')):.3f} s⁻¹ and "
-    f"β = {float(ked.rayleigh_beta.sel(diameters='optimal')):.3e} s; at the initial diameters α = {float(ked.rayleigh_alpha.sel(diameters='initial')):.3f} s⁻¹, "
-    f"β = {float(ked.rayleigh_beta.sel(diameters='initial')):.3e} s. Newmark's average-acceleration rule (β = 1/4, γ = 1/2), "
-    f"{ked_cfg['fe']['revolutions']} revolutions from the quasi-static state, the last one kept; step {float(ked.newmark_pipeline_step):g}° of crank angle."
+    f"**Assumed Rayleigh damping.** C = α M + β K with the damping ratio ζ = {float(ked.damping_ratio):g} at the first"
+    f" two natural frequencies ({esc(zeta['status'])}: {esc(zeta['reason'])}; range"
+    f" {zeta['range'][0]:g}–{zeta['range'][1]:g}, {esc(zeta.get('range_reason', ''))}). At our optimum α ="
+    f" {float(ked.rayleigh_alpha.sel(diameters='optimal')):.3f} s⁻¹ and β ="
+    f" {float(ked.rayleigh_beta.sel(diameters='optimal')):.3e} s; at the initial diameters α ="
+    f" {float(ked.rayleigh_alpha.sel(diameters='initial')):.3f} s⁻¹, β ="
+    f" {float(ked.rayleigh_beta.sel(diameters='initial')):.3e} s. Newmark's average-acceleration rule (β = 1/4, γ ="
+    f" 1/2), {ked_cfg['fe']['revolutions']} revolutions from the quasi-static state, the last one kept; step"
+    f" {float(ked.newmark_pipeline_step):g}° of crank angle."
 )
 
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), constrained_layout=True)
 ax = axes[0]
-ax.loglog(ked.newmark_step, ked.newmark_field_error, "o-", label="stress field: max |σ − σ_ref| / peak (bounds the peak's error)")
+ax.loglog(
+    ked.newmark_step,
+    ked.newmark_field_error,
+    "o-",
+    label="stress field: max |σ − σ_ref| / peak (bounds the peak's error)",
+)
 ax.loglog(ked.newmark_step, ked.newmark_peak_error, "s--", label="peak stress itself")
-ax.loglog(ked.newmark_step, float(ked.newmark_field_error[0]) * (ked.newmark_step / float(ked.newmark_step[0])) ** 2, "k:", lw=1, label="slope 2")
-ax.axvline(float(ked.newmark_pipeline_step), color="C3", ls=":", label=f"pipeline step {float(ked.newmark_pipeline_step):g}°")
+ax.loglog(
+    ked.newmark_step,
+    float(ked.newmark_field_error[0]) * (ked.newmark_step / float(ked.newmark_step[0])) ** 2,
+    "k:",
+    lw=1,
+    label="slope 2",
+)
+ax.axvline(
+    float(ked.newmark_pipeline_step), color="C3", ls=":", label=f"pipeline step {float(ked.newmark_pipeline_step):g}°"
+)
 for h, p_ in zip(ked.newmark_pair.values, ked.newmark_order.values):
-    ax.annotate(f"order {p_:.2f}", (h, float(ked.newmark_field_error.sel(newmark_step=h))), textcoords="offset points", xytext=(6, -12), fontsize=8)
+    ax.annotate(
+        f"order {p_:.2f}",
+        (h, float(ked.newmark_field_error.sel(newmark_step=h))),
+        textcoords="offset points",
+        xytext=(6, -12),
+        fontsize=8,
+    )
 ax.set_xlabel("Newmark step (deg of crank angle)")
 ax.set_ylabel("relative error vs the reference step")
 ax.set_title(f"dynamic stress at our optimum (reference {ked.attrs['newmark_reference_step_deg']:g}°)", fontsize=10)
@@ -275,32 +412,43 @@ ax.axhline(float(ked.allowable), color="k", ls=":", label=f"allowable {float(ked
 ax.axhline(float(fnd.optimum_quasi_static_peak), color="C2", ls="--", lw=1, label="quasi-static peak at our optimum")
 ax.axvline(float(ked.damping_ratio) * 100, color="C3", ls=":", label=f"assumed ζ = {float(ked.damping_ratio):g}")
 if ked.attrs["damping_threshold_crossings"]:
-    ax.axvline(float(ked.damping_threshold) * 100, color="C1", ls="-.", label=f"threshold ζ = {float(ked.damping_threshold):.4f}")
+    ax.axvline(
+        float(ked.damping_threshold) * 100,
+        color="C1",
+        ls="-.",
+        label=f"threshold ζ = {float(ked.damping_threshold):.4f}",
+    )
 ax.set_xlabel("damping ratio ζ (%)")
 ax.set_ylabel("peak stress (MPa)")
 ax.set_title("peak dynamic stress over the assumed damping range", fontsize=10)
 ax.grid(alpha=0.3)
 ax.legend(fontsize=7)
 plt.show()
-caption(f"Left: relative error of the dynamic stress at our optimum against the Newmark step, every run sampled every {ked.attrs['newmark_output_step_deg']:g}° "
-        "of crank angle, with the observed order between neighbouring steps; the peak's own error jumps where its sampled maximum moves to "
-        "a neighbouring angle, the field error bounds it. Right: the dynamic peak stress at our optimum against the damping ratio over its "
-        "assumed range, with the allowable and the quasi-static peak.")
+caption(
+    "Left: relative error of the dynamic stress at our optimum against the Newmark step, every run sampled every"
+    f" {ked.attrs['newmark_output_step_deg']:g}° of crank angle, with the observed order between neighbouring steps;"
+    " the peak's own error jumps where its sampled maximum moves to a neighbouring angle, the field error bounds it."
+    " Right: the dynamic peak stress at our optimum against the damping ratio over its assumed range, with the"
+    " allowable and the quasi-static peak."
+)
 md(
-    f"The observed order is {', '.join(f'{v:.2f}' for v in ked.newmark_order.values)} (Newmark's average-acceleration rule is second order); "
-    f"at the pipeline's step the error bound is {float(ked.newmark_pipeline_error):.1e} of the peak. Each damping ratio runs "
-    f"max(N, ⌈N ζ₀/ζ⌉) revolutions (N = {ked_cfg['fe']['revolutions']}, ζ₀ = {float(ked.damping_ratio):g}, the assumed ratio), so that a damping below "
-    f"the assumed one gets proportionally more revolutions for its start transient to decay, and one at or above it the pipeline's N: "
-    f"{', '.join(f'{int(n)} at ζ = {z:g}' for z, n in zip(ked.damping.values, ked.damping_revolutions.values))}. What is left of the transient between the last two "
-    f"revolutions is {', '.join(f'{v:.0e}' for v in ked.damping_periodicity.values)} of the tip response range. The finding's error bar adds this "
-    "Newmark bound, the periodicity and the mesh error of the peak stress (section 6)."
+    f"The observed order is {', '.join(f'{v:.2f}' for v in ked.newmark_order.values)} (Newmark's average-acceleration"
+    f" rule is second order); at the pipeline's step the error bound is {float(ked.newmark_pipeline_error):.1e} of the"
+    f" peak. Each damping ratio runs max(N, ⌈N ζ₀/ζ⌉) revolutions (N = {ked_cfg['fe']['revolutions']}, ζ₀ ="
+    f" {float(ked.damping_ratio):g}, the assumed ratio), so that a damping below the assumed one gets proportionally"
+    " more revolutions for its start transient to decay, and one at or above it the pipeline's N:"
+    f" {', '.join(f'{int(n)} at ζ = {z:g}' for z, n in zip(ked.damping.values, ked.damping_revolutions.values))}. What"
+    " is left of the transient between the last two revolutions is"
+    f" {', '.join(f'{v:.0e}' for v in ked.damping_periodicity.values)} of the tip response range. The finding's error"
+    " bar adds this Newmark bound, the periodicity and the mesh error of the peak stress (section 6)."
 )
 
 # %% [markdown]
 # ## 3. Every published number beside ours
 #
 # Ux, Uy, the distortion and the stress compare our model at *their* optimum. Each row carries our numerical error bar
-# (mesh and crank-angle sampling) and the range of our value over the assumed inputs (the Young's modulus and density of 5A06, gravity on the elastic
+# (mesh and crank-angle sampling) and the range of our value over the assumed inputs (the Young's modulus and density of
+# 5A06, gravity on the elastic
 # model, [x_S1], which solution the paper's numbers are and the damping of the dynamic one).
 #
 # "Dynamic stress" is the paper's word for the stress under the links' inertia loads; its "maximum dynamic stress" row
@@ -317,8 +465,11 @@ comparison_table(cmp[cmp.id.isin(CLAIM_IDS)], caption="the claims in words, each
 comparison_table(cmp[cmp.id == "SS"], caption="SS, to the paper's digits", digits=6)
 comparison_table(cmp[cmp.unit == "m"].assign(unit="mm"), caption="tip deformation", scale=1e3)
 undrawn = cmp[(cmp.role == "headline") & cmp.reproduced.isna()]
-verdict_figure(cmp[cmp.role == "headline"], "Transplanter: published numbers against ours",
-               note=" ".join(f"{q} is not drawn: we have no value of it ({v})." for q, v in zip(undrawn.id, undrawn.verdict)))
+verdict_figure(
+    cmp[cmp.role == "headline"],
+    "Transplanter: published numbers against ours",
+    note=" ".join(f"{q} is not drawn: we have no value of it ({v})." for q, v in zip(undrawn.id, undrawn.verdict)),
+)
 
 # %% [markdown]
 # ### 3a. The optimal diameters: a load the paper does not print
@@ -326,9 +477,12 @@ verdict_figure(cmp[cmp.role == "headline"], "Transplanter: published numbers aga
 # The paper names one load, the links' own inertia (its eq. 7 and the constraint (16) on the "dynamic" stress). Under it
 # alone a member's load grows as the square of its diameter and its section modulus as the cube, so its bending stress
 # falls as 1/d, and the rocker CD, pinned at both ends, carries almost nothing but its own inertia. The objective
-# SY + SZ then falls as a lightly stressed member shrinks, down to the lower bound on the diameters, which is where every
-# optimiser puts our rocker and crank. The printed optimum keeps them well above it. We ask which external load would explain that:
-# a constant force at the arm tip E (the planting claw, where the soil acts), in each direction of the table below, and per member the
+# SY + SZ then falls as a lightly stressed member shrinks, down to the lower bound on the diameters, which is where
+# every
+# optimiser puts our rocker and crank. The printed optimum keeps them well above it. We ask which external load would
+# explain that:
+# a constant force at the arm tip E (the planting claw, where the soil acts), in each direction of the table below, and
+# per member the
 # smallest force at which its printed diameter becomes fully stressed (peak stress equal to the allowable), found by a
 # scan and Brent's method. This is our inference, not the paper's.
 
@@ -342,21 +496,40 @@ stress_rows = pd.DataFrame(
         "share of the allowable, ours": fnd.inertia_fraction_ours.values,
     }
 )
-table(stress_rows, {"stress at the paper's optimum (MPa)": "{:.2f}", "share of the allowable": "{:.1%}", "stress at our optimum (MPa)": "{:.2f}",
-                    "share of the allowable, ours": "{:.1%}"}, caption="peak member stress under the inertia loads alone (quasi-static, no gravity)")
+table(
+    stress_rows,
+    {
+        "stress at the paper's optimum (MPa)": "{:.2f}",
+        "share of the allowable": "{:.1%}",
+        "stress at our optimum (MPa)": "{:.2f}",
+        "share of the allowable, ours": "{:.1%}",
+    },
+    caption="peak member stress under the inertia loads alone (quasi-static, no gravity)",
+)
 loads = pd.DataFrame(fnd.inferred_load.values, columns=[f"{m} (N)" for m in members])
 loads.insert(0, "tip force direction (deg from +x)", fnd.direction.values)
-table(loads, {"tip force direction (deg from +x)": "{:g}", **{c: "{:.2f}" for c in loads.columns[1:]}}, caption="smallest tip force on the arm that makes each printed diameter fully stressed (ours)")
+table(
+    loads,
+    {"tip force direction (deg from +x)": "{:g}", **{c: "{:.2f}" for c in loads.columns[1:]}},
+    caption="smallest tip force on the arm that makes each printed diameter fully stressed (ours)",
+)
 md(
-    f"The rocker needs {float(fnd.rocker_load_low):.0f}–{float(fnd.rocker_load_high):.0f} N over the {fnd.direction.size} directions, the crank, coupler and arm "
-    f"{float(fnd.other_load_low):.2f}–{float(fnd.other_load_high):.1f} N. Under the rocker's force the arm would carry "
-    f"{float(fnd.arm_overload_at_rocker_load):.0f} times the allowable stress, so "
-    + ("one tip force could make all four printed diameters fully stressed." if int(fnd.one_load_reconciles) else
-       "no single tip force makes all four printed diameters fully stressed: the printed optimum rests on a load, or a load case, "
-       "that the paper does not describe (a load on the rocker or the crank themselves, or a stress measure other than eq. (8)). ")
-    + "The diameters and SS are therefore **not reproducible**, not deviations: we lack the input, not the method. "
-    f"The scan reaches {pub_pt.attrs['missing_load_max_N']:g} N in {pub_pt.attrs['missing_load_scan_points']} steps; Brent's method "
-    f"resolves each force to {pub_pt.attrs['missing_load_xtol_N']:g} N."
+    f"The rocker needs {float(fnd.rocker_load_low):.0f}–{float(fnd.rocker_load_high):.0f} N over the"
+    f" {fnd.direction.size} directions, the crank, coupler and arm"
+    f" {float(fnd.other_load_low):.2f}–{float(fnd.other_load_high):.1f} N. Under the rocker's force the arm would carry"
+    f" {float(fnd.arm_overload_at_rocker_load):.0f} times the allowable stress, so "
+    + (
+        "one tip force could make all four printed diameters fully stressed."
+        if int(fnd.one_load_reconciles)
+        else (
+            "no single tip force makes all four printed diameters fully stressed: the printed optimum rests on a load,"
+            " or a load case, that the paper does not describe (a load on the rocker or the crank themselves, or a"
+            " stress measure other than eq. (8)). "
+        )
+    )
+    + "The diameters and SS are therefore **not reproducible**, not deviations: we lack the input, not the method. The"
+    f" scan reaches {pub_pt.attrs['missing_load_max_N']:g} N in {pub_pt.attrs['missing_load_scan_points']} steps;"
+    f" Brent's method resolves each force to {pub_pt.attrs['missing_load_xtol_N']:g} N."
 )
 
 # %% [markdown]
@@ -374,20 +547,37 @@ md(
 claims_rows = pd.DataFrame(
     [
         ("mass of the four bars (g)", float(fnd.mass_initial), float(fnd.mass_published), float(fnd.mass_ours)),
-        ("largest tip displacement (mm)", float(fnd.distortion_initial) * 1e3, float(fnd.distortion_published) * 1e3, np.nan),
+        (
+            "largest tip displacement (mm)",
+            float(fnd.distortion_initial) * 1e3,
+            float(fnd.distortion_published) * 1e3,
+            np.nan,
+        ),
         ("peak stress (MPa)", float(fnd.stress_initial), float(base.stress_max), np.nan),
     ],
     columns=["quantity", f"initial {initial_mm} mm", "the paper's optimum", "our optimum"],
 )
-table(claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]}, caption=f"the claims' measures ({esc(compared)} solution, {gravity_word})")
+table(
+    claims_rows,
+    {c: "{:.2f}" for c in claims_rows.columns[1:]},
+    caption=f"the claims' measures ({esc(compared)} solution, {gravity_word})",
+)
 sens = pd.DataFrame(fnd.elasticity.values, columns=[f"{m} diameter" for m in members])
 sens.insert(0, "response", [str(r) for r in fnd.response.values])
-table(sens, {c: "{:+.3f}" for c in sens.columns[1:]}, caption="per cent change of the response per per cent change of each diameter, at the paper's optimum")
+table(
+    sens,
+    {c: "{:+.3f}" for c in sens.columns[1:]},
+    caption="per cent change of the response per per cent change of each diameter, at the paper's optimum",
+)
 e_stress = fnd.elasticity.sel(response="peak stress")
 md(
-    f"The peak stress sits in the arm, whose own inertia bends it: its diameter moves the peak by {float(e_stress.sel(member='arm')):+.2f} % per %, "
-    f"the coupler's by {float(e_stress.sel(member='coupler')):+.3f} %. Verdicts: "
-    + "; ".join(f"{esc(q.split(' (')[0])}: **{v}**" for q, v in zip(cmp[cmp.id.isin(CLAIM_IDS)].quantity, cmp[cmp.id.isin(CLAIM_IDS)].verdict))
+    "The peak stress sits in the arm, whose own inertia bends it: its diameter moves the peak by"
+    f" {float(e_stress.sel(member='arm')):+.2f} % per %, the coupler's by {float(e_stress.sel(member='coupler')):+.3f}"
+    " %. Verdicts: "
+    + "; ".join(
+        f"{esc(q.split(' (')[0])}: **{v}**"
+        for q, v in zip(cmp[cmp.id.isin(CLAIM_IDS)].quantity, cmp[cmp.id.isin(CLAIM_IDS)].verdict)
+    )
     + "."
 )
 
@@ -395,17 +585,29 @@ md(
 # ## 4. What moves the match (at the published optimum)
 
 # %%
-oat_table(unc, entries=entries, quantities={"Ux": "Ux (mm)", "Uy": "Uy (mm)", "distortion": "distortion (mm)", "stress_max": "max stress (MPa)",
-                "lighter_distorts_more": "distortion ratio", "sections_govern_stress": "coupler/arm stress sensitivity"},
-          scale={"Ux": 1e3, "Uy": 1e3, "distortion": 1e3})
+oat_table(
+    unc,
+    entries=entries,
+    quantities={
+        "Ux": "Ux (mm)",
+        "Uy": "Uy (mm)",
+        "distortion": "distortion (mm)",
+        "stress_max": "max stress (MPa)",
+        "lighter_distorts_more": "distortion ratio",
+        "sections_govern_stress": "coupler/arm stress sensitivity",
+    },
+    scale={"Ux": 1e3, "Uy": 1e3, "distortion": 1e3},
+)
 consistent_sets_table(unc, cmp)
 md("Numerical choices at the published optimum (the baseline is the compared solution):")
 mv = responses_frame("model choice", pub_pt.case.values)
-published_row = pd.DataFrame([{"model choice": "published", **{head: pub[name] * scale for head, (name, scale) in RESPONSES.items()}}])
+published_row = pd.DataFrame(
+    [{"model choice": "published", **{head: pub[name] * scale for head, (name, scale) in RESPONSES.items()}}]
+)
 table(pd.concat([published_row, mv], ignore_index=True), {c: "{:.3f}" for c in mv.columns if c != "model choice"})
 md(
-    "Elastic deformation scales as ρ/E and stress as ρ, so the modulus leaves the quasi-static stress unchanged. The crank-angle "
-    "sampling and the element type move the numbers far less than the assumed inputs do."
+    "Elastic deformation scales as ρ/E and stress as ρ, so the modulus leaves the quasi-static stress unchanged. The"
+    " crank-angle sampling and the element type move the numbers far less than the assumed inputs do."
 )
 
 # %% [markdown]
@@ -416,7 +618,10 @@ table(
     pd.DataFrame(
         [
             ("SY (eq. 10)", float(pub_pt.SY_at_published)),
-            (f"SZ (eq. 11, [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm)", float(pub_pt.SZ_at_published)),
+            (
+                f"SZ (eq. 11, [x_S1] = {cfg['optimization']['reference_diameter_m']['value'] * 1e3:g} mm)",
+                float(pub_pt.SZ_at_published),
+            ),
             (f"SG (eq. 12, last r = {pub_pt.attrs['r_last']:.0e})", float(pub_pt.SG_at_published)),
             ("SS ours at their optimum", float(pub_pt.SS_at_published)),
             ("SS printed", pub["SS"]),
@@ -427,21 +632,36 @@ table(
     ),
     {"value": "{:.4f}"},
 )
-hist = pd.DataFrame({"k": opt.iteration.values, "r(k)": opt.r.values, **{p: opt[p].values for p in ("SY", "SZ", "SG", "SS")}})
+hist = pd.DataFrame(
+    {"k": opt.iteration.values, "r(k)": opt.r.values, **{p: opt[p].values for p in ("SY", "SZ", "SG", "SS")}}
+)
 for i, member in enumerate(opt.member.values):
     hist[f"d {member} (mm)"] = opt.x.values[:, i]
-table(hist, {"r(k)": "{:.0e}", **{p: "{:.4f}" for p in ("SY", "SZ", "SG", "SS")}, **{f"d {m} (mm)": "{:.3f}" for m in opt.member.values}}, caption="SUMT iterates")
+table(
+    hist,
+    {
+        "r(k)": "{:.0e}",
+        **{p: "{:.4f}" for p in ("SY", "SZ", "SG", "SS")},
+        **{f"d {m} (mm)": "{:.3f}" for m in opt.member.values},
+    },
+    caption="SUMT iterates",
+)
 md(
-    f"SUMT ({int(opt.evaluations)} evaluations) and SLSQP ({opt.attrs['slsqp_evaluations']} evaluations, {opt.attrs['slsqp_message']}) "
-    f"agree on our optimum to {float(opt.sumt_slsqp_difference):.3f} mm. At it the stresses are "
-    f"{', '.join(f'{v:.1f}' for v in opt.stress_opt.values)} MPa for {', '.join(str(m) for m in opt.member.values)}: "
-    f"{', '.join(str(m) for m in fnd.member.values if int(fnd.at_allowable.sel(member=m))) or 'no member'} at the allowable, "
-    f"{', '.join(str(m) for m in fnd.member.values if int(fnd.at_minimum_diameter.sel(member=m))) or 'no member'} at the "
-    f"{float(cfg['minimum_diameter_m']) * 1e3:g} mm bound. A member at the bound carries too little "
-    "stress in our model to need more material; the paper's larger diameters there would need stresses our model does not produce. "
-    + ("The published point is therefore not an optimum of this model's objective"
-       + (", whose gradient there is positive in every diameter." if int(fnd.published_gradient_all_positive) else ".")
-       if not int(fnd.published_point_stationary) else "The published point is nevertheless stationary in this model's objective.")
+    f"SUMT ({int(opt.evaluations)} evaluations) and SLSQP ({opt.attrs['slsqp_evaluations']} evaluations,"
+    f" {opt.attrs['slsqp_message']}) agree on our optimum to {float(opt.sumt_slsqp_difference):.3f} mm. At it the"
+    f" stresses are {', '.join(f'{v:.1f}' for v in opt.stress_opt.values)} MPa for"
+    f" {', '.join(str(m) for m in opt.member.values)}:"
+    f" {', '.join(str(m) for m in fnd.member.values if int(fnd.at_allowable.sel(member=m))) or 'no member'} at the"
+    " allowable,"
+    f" {', '.join(str(m) for m in fnd.member.values if int(fnd.at_minimum_diameter.sel(member=m))) or 'no member'} at"
+    f" the {float(cfg['minimum_diameter_m']) * 1e3:g} mm bound. A member at the bound carries too little stress in our"
+    " model to need more material; the paper's larger diameters there would need stresses our model does not produce. "
+    + (
+        "The published point is therefore not an optimum of this model's objective"
+        + (", whose gradient there is positive in every diameter." if int(fnd.published_gradient_all_positive) else ".")
+        if not int(fnd.published_point_stationary)
+        else "The published point is nevertheless stationary in this model's objective."
+    )
 )
 
 # %% [markdown]
@@ -468,16 +688,20 @@ axes[1].legend(fontsize=8)
 for ax in axes:
     ax.grid(alpha=0.3, which="both")
 plt.show()
-caption("Left: relative error of the peak stress against the number of coordinates for both element types and mesh refinements, against a 16 times refined quintic mesh. Right: error of truncated mode superposition against the number of modes kept.")
+caption(
+    "Left: relative error of the peak stress against the number of coordinates for both element types and mesh"
+    " refinements, against a 16 times refined quintic mesh. Right: error of truncated mode superposition against the"
+    " number of modes kept."
+)
 md(
-    f"The tip deflection is exact already on the base mesh for both elements (error {float(acc.tip_error_max):.0e}). The "
-    "rigid-body inertia load is linear along each member, and Hermite elements reproduce the nodal displacements "
-    "exactly under such loads. The peak stress converges with refinement: it comes from the sampled curvature, which is "
-    "linear per element for the frame element and exact for the quintic one, so the remaining error of the quintic mesh "
-    "is where the maximum is sampled. Mode superposition, the paper's route, needs all the modes: with "
-    f"{int(acc.modes.values[len(acc.modes) // 2])} modes the peak stress is off by "
-    f"{float(acc.modal_stress_error.values[len(acc.modes) // 2]):.1e}. The quasi-static particular solution is better "
-    "computed directly as K⁻¹F."
+    f"The tip deflection is exact already on the base mesh for both elements (error {float(acc.tip_error_max):.0e})."
+    " The rigid-body inertia load is linear along each member, and Hermite elements reproduce the nodal displacements"
+    " exactly under such loads. The peak stress converges with refinement: it comes from the sampled curvature, which"
+    " is linear per element for the frame element and exact for the quintic one, so the remaining error of the quintic"
+    " mesh is where the maximum is sampled. Mode superposition, the paper's route, needs all the modes: with"
+    f" {int(acc.modes.values[len(acc.modes) // 2])} modes the peak stress is off by"
+    f" {float(acc.modal_stress_error.values[len(acc.modes) // 2]):.1e}. The quasi-static particular solution is better"
+    " computed directly as K⁻¹F."
 )
 
 # %% [markdown]

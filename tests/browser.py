@@ -35,7 +35,10 @@ def check_pages(pages: list[Path], screenshots: Path) -> dict[str, dict]:
             page.on("pageerror", lambda exc, errors=errors: errors.append(str(exc)))
             page.on("requestfailed", lambda req, errors=errors: errors.append(f"request failed: {req.url[:120]}"))
             response = page.goto(page_path.resolve().as_uri(), wait_until="load")
-            images = page.evaluate("Array.from(document.images).map(i => [i.complete && i.naturalWidth > 0, i.naturalWidth, i.naturalHeight])")
+            images = page.evaluate(
+                "Array.from(document.images).map(i => [i.complete && i.naturalWidth > 0, i.naturalWidth,"
+                " i.naturalHeight])"
+            )
             page.screenshot(path=str(screenshots / f"{page_path.stem}.png"), full_page=True)
             out[page_path.name] = {
                 "loaded": response is not None and response.ok,

@@ -39,11 +39,19 @@ def expect_config_error(config, schema, *fragments):
         assert fragment in str(info.value), str(info.value)
 
 
-def assert_rhs_solves_the_numpy_equations(linkage, gravity: bool, times, position_noise: float, rate_noise: float, seed: int,
-                                          states: int = 10, driver_row: int | None = None) -> None:
-    """At perturbed states of a linkage (random times in ``times``): the compiled right-hand side's accelerations satisfy
-    M q'' = g - Phi_q^T lam and Phi_q q'' = gamma - 2 a Phi' - b^2 Phi, with Phi, Phi_q, gamma and g (gravity, springs)
-    written independently in numpy (``engines.multibody.assembly``); with ``driver_row``, the driver's power is
+def assert_rhs_solves_the_numpy_equations(
+    linkage,
+    gravity: bool,
+    times,
+    position_noise: float,
+    rate_noise: float,
+    seed: int,
+    states: int = 10,
+    driver_row: int | None = None,
+) -> None:
+    """At perturbed states of a linkage (random times in ``times``): the compiled right-hand side's accelerations
+    satisfy M q'' = g - Phi_q^T lam and Phi_q q'' = gamma - 2 a Phi' - b^2 Phi, with Phi, Phi_q, gamma and g (gravity,
+    springs) written independently in numpy (``engines.multibody.assembly``); with ``driver_row``, the driver's power is
     -lam[driver_row] times the driven body's rate."""
     import numpy as np
 
@@ -66,7 +74,9 @@ def assert_rhs_solves_the_numpy_equations(linkage, gravity: bool, times, positio
         gamma = assembly.gamma_of(linkage, q, qd, np.array([t]))[0]
         rate = jac[0] @ qd[0] - nu[0]
         b = linkage.baumgarte
-        assert np.allclose(jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-8, atol=1e-8 * np.abs(gamma).max())
+        assert np.allclose(
+            jac[0] @ qdd, gamma - 2 * b * rate - b * b * phi[0], rtol=1e-8, atol=1e-8 * np.abs(gamma).max()
+        )
         g = assembly.applied_forces(linkage, q, gravity, qd)[0][0]
         lam = np.linalg.lstsq(jac[0].T, g - mass * qdd, rcond=None)[0]
         assert np.allclose(jac[0].T @ lam, g - mass * qdd, atol=1e-8 * max(np.abs(mass * qdd).max(), np.abs(g).max()))
@@ -76,23 +86,65 @@ def assert_rhs_solves_the_numpy_equations(linkage, gravity: bool, times, positio
 
 # One line per hard case, printed at the end of every test run: what was pushed, which invariant held.
 HARD_CASES = {
-    "test_change_point_linkage_passes_its_singular_position": ("four-bar with s + l = p + q through its collinear position", "loop closure <= 1e-12, rates flagged NaN only there"),
-    "test_crank_at_toggle_positions": ("crank exactly at the crank-coupler toggles", "rocker rate 0 to 1e-12, rocker angle extreme"),
-    "test_lengths_at_the_edge_of_assembly": ("triple rocker exactly at its limit angle, then 1e-6 rad beyond", "exact closure at the limit, clear error beyond"),
-    "test_exactly_at_a_resonance": ("chain solved exactly at an undamped velocity resonance", "flagged singular, no exception; finite with damping"),
-    "test_zero_clearance_recovers_the_ideal_joint": ("Vulfson clearance 1e-15 m; a 1e10 N/m pin", "ideal joint recovered; rigid limit by w^2 m / k"),
-    "test_vulfson_limits_without_division_errors": ("|R| = 0 and clearance = 0 in Vulfson's k_tau", "no division error (errors raised on any float fault)"),
-    "test_low_frequency_limit": ("chain at w = 1e-6 rad/s; w = 0 refused", "static warp load through levers and joints, to 1e-6"),
-    "test_clearance_1_micron_and_1_mm": ("radial clearance 1 um and 1 mm", "constraint drift < 1e-6 m, penetration bounded"),
+    "test_change_point_linkage_passes_its_singular_position": (
+        "four-bar with s + l = p + q through its collinear position",
+        "loop closure <= 1e-12, rates flagged NaN only there",
+    ),
+    "test_crank_at_toggle_positions": (
+        "crank exactly at the crank-coupler toggles",
+        "rocker rate 0 to 1e-12, rocker angle extreme",
+    ),
+    "test_lengths_at_the_edge_of_assembly": (
+        "triple rocker exactly at its limit angle, then 1e-6 rad beyond",
+        "exact closure at the limit, clear error beyond",
+    ),
+    "test_exactly_at_a_resonance": (
+        "chain solved exactly at an undamped velocity resonance",
+        "flagged singular, no exception; finite with damping",
+    ),
+    "test_zero_clearance_recovers_the_ideal_joint": (
+        "Vulfson clearance 1e-15 m; a 1e10 N/m pin",
+        "ideal joint recovered; rigid limit by w^2 m / k",
+    ),
+    "test_vulfson_limits_without_division_errors": (
+        "|R| = 0 and clearance = 0 in Vulfson's k_tau",
+        "no division error (errors raised on any float fault)",
+    ),
+    "test_low_frequency_limit": (
+        "chain at w = 1e-6 rad/s; w = 0 refused",
+        "static warp load through levers and joints, to 1e-6",
+    ),
+    "test_clearance_1_micron_and_1_mm": (
+        "radial clearance 1 um and 1 mm",
+        "constraint drift < 1e-6 m, penetration bounded",
+    ),
     "test_crank_speed_times_ten": ("crank speed x10 (6000 rev/min)", "finite response, constraint drift < 1e-6 m"),
-    "test_restitution_one_does_not_create_energy": ("restitution 1.0, no friction", "energy minus driver work does not grow"),
+    "test_restitution_one_does_not_create_energy": (
+        "restitution 1.0, no friction",
+        "energy minus driver work does not grow",
+    ),
     "test_restitution_0_3_dissipates": ("restitution 0.3", "energy minus driver work falls"),
-    "test_lubrication_driven_to_eps_one": ("oil too thin to hold the journal (eps -> 1 and beyond)", "film force finite and bounded, contact takes over"),
+    "test_lubrication_driven_to_eps_one": (
+        "oil too thin to hold the journal (eps -> 1 and beyond)",
+        "film force finite and bounded, contact takes over",
+    ),
     "test_friction_at_zero_slip": ("tangential slip exactly 0, friction 0.3", "no NaN, drift < 1e-6 m"),
-    "test_journal_starting_in_contact": ("journal of joint 1 starting pressed into its bushing", "finite response, drift < 1e-6 m"),
-    "test_every_diameter_at_the_minimum": ("every transplanter diameter at 4 mm", "finite KED response, over-stress reported"),
-    "test_crank_speed_near_the_first_natural_frequency": ("crank speed at the first natural frequency", "dynamic response below the 1/(2 zeta) amplification, warning set"),
-    "test_optimiser_from_an_infeasible_start_ends_feasible": ("SUMT started at 3 mm diameters (infeasible)", "optimum satisfies every constraint"),
+    "test_journal_starting_in_contact": (
+        "journal of joint 1 starting pressed into its bushing",
+        "finite response, drift < 1e-6 m",
+    ),
+    "test_every_diameter_at_the_minimum": (
+        "every transplanter diameter at 4 mm",
+        "finite KED response, over-stress reported",
+    ),
+    "test_crank_speed_near_the_first_natural_frequency": (
+        "crank speed at the first natural frequency",
+        "dynamic response below the 1/(2 zeta) amplification, warning set",
+    ),
+    "test_optimiser_from_an_infeasible_start_ends_feasible": (
+        "SUMT started at 3 mm diameters (infeasible)",
+        "optimum satisfies every constraint",
+    ),
 }
 
 

@@ -25,14 +25,20 @@ def visible_text(page: str) -> str:
     the tables marked as config-key listings."""
     page = re.sub(r"data:image[^\"')]+", "", page)
     page = re.sub(r"<(style|script|pre|code)\b.*?</\1>", " ", page, flags=re.S | re.I)
-    page = re.sub(r"<table\b.*?</table>", lambda m: " " if _marked_table(m.group(0)) else m.group(0), page, flags=re.S | re.I)
+    page = re.sub(
+        r"<table\b.*?</table>", lambda m: " " if _marked_table(m.group(0)) else m.group(0), page, flags=re.S | re.I
+    )
     return _html.unescape(re.sub(r"<[^>]+>", " ", page))
 
 
 def leaks(text: str) -> list[str]:
     """Code names, config key paths and unrendered templates in ``text`` (already plain prose)."""
     found = [m for m in SNAKE.findall(text) if m not in PROVENANCE]
-    found += [m for m in KEY_PATH.findall(text) if "_" in m and not m.endswith((".nc", ".html", ".yaml", ".py", ".csv", ".json"))]
+    found += [
+        m
+        for m in KEY_PATH.findall(text)
+        if "_" in m and not m.endswith((".nc", ".html", ".yaml", ".py", ".csv", ".json"))
+    ]
     found += TEMPLATE.findall(text)
     return sorted(set(found))
 

@@ -66,9 +66,18 @@ def fit(published):
 def evidence(fit, published):
     crank, printed, tol = printed_table(published)
     step = SECTION["grids"]["paper_step_deg"]
-    rows = table1_evidence(fit["columns"], coarse_differences(fit["fitted"], step), fit["error"], crank, printed, tol, step,
-                           offset_model=fit["offset_columns"], nominal_model=fit["nominal_columns"],
-                           offset_moves=columns_moved_by(fit["offset_parameter"]))
+    rows = table1_evidence(
+        fit["columns"],
+        coarse_differences(fit["fitted"], step),
+        fit["error"],
+        crank,
+        printed,
+        tol,
+        step,
+        offset_model=fit["offset_columns"],
+        nominal_model=fit["nominal_columns"],
+        offset_moves=columns_moved_by(fit["offset_parameter"]),
+    )
     return pd.DataFrame(rows)
 
 
@@ -87,7 +96,8 @@ def _synthetic(shift):
 
 
 def test_fit_recovers_known_parameters_from_synthetic_angles():
-    """Independent check of the fit: angles generated with known parameters (inside and outside rounding) give them back."""
+    """Independent check of the fit: angles generated with known parameters (inside and outside rounding) give them
+    back."""
     inside = np.array([0.6, -0.4, 0.3, -0.7])
     f = fit_table_angles(MECH, THETA1, *_synthetic(inside), HALF, bounded=True, tol=1e-12, scale=SCALE)
     assert np.abs(f.shift - inside).max() < 1e-6 and np.abs(f.residual).max() < 1e-12
@@ -96,14 +106,18 @@ def test_fit_recovers_known_parameters_from_synthetic_angles():
     assert np.abs(f.shift - outside).max() < 1e-6
     # one parameter freed: the others held inside their bounds, the freed one recovered
     only = np.array([0.2, -0.5, 0.1, 2.5])
-    f = fit_table_angles(MECH, THETA1, *_synthetic(only), HALF, bounded=True, tol=1e-12, scale=SCALE, unbounded=("theta7",))
+    f = fit_table_angles(
+        MECH, THETA1, *_synthetic(only), HALF, bounded=True, tol=1e-12, scale=SCALE, unbounded=("theta7",)
+    )
     assert np.abs(f.shift - only).max() < 1e-6
 
 
 def test_fit_respects_the_rounding_bounds():
     f = fit_table_angles(MECH, THETA1, *_synthetic([0.6, -3.0, 0.3, 2.5]), HALF, bounded=True, tol=1e-12, scale=SCALE)
     assert np.all(np.abs(f.shift) <= 1 + 1e-12)
-    assert np.isclose(f.shift[1], -1.0) and np.isclose(f.shift[3], 1.0)  # the data pull l7 and theta7 beyond: they stop on the bound
+    assert np.isclose(f.shift[1], -1.0) and np.isclose(
+        f.shift[3], 1.0
+    )  # the data pull l7 and theta7 beyond: they stop on the bound
     assert np.all(np.abs(f.value - f.start) <= f.half_width * (1 + 1e-9))  # (float rounding of value - start)
 
 
@@ -141,15 +155,18 @@ def test_table1_against_the_fitted_model(evidence):
 
 
 def test_refit_class_only_for_columns_the_offset_parameter_moves(evidence, fit):
-    """theta7 moves theta6 alone: a theta3 cell is never credited to the theta7 refit, even where the refit's re-adjusted
-    l4, theta4 happen to match it (theta3 at 195 deg matches the printed parameters; theta3'' at 270 deg is a borderline cell)."""
+    """theta7 moves theta6 alone: a theta3 cell is never credited to the theta7 refit, even where the refit's
+    re-adjusted l4, theta4 happen to match it (theta3 at 195 deg matches the printed parameters; theta3'' at 270 deg is
+    a borderline cell)."""
     refit = evidence[evidence["class"] == "matches the refit with the offset parameter unbounded"]
     assert len(refit) > 0 and set(refit.column) <= columns_moved_by(fit["offset_parameter"])
     assert not set(refit.column) & {"theta3", "theta3_rate", "theta3_accel"}
     cell = evidence.set_index(["column", "theta1"])
     assert cell.loc[("theta3", 195.0), "class"] == "matches only the printed parameters"
     assert cell.loc[("theta3_accel", 270.0), "class"] == "marginal"
-    assert 1.0 < abs(cell.loc[("theta3_accel", 270.0), "deviation_in_tolerances"]) < 1.05  # borderline, beyond by a few per cent
+    assert (
+        1.0 < abs(cell.loc[("theta3_accel", 270.0), "deviation_in_tolerances"]) < 1.05
+    )  # borderline, beyond by a few per cent
 
 
 @pytest.mark.parametrize("parameter", ["l4", "theta4", "l7", "theta7"])
@@ -166,18 +183,24 @@ def test_dead_centres_at_the_fitted_parameters_are_a_note(fit, published, sixbar
     """The headline numbers at the joint fit: the same dead-centre search on the fitted mechanism, judged by the
     published tolerance (a note; the counted verdicts stay at the printed parameters)."""
     pub = {q["id"]: q for q in published["quantities"]}
-    notes = fitted_headline_notes(fit, SECTION["numerics"], pub, numerical_errors(published, sixbar), CRANK_SENSES["decreasing"])
+    notes = fitted_headline_notes(
+        fit, SECTION["numerics"], pub, numerical_errors(published, sixbar), CRANK_SENSES["decreasing"]
+    )
     ids = list(notes["coords"]["fitted_note_id"][1])
     values = dict(zip(ids, notes["data"]["fitted_note_value"][1], strict=True))
     within = dict(zip(ids, notes["data"]["fitted_note_within"][1], strict=True))
     assert set(ids) == {"front_dead_centre", "span_front_to_back", "swing"}
     names = fit["names"]
     shown = fit["data"]["fit_value"][1]  # the fitted values as the report shows them (mm, deg)
-    fitted = with_parameters(MECH, names, [np.radians(v) if n.startswith("theta") else v / 1e3 for n, v in zip(names, shown, strict=True)])
+    fitted = with_parameters(
+        MECH, names, [np.radians(v) if n.startswith("theta") else v / 1e3 for n, v in zip(names, shown, strict=True)]
+    )
     dc = dead_centres(fitted)
     assert np.isclose(values["front_dead_centre"], np.degrees(dc.front), atol=1e-9)
     assert np.isclose(values["span_front_to_back"], np.degrees(dc.span_reverse), atol=1e-9)
-    assert not np.isclose(values["front_dead_centre"], float(sixbar.front_dead_centre), atol=1e-3)  # the fit does move it
+    assert not np.isclose(
+        values["front_dead_centre"], float(sixbar.front_dead_centre), atol=1e-3
+    )  # the fit does move it
     for q in ids:
         assert within[q] == int(abs(values[q] - pub[q]["value"]) <= pub[q]["tolerance"]["abs"] + 1e-9)
     # regression (our result, not a check): 156.21 falls outside the tolerance at the fit, 167.28 inside
@@ -232,13 +255,18 @@ def test_velocity_peaks_against_finite_differences_of_the_sley_angle(sixbar, sen
     assert abs(second - float(sixbar.rate_peak_2_by_sense.sel(crank_sense=sense))) <= step
     accel = np.gradient(speed, np.radians(step))
     far = phi[np.argmax(np.abs(accel[5:-5])) + 5]
-    assert abs(min(far, 360 - far) - float(sixbar.accel_peak_by_sense.sel(crank_sense=sense))) <= 0.1 + step  # fine grid 0.1 deg
+    assert (
+        abs(min(far, 360 - far) - float(sixbar.accel_peak_by_sense.sel(crank_sense=sense))) <= 0.1 + step
+    )  # fine grid 0.1 deg
 
 
 def test_the_two_senses_are_mirror_images(sixbar):
     """Reversing the crank mirrors the sley's motion about the front dead centre (phi -> 360 - phi), which swaps
     which peak is backward-going: peak 1 in one sense + peak 2 in the other = 360 deg; spans add to a turn."""
-    by = {n: sixbar[f"{n}_by_sense"].to_pandas() for n in ("span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak")}
+    by = {
+        n: sixbar[f"{n}_by_sense"].to_pandas()
+        for n in ("span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak")
+    }
     assert np.isclose(by["span_front_to_back"].sum(), 360.0, atol=1e-9)
     assert np.isclose(by["rate_peak_1"]["decreasing"] + by["rate_peak_2"]["increasing"], 360.0, atol=1e-8)
     assert np.isclose(by["rate_peak_1"]["increasing"] + by["rate_peak_2"]["decreasing"], 360.0, atol=1e-8)
@@ -255,7 +283,9 @@ def test_rate_extremes_are_zeros_of_the_sley_acceleration():
     fine = sley_motion(MECH, np.linspace(0, 2 * np.pi, 100001)).theta6_rate
     assert np.isclose(m.theta6_rate[0], fine.max(), atol=1e-9) and np.isclose(m.theta6_rate[1], fine.min(), atol=1e-9)
     # the first peak is where the sley runs back fastest: theta6' largest for a crank turning towards decreasing theta1
-    assert np.isclose(np.degrees(from_front(largest, dead_centres(MECH).front, -1)), 74.75827914, atol=1e-6)  # regression: our value
+    assert np.isclose(
+        np.degrees(from_front(largest, dead_centres(MECH).front, -1)), 74.75827914, atol=1e-6
+    )  # regression: our value
 
 
 def test_velocity_peaks_pick_the_crank_sense(sixbar, published):
@@ -296,7 +326,9 @@ def test_answer_is_two_plain_sentences_with_its_numbers_from_the_findings(findin
             assert f"{value.loc[q, sense]:.1f}°" in text
     assert f"{int(fnd.table1_matches)} of {int(fnd.table1_total)} Table 1 cells" in text
     assert "untested" in text and "21°" in text  # the comparative claim is named as untested
-    kinematic = table[table.id.isin(["front_dead_centre", "swing", "span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak"])]
+    kinematic = table[
+        table.id.isin(["front_dead_centre", "swing", "span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak"])
+    ]
     assert f"{int((kinematic.verdict == 'matches').sum())} match" in text
 
 
@@ -382,7 +414,8 @@ def test_an_unknown_or_unlabelled_crank_sense_is_refused(config, schema, field, 
 
 
 def test_the_answer_follows_the_scenario(published):
-    """In the other crank sense the same code says the motion reproduces only in part and that the peaks pick the other sense."""
+    """In the other crank sense the same code says the motion reproduces only in part and that the peaks pick the other
+    sense."""
     entry = SECTION["sixbar"]["crank_sense"]
     cfg = {**SECTION, "sixbar": {**SECTION["sixbar"], "crank_sense": {**entry, "value": "increasing"}}}
     table, fnd = compare_findings(cfg, published, sixbar_dataset(cfg), window_dataset(cfg), None)

@@ -69,7 +69,9 @@ def test_state_space_route(model):
     p = {**P, "c_joint": 5.0}
     net = build(model, p, "elastic")
     if model == "B":  # the driven node needs mass for a state-space model
-        net = Network(net.nodes, (*net.elements, Element("drive_mass", "mass", "D", GROUND, 0.5)), net.levers, "D", "force")
+        net = Network(
+            net.nodes, (*net.elements, Element("drive_mass", "mass", "D", GROUND, 0.5)), net.levers, "D", "force"
+        )
     else:
         net = Network(net.nodes, net.elements, net.levers, "D", "force")
     ss = state_space(net)
@@ -96,9 +98,19 @@ def random_chains(draw):
     return Network(nodes, tuple(els), (), "n0", draw(st.sampled_from(["velocity", "force"])))
 
 
-HYPOTHESIS_FOUND = Network(("n0", "n1"), (Element("k0", "spring", "n0", "n1", 9999960.0), Element("c0", "damper", "n0", "n1", 1.0),
-                                          Element("m0", "mass", "n0", GROUND, 0.109375), Element("m1", "mass", "n1", GROUND, 0.1),
-                                          Element("anchor", "spring", "n1", GROUND, 1000.0)), (), "n0", "force")
+HYPOTHESIS_FOUND = Network(
+    ("n0", "n1"),
+    (
+        Element("k0", "spring", "n0", "n1", 9999960.0),
+        Element("c0", "damper", "n0", "n1", 1.0),
+        Element("m0", "mass", "n0", GROUND, 0.109375),
+        Element("m1", "mass", "n1", GROUND, 0.1),
+        Element("anchor", "spring", "n1", GROUND, 1000.0),
+    ),
+    (),
+    "n0",
+    "force",
+)
 
 
 @settings(max_examples=40, deadline=None)
@@ -124,7 +136,12 @@ def test_routes_agree_on_random_chains(net):
 def test_series_parallel_reduction_with_a_lever():
     k, m, eta = 2e5, 3.0, 2.5
     tree = Series((Element("k", "spring", "a", "b", k), Parallel((Element("m", "mass", "b", GROUND, m),))))
-    net = Network(("a", "b", "c"), (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)), (Lever("l", "b", "c", eta),), "a")
+    net = Network(
+        ("a", "b", "c"),
+        (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)),
+        (Lever("l", "b", "c", eta),),
+        "a",
+    )
     from linkwork.engines.chains import Through
 
     tree = Series((Element("k", "spring", "a", "b", k), Through(eta, Element("m", "mass", "b", GROUND, m))))
@@ -132,7 +149,9 @@ def test_series_parallel_reduction_with_a_lever():
 
 
 def test_model_a_force_ratio_is_the_joint_stiffness_ratio():
-    _, q_e, q_f = (solve_network(model_a(P), W, 1j * W * 1e-4).element_force[k] for k in ("joint_E", "joint_E", "joint_F"))
+    _, q_e, q_f = (
+        solve_network(model_a(P), W, 1j * W * 1e-4).element_force[k] for k in ("joint_E", "joint_E", "joint_F")
+    )
     ratio = np.abs(q_e) / np.abs(q_f)
     assert np.allclose(ratio, joint_stiffness(P, "E", "elastic") / joint_stiffness(P, "F", "elastic"), rtol=1e-9)
 
@@ -180,7 +199,9 @@ def test_zero_clearance_recovers_the_ideal_joint():
         assert _rel(a, b) < 1e-6
     # and a very stiff pin approaches the rigid joint (a lever of ratio 1): the difference is the
     # physical (w / w_n)^2 = w^2 m / k, about 3e-5 here, not round-off
-    stiff = Network(("D", "e"), (Element("j", "spring", "D", "e", 1e10), Element("m", "mass", "e", GROUND, 2.0)), (), "D")
+    stiff = Network(
+        ("D", "e"), (Element("j", "spring", "D", "e", 1e10), Element("m", "mass", "e", GROUND, 2.0)), (), "D"
+    )
     rigid = Network(("D", "e"), (Element("m", "mass", "e", GROUND, 2.0),), (Lever("j", "D", "e", 1.0),), "D")
     diff = _rel(solve_network(stiff, W, 1.0).input_force, solve_network(rigid, W, 1.0).input_force)
     assert diff < 1.1 * W.max() ** 2 * 2.0 / 1e10

@@ -14,7 +14,14 @@ from linkwork.papers.clearance.adapter import parameters
 from linkwork.papers.clearance.studies import scene as scene_dataset
 
 SECTION = load_yaml("config/config.yaml")["clearance"]
-SLENDER = parameters({**SECTION, "scenes": {"all": {"clearance_joints": [1, 2], "effects": ["contact", "friction", "lubrication", "gravity"]}}}, "slender", "all")
+SLENDER = parameters(
+    {
+        **SECTION,
+        "scenes": {"all": {"clearance_joints": [1, 2], "effects": ["contact", "friction", "lubrication", "gravity"]}},
+    },
+    "slender",
+    "all",
+)
 EXPLICIT = SECTION["integrators"]["explicit"]
 STIFF = SECTION["integrators"]["stiff"]
 DRIFT_BOUND = 1e-6  # m
@@ -97,7 +104,9 @@ def test_the_engines_assembly_gives_the_papers_starts_to_rounding():
     ecc, rate = np.array([0.6, -0.6]) * p.clearance, np.array([0.5, 0.5]) * p.clearance * p.crank_speed
     for joints in ((1,), (2,), (1, 2)):
         names = [JOINT_NAMES[j] for j in joints]
-        ours = assembly.start_state(linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(ecc)), dict.fromkeys(names, tuple(rate)))
+        ours = assembly.start_state(
+            linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(ecc)), dict.fromkeys(names, tuple(rate))
+        )
         assert np.abs(offset_start(p, joints, ecc, rate) - ours).max() < 1e-13 * scale
 
 
@@ -108,7 +117,9 @@ def test_the_dop853_tableau_held_as_data_is_scipys_to_the_bit():
 
     for name in ("A", "B", "C", "E3", "E5", "D"):
         theirs = np.asarray(getattr(scipy_table, name), dtype=float)
-        assert np.asarray(getattr(ours, name)).shape == theirs.shape and np.array_equal(np.asarray(getattr(ours, name)), theirs), name
+        assert np.asarray(getattr(ours, name)).shape == theirs.shape and np.array_equal(
+            np.asarray(getattr(ours, name)), theirs
+        ), name
 
 
 def test_an_effect_left_out_is_never_evaluated():
@@ -123,7 +134,12 @@ def test_an_effect_left_out_is_never_evaluated():
 def _quick(section, max_cycles=10):
     """A section whose scenes run one start, at most ``max_cycles`` cycles and short checks (the tests' size)."""
     out = copy.deepcopy(section)
-    out["states"] = {**out["states"], "starts": out["states"]["starts"][:1], "max_cycles": max_cycles, "check_cycles": 2}
+    out["states"] = {
+        **out["states"],
+        "starts": out["states"]["starts"][:1],
+        "max_cycles": max_cycles,
+        "check_cycles": 2,
+    }
     return out
 
 
@@ -264,8 +280,17 @@ def test_sparse_schur_source_solves_the_saddle_point_system():
         for r, cols in enumerate(pattern):
             phiq[r, cols] = rng.normal(size=len(cols)) + np.where(rng.random(len(cols)) < 0.5, 1.0, -1.0)
         mass, g, gamma_b = rng.uniform(0.1, 2.0, 9), rng.normal(size=9), rng.normal(size=nc)
-        scope = {"phiq": phiq, "mass": mass, "g": g, "gamma_b": gamma_b, "schur": np.zeros((nc, nc)), "schur_rhs": np.zeros(nc),
-                 "lam": np.zeros(nc), "qdd": np.zeros(9), "gauss_solve_into": gauss_solve_into}
+        scope = {
+            "phiq": phiq,
+            "mass": mass,
+            "g": g,
+            "gamma_b": gamma_b,
+            "schur": np.zeros((nc, nc)),
+            "schur_rhs": np.zeros(nc),
+            "lam": np.zeros(nc),
+            "qdd": np.zeros(9),
+            "gauss_solve_into": gauss_solve_into,
+        }
         exec("\n".join(line[4:] for line in schur_source(pattern, 9)), scope)
         kkt = np.block([[np.diag(mass), phiq.T], [phiq, np.zeros((nc, nc))]])
         expected = np.linalg.solve(kkt, np.r_[g, gamma_b])
@@ -283,7 +308,10 @@ def test_validity_measures_against_hand_values():
     ecc = np.array([[4e-5, 4.9e-5, 1e-5, np.nan], [0.0, 0.0, 4.8e-5, 1e-5]])  # |e|/c: 0.8, 0.98 | 0.96
     assert validity.beyond_cap_fraction(ecc, c, cap=0.95) == pytest.approx(0.5)
     assert validity.warnings(0.05, 0.0, 0.0635) == ""
-    assert "outside its contact law" in validity.warnings(2.0, None, 0.0635) and validity.warnings(2.0, None, float("inf")) == ""
+    assert (
+        "outside its contact law" in validity.warnings(2.0, None, 0.0635)
+        and validity.warnings(2.0, None, float("inf")) == ""
+    )
     assert "beyond the film cap during 50 %" in validity.warnings(0.05, 0.5, 0.0635)
     # the sphere law's limit: the rigid overlap's contact half-angle at which parabolic profiles err by 1 %
     assert validity.penetration_limit("hertz-sphere", 0.00995, 0.01) == pytest.approx(0.0635, abs=5e-4)
@@ -384,17 +412,27 @@ def test_validity_exit_numbers_are_in_the_findings():
     ecc[0, 4:, 1] = [0.9, 0.98, 0.97]
     force = np.zeros_like(pen)
     force[0, 5, 1] = 1000.0  # lubricated_2 touches with 1 kN
-    claims = xr.Dataset({
-        "summary_max_penetration_ratio": (("variant", "run", "joint"), pen),
-        "summary_max_eccentricity_ratio": (("variant", "run", "joint"), ecc),
-        "summary_max_contact_force": (("variant", "run", "joint"), force),
-        "summary_film_cap": per_run([np.nan] * 4 + [0.95] * 3),
-        "summary_max_abs_torque": per_run([100.0, 1.0e4, 1.5e4, 2.0e3, 1.0, 1.0, 1.0]),
-        "summary_n_lubrication": per_run([0.0] * 7),
-        "summary_n_friction": per_run([0.0, 5.0, 5.0, 5.0, 0.0, 7.0, 0.0]),  # friction acted in lubricated_2
-        "mean_deviation": (("variant", "measure", "quantity", "scene"), np.full((1, 2, 2, 6), 10.0)),
-    }, coords={"variant": ["decoded"], "run": runs, "joint": [1, 2], "measure": ["rms", "peak"], "quantity": list(QUANTITIES), "scene": list(COMPARED)},
-        attrs={"crank_mass_kg": 1.0})
+    claims = xr.Dataset(
+        {
+            "summary_max_penetration_ratio": (("variant", "run", "joint"), pen),
+            "summary_max_eccentricity_ratio": (("variant", "run", "joint"), ecc),
+            "summary_max_contact_force": (("variant", "run", "joint"), force),
+            "summary_film_cap": per_run([np.nan] * 4 + [0.95] * 3),
+            "summary_max_abs_torque": per_run([100.0, 1.0e4, 1.5e4, 2.0e3, 1.0, 1.0, 1.0]),
+            "summary_n_lubrication": per_run([0.0] * 7),
+            "summary_n_friction": per_run([0.0, 5.0, 5.0, 5.0, 0.0, 7.0, 0.0]),  # friction acted in lubricated_2
+            "mean_deviation": (("variant", "measure", "quantity", "scene"), np.full((1, 2, 2, 6), 10.0)),
+        },
+        coords={
+            "variant": ["decoded"],
+            "run": runs,
+            "joint": [1, 2],
+            "measure": ["rms", "peak"],
+            "quantity": list(QUANTITIES),
+            "scene": list(COMPARED),
+        },
+        attrs={"crank_mass_kg": 1.0},
+    )
     scenes = load_yaml("config/config.yaml")["clearance"]["scenes"]
     joints = load_yaml("config/config.yaml")["clearance"]["joints"]
     f = physics(claims, {"scenes": scenes, "joints": joints}).sel(variant="decoded")
@@ -402,8 +440,14 @@ def test_validity_exit_numbers_are_in_the_findings():
     assert float(f.lubricated_2_eccentricity_max) == 0.98 and int(f.beyond_film_cap) == 1
     assert f.lubricated_friction_evaluations.values.tolist() == [0.0, 7.0, 0.0] and float(f.stray_evaluations) == 0.0
     # the same counts where the lubricated scenes named no friction: those 7 evaluations are stray
-    no_friction = {k: {**v, "effects": [e for e in v["effects"] if e != "friction" or k.startswith("dry")]} for k, v in scenes.items()}
-    assert float(physics(claims, {"scenes": no_friction, "joints": joints}).sel(variant="decoded").stray_evaluations) == 7.0
+    no_friction = {
+        k: {**v, "effects": [e for e in v["effects"] if e != "friction" or k.startswith("dry")]}
+        for k, v in scenes.items()
+    }
+    assert (
+        float(physics(claims, {"scenes": no_friction, "joints": joints}).sel(variant="decoded").stray_evaluations)
+        == 7.0
+    )
 
 
 def test_the_repeated_ideal_cycle_equals_inverse_dynamics_over_three_cycles():
@@ -423,8 +467,13 @@ def test_an_undetermined_ordering_names_the_margin_that_decides_it():
 
     assert undecided_reason(1.0, 2.0, 0.5, []) == "statistical margin"
     assert undecided_reason(1.0, 0.5, 2.0, []) == "numerical error"
-    assert undecided_reason(1.0, float("inf"), 0.1, ["dry_both"]) == "statistics (not settled / not stationary: dry_both)"
-    assert claim_reason(["", "numerical error", "statistical margin", "numerical error"]) == "numerical error; statistical margin"
+    assert (
+        undecided_reason(1.0, float("inf"), 0.1, ["dry_both"]) == "statistics (not settled / not stationary: dry_both)"
+    )
+    assert (
+        claim_reason(["", "numerical error", "statistical margin", "numerical error"])
+        == "numerical error; statistical margin"
+    )
 
 
 def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
@@ -439,22 +488,41 @@ def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
     from prose import leaks
 
     vs = ("variant", "start")
-    findings = xr.Dataset({"claim3_close_holds": (vs, [[1, 1], [1, 1]]), "claim3_ripples_outcome": (vs, [[-1, -1], [-1, -1]]),
-                           "ripple_check_ratio": (vs, [[0.86, 0.8], [0.96, 0.9]]), "ripple_convergence_ratio": (vs, [[37.0, 1.0], [0.01, 0.0]]),
-                           "ripple_error_ratio": (vs, [[38.0, 2.0], [0.97, 1.0]]), "ripple_tight_above": (vs, [[1, 1], [0, 0]]),
-                           "ripple_tight_joint_1": (vs, [[3.6e-5, 4e-5], [0.002, 0.0018]]), "ripple_tight_joint_2": (vs, [[7e-4, 8e-4], [6e-4, 1e-3]]),
-                           "ripple_tight_change": (vs, [[0.54, 0.5], [0.38, 0.4]]), "ripple_tight_change_joint_1": (vs, [[0.33, 0.3], [1.0, 1.01]]),
-                           "ripple_over_ideal": ("variant", [3.7e-6, 6.3e-6]),
-                           "lubricated_deviation_over_ideal": ("variant", [0.0031, 0.00052]),
-                           "ripple_cutoff_holds": (("variant", "ripple_cutoff"), [[0, 1, 1], [1, 1, 1]])},
-                          coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "ripple_cutoff": [150.0, 500.0, 2000.0]})
+    findings = xr.Dataset(
+        {
+            "claim3_close_holds": (vs, [[1, 1], [1, 1]]),
+            "claim3_ripples_outcome": (vs, [[-1, -1], [-1, -1]]),
+            "ripple_check_ratio": (vs, [[0.86, 0.8], [0.96, 0.9]]),
+            "ripple_convergence_ratio": (vs, [[37.0, 1.0], [0.01, 0.0]]),
+            "ripple_error_ratio": (vs, [[38.0, 2.0], [0.97, 1.0]]),
+            "ripple_tight_above": (vs, [[1, 1], [0, 0]]),
+            "ripple_tight_joint_1": (vs, [[3.6e-5, 4e-5], [0.002, 0.0018]]),
+            "ripple_tight_joint_2": (vs, [[7e-4, 8e-4], [6e-4, 1e-3]]),
+            "ripple_tight_change": (vs, [[0.54, 0.5], [0.38, 0.4]]),
+            "ripple_tight_change_joint_1": (vs, [[0.33, 0.3], [1.0, 1.01]]),
+            "ripple_over_ideal": ("variant", [3.7e-6, 6.3e-6]),
+            "lubricated_deviation_over_ideal": ("variant", [0.0031, 0.00052]),
+            "ripple_cutoff_holds": (("variant", "ripple_cutoff"), [[0, 1, 1], [1, 1, 1]]),
+        },
+        coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "ripple_cutoff": [150.0, 500.0, 2000.0]},
+    )
     text = ripples_text(findings)
-    for part in ("is undetermined", "0.86 (decoded) and 0.96 (slender)", "is 37 times it, and the error bar 38 times", "above joint 1's in decoded (0.0007 against 3.6e-05",
-                 "below joint 1's in slender (0.0006 against 0.002", "factors of 0.54 and 0.33", "points against the ordering", "3.7e-06 (decoded) and 6.3e-06 (slender)",
-                 "holds at 500, 2000 Hz and not at 150 Hz"):
+    for part in (
+        "is undetermined",
+        "0.86 (decoded) and 0.96 (slender)",
+        "is 37 times it, and the error bar 38 times",
+        "above joint 1's in decoded (0.0007 against 3.6e-05",
+        "below joint 1's in slender (0.0006 against 0.002",
+        "factors of 0.54 and 0.33",
+        "points against the ordering",
+        "3.7e-06 (decoded) and 6.3e-06 (slender)",
+        "holds at 500, 2000 Hz and not at 150 Hz",
+    ):
         assert part in text, (part, text)
     assert "slender (each" not in text and not leaks(text)
-    assert "are not larger than at joint 1" in ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[0, 0], [0, 0]])))
+    assert "are not larger than at joint 1" in ripples_text(
+        findings.assign(claim3_ripples_outcome=(vs, [[0, 0], [0, 0]]))
+    )
     assert ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[1, 1], [1, 1]]))) == ""
 
 
@@ -470,26 +538,57 @@ def test_the_answer_is_plain_sentences_read_from_the_results():
     from linkwork.papers.clearance.findings import answer
     from prose import leaks
 
-    verdicts = {"slender": ("undetermined (numerics)", "deviates", "deviates"), "decoded": ("deviates", "undetermined (numerics)", "deviates")}
-    rows = [{"model": v, "scenario": st, "id": c, "role": "headline", "verdict": "matches" if (st == "start b" and v == "decoded" and c == "acceleration_order") else verdict}
-            for st in ("start a", "start b") for v, row in verdicts.items() for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)]
+    verdicts = {
+        "slender": ("undetermined (numerics)", "deviates", "deviates"),
+        "decoded": ("deviates", "undetermined (numerics)", "deviates"),
+    }
+    rows = [
+        {
+            "model": v,
+            "scenario": st,
+            "id": c,
+            "role": "headline",
+            "verdict": "matches" if (st == "start b" and v == "decoded" and c == "acceleration_order") else verdict,
+        }
+        for st in ("start a", "start b")
+        for v, row in verdicts.items()
+        for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)
+    ]
     table = pd.DataFrame(rows)
     survives = [[[1, 1, 1], [0, 1, 1]], [[1, 1, 1], [1, 1, 1]]]  # decoded, start b: claim 1 changes with the law
-    findings = xr.Dataset({"dry_penetration_max": ("variant", [1.37, 0.61]), "physically_consistent": ("variant", [0, 0]),
-                           "sphere_law_valid": ("variant", [0, 0]), "law_survives": (("variant", "start", "claim"), survives),
-                           "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]), "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]]),
-                           "claim3_ripples_outcome": (("variant", "start"), [[0, 0], [0, 0]])},
-                          coords={"variant": ["decoded", "slender"], "start": ["a", "b"], "claim": ["acceleration_order", "torque_order", "lubrication_close"]},
-                          attrs={"sphere_law_limit_over_clearance": 0.0635})
+    findings = xr.Dataset(
+        {
+            "dry_penetration_max": ("variant", [1.37, 0.61]),
+            "physically_consistent": ("variant", [0, 0]),
+            "sphere_law_valid": ("variant", [0, 0]),
+            "law_survives": (("variant", "start", "claim"), survives),
+            "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]),
+            "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]]),
+            "claim3_ripples_outcome": (("variant", "start"), [[0, 0], [0, 0]]),
+        },
+        coords={
+            "variant": ["decoded", "slender"],
+            "start": ["a", "b"],
+            "claim": ["acceleration_order", "torque_order", "lubrication_close"],
+        },
+        attrs={"sphere_law_limit_over_clearance": 0.0635},
+    )
     text = answer(table, findings)
     assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 5, text
     from linkwork.papers.clearance.findings import memory_explains
     own = np.array([[[100.0, 150.0], [100.0, 100.5]]])  # one variant, two scenes: starts 50 apart, and 0.5 apart
-    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [[1, 1]]  # each swap lands on the donor
-    assert memory_explains(own, np.array([[[140.0, 150.0], [100.5, 100.0]]])).tolist() == [[0, 0]]  # the swaps keep their own states
+    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [
+        [1, 1]
+    ]  # each swap lands on the donor
+    assert memory_explains(own, np.array([[[140.0, 150.0], [100.5, 100.0]]])).tolist() == [
+        [0, 0]
+    ]  # the swaps keep their own states
     assert leaks(text) == [], leaks(text)
     assert text.startswith("No claim") and "1.37 c" in text and "0.61 c" in text and "0.0635 c" in text
-    assert "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text and "holds from the start b" in text
+    assert (
+        "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text
+        and "holds from the start b" in text
+    )
     assert "claim 1 (decoded, start b) changes outcome" in text and "two parts (decoded, slender)" in text
 
 
@@ -500,16 +599,34 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
     import pandas as pd
     import xarray as xr
 
-    from linkwork.papers.clearance.findings import MEMORY_DECIDES, NOMINAL_ONLY, NOT_PROPAGATED, memory_relabel, nominal_only
+    from linkwork.papers.clearance.findings import (
+        MEMORY_DECIDES,
+        NOMINAL_ONLY,
+        NOT_PROPAGATED,
+        memory_relabel,
+        nominal_only,
+    )
 
     claims = xr.Dataset({"outcome_by_start": (("variant", "start", "claim"), np.array([[[0, -1], [1, 0]]]))},
                         coords={"variant": ["decoded"], "start": ["centred", "off-centre"], "claim": ["c1", "c2"]})
-    phys = xr.Dataset({"memory_explains": (("variant", "scene"), np.array([[1, 1]]))}, coords={"variant": ["decoded"], "scene": ["dry_1", "dry_2"]})
-    table = pd.DataFrame({"model": ["decoded"] * 4, "scenario": ["start centred", "start centred", "start off-centre", "start off-centre"],
-                          "id": ["c1", "c2", "c1", "c2"], "verdict": ["deviates", "undetermined (numerics)", "matches", "deviates"],
-                          "decided_by": ["", "numerical error", "", ""], "input_low": [0.0, 0.0, np.nan, np.nan]})
+    phys = xr.Dataset(
+        {"memory_explains": (("variant", "scene"), np.array([[1, 1]]))},
+        coords={"variant": ["decoded"], "scene": ["dry_1", "dry_2"]},
+    )
+    table = pd.DataFrame(
+        {
+            "model": ["decoded"] * 4,
+            "scenario": ["start centred", "start centred", "start off-centre", "start off-centre"],
+            "id": ["c1", "c2", "c1", "c2"],
+            "verdict": ["deviates", "undetermined (numerics)", "matches", "deviates"],
+            "decided_by": ["", "numerical error", "", ""],
+            "input_low": [0.0, 0.0, np.nan, np.nan],
+        }
+    )
     out = memory_relabel(table, claims, phys)
-    assert (out[out["id"] == "c1"].verdict == "depends on assumptions").all() and (out[out["id"] == "c1"].decided_by == MEMORY_DECIDES).all()
+    assert (out[out["id"] == "c1"].verdict == "depends on assumptions").all() and (
+        out[out["id"] == "c1"].decided_by == MEMORY_DECIDES
+    ).all()
     assert out[out["id"] == "c2"].verdict.tolist() == ["undetermined (numerics)", "deviates"]
     # a decided verdict in a start without propagated inputs says it holds at the nominal inputs only
     marked = nominal_only(table.assign(input_source="12 samples over 5 inputs"))
@@ -525,16 +642,37 @@ def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
     import pandas as pd
     import xarray as xr
 
-    from linkwork.papers.clearance.findings import ALL_UNDETERMINED, DECIDED_SAMPLES, PARTLY_UNDETERMINED, undetermined_ranges
+    from linkwork.papers.clearance.findings import (
+        ALL_UNDETERMINED,
+        DECIDED_SAMPLES,
+        PARTLY_UNDETERMINED,
+        undetermined_ranges,
+    )
 
-    outcome = np.array([[[-1, 0, -1]], [[-1, -1, 1]], [[-1, 1, -1]]])  # sample, variant, claim: c1 undetermined at every sample of both starts
-    unc = xr.Dataset({"sample_claim_outcome": (("sample", "variant", "claim"), outcome)},
-                     coords={"sample": ["nominal", "x low", "b | nominal"], "sample_scenario": ("sample", ["start a", "start a", "start b"]),
-                             "variant": ["decoded"], "claim": ["c1", "c2", "c3"]})
-    table = pd.DataFrame({"model": ["decoded"] * 5, "scenario": ["start a", "start a", "start b", "start b", "start a"], "id": ["c1", "c2", "c1", "c2", "c3"],
-                          "input_low": [0.0, 0.0, np.nan, np.nan, 1.0], "input_high": [0.0, 1.0, np.nan, np.nan, 1.0], "input_source": ["12 samples"] * 5,
-                          "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates", "undetermined (numerics)"],
-                          "decided_by": ["numerical error", np.nan, "", "", "numerical error"]})
+    outcome = np.array(
+        [[[-1, 0, -1]], [[-1, -1, 1]], [[-1, 1, -1]]]
+    )  # sample, variant, claim: c1 undetermined at every sample of both starts
+    unc = xr.Dataset(
+        {"sample_claim_outcome": (("sample", "variant", "claim"), outcome)},
+        coords={
+            "sample": ["nominal", "x low", "b | nominal"],
+            "sample_scenario": ("sample", ["start a", "start a", "start b"]),
+            "variant": ["decoded"],
+            "claim": ["c1", "c2", "c3"],
+        },
+    )
+    table = pd.DataFrame(
+        {
+            "model": ["decoded"] * 5,
+            "scenario": ["start a", "start a", "start b", "start b", "start a"],
+            "id": ["c1", "c2", "c1", "c2", "c3"],
+            "input_low": [0.0, 0.0, np.nan, np.nan, 1.0],
+            "input_high": [0.0, 1.0, np.nan, np.nan, 1.0],
+            "input_source": ["12 samples"] * 5,
+            "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates", "undetermined (numerics)"],
+            "decided_by": ["numerical error", np.nan, "", "", "numerical error"],
+        }
+    )
     out = undetermined_ranges(table, unc)
     assert np.isnan(out.input_low[4]) and out.input_source[4] == f"{PARTLY_UNDETERMINED} 1 of 2 samples only"
     assert np.isnan(out.input_low[0]) and np.isnan(out.input_high[0]) and out.input_source[0] == ALL_UNDETERMINED

@@ -10,7 +10,14 @@ import pytest
 
 from conftest import load_yaml
 from linkwork.papers.clearance.fourbar import initial_state, integrate
-from linkwork.papers.clearance.accuracy import _setting, contact_error, eccentricity, is_dry, setting_label, work_precision
+from linkwork.papers.clearance.accuracy import (
+    _setting,
+    contact_error,
+    eccentricity,
+    is_dry,
+    setting_label,
+    work_precision,
+)
 from linkwork.papers.clearance.adapter import parameters, scene_effects
 from linkwork.papers.clearance.studies import cycle
 from linkwork.pipeline.accuracy import collect, highlights
@@ -46,7 +53,9 @@ def test_eccentricity_from_the_states_is_the_engines():
 
 
 def test_the_reference_floor_is_far_below_every_error_it_ranks():
-    floor = contact_error(states(REF["method"], REF["check_rtol"]), states(REF["method"], REF["rtol"]), T, WINDOW_S, P, JOINTS)
+    floor = contact_error(
+        states(REF["method"], REF["check_rtol"]), states(REF["method"], REF["rtol"]), T, WINDOW_S, P, JOINTS
+    )
     errors = {f"{m} {v:g}": error(m, v) for m, values in WP["scenes"][DRY].items() for v in values}
     loosest = max(errors.values())
     assert floor < 1e-3 * loosest, (floor, errors)
@@ -59,7 +68,10 @@ def test_the_error_falls_as_the_tolerance_tightens():
     assert err[rtols[0]] > 30 * err[rtols[-1]], err
     pairs = [(r, x) for r in rtols for x in rtols if np.isclose(x, r * 1e-2, rtol=1e-9, atol=0.0)]
     assert len(pairs) >= 3
-    for r, tighter in pairs:  # two decades tighter is always more accurate (one decade need not be: 1e-6 and 1e-7 are alike)
+    for (
+        r,
+        tighter,
+    ) in pairs:  # two decades tighter is always more accurate (one decade need not be: 1e-6 and 1e-7 are alike)
         assert err[tighter] < err[r], (r, err)
     slope = np.polyfit(np.log10(rtols), np.log10([err[r] for r in rtols]), 1)[0]
     assert slope > 0.2, (slope, err)
@@ -85,7 +97,9 @@ def test_a_nanometre_of_the_start_is_a_small_reading(offset):
 
 def small_config(**integrators):
     cfg = copy.deepcopy(SECTION)
-    cfg["work_precision"].update(repeats=1, scenes={DRY: {"dopri5": [1e-4, 1e-6, 1e-9]}, LUBRICATED: {"bdf": [1e-4, 1e-6, 1e-9]}})
+    cfg["work_precision"].update(
+        repeats=1, scenes={DRY: {"dopri5": [1e-4, 1e-6, 1e-9]}, LUBRICATED: {"bdf": [1e-4, 1e-6, 1e-9]}}
+    )
     for kind, rtol in integrators.items():
         cfg["integrators"][kind] = {**cfg["integrators"][kind], "rtol": rtol, "atol": rtol * 1e-3}
     return cfg
@@ -95,12 +109,21 @@ def test_the_study_records_its_measure_and_the_summary_shows_both_pipeline_setti
     cfg = small_config(explicit=3e-7)  # not in the list: the study adds the pipeline's setting
     ds, timings = work_precision(cfg)
     assert ds.attrs["dry_error_window_cycles"] == WP["dry_error_window_cycles"]
-    assert "|e - e of the reference| / c" in ds.error_measure.sel(scene=DRY).item() and "RMS" in ds.error_measure.sel(scene=LUBRICATED).item()
+    assert (
+        "|e - e of the reference| / c" in ds.error_measure.sel(scene=DRY).item()
+        and "RMS" in ds.error_measure.sel(scene=LUBRICATED).item()
+    )
     assert float(ds.reference_error.sel(scene=DRY)) == pytest.approx(
-        contact_error(states(REF["method"], REF["check_rtol"]), states(REF["method"], REF["rtol"]), T, WINDOW_S, P, JOINTS), rel=1e-9)
+        contact_error(
+            states(REF["method"], REF["check_rtol"]), states(REF["method"], REF["rtol"]), T, WINDOW_S, P, JOINTS
+        ),
+        rel=1e-9,
+    )
     assert f"{DRY}: {float(ds.reference_error.sel(scene=DRY)):.2e}" in ds.attrs["reference_error"]
     assert float(ds.error.sel(scene=DRY, setting="dopri5 rtol=1e-06")) == pytest.approx(error("dopri5", 1e-6), rel=1e-9)
-    assert float(ds.error.sel(scene=LUBRICATED, setting="bdf rtol=1e-06")) == float(ds.rms_error.sel(scene=LUBRICATED, setting="bdf rtol=1e-06"))
+    assert float(ds.error.sel(scene=LUBRICATED, setting="bdf rtol=1e-06")) == float(
+        ds.rms_error.sel(scene=LUBRICATED, setting="bdf rtol=1e-06")
+    )
     summary, seconds = collect([ds], [timings])
     shown = highlights(summary, seconds)
     dry_label = setting_label(cfg["integrators"]["explicit"])
@@ -108,4 +131,6 @@ def test_the_study_records_its_measure_and_the_summary_shows_both_pipeline_setti
     assert dry_label == f"{SECTION['integrators']['explicit']['method']} rtol=3e-07"
     assert shown[f"clearance integrators, {DRY}"]["pipeline_setting"] == f"{dry_label} ({DRY})"
     assert shown[f"clearance integrators, {LUBRICATED}"]["pipeline_setting"] == f"{lub_label} ({LUBRICATED})"
-    assert shown[f"clearance integrators, {DRY}"]["pipeline_error"] == pytest.approx(float(ds.error.sel(scene=DRY, setting=dry_label)))
+    assert shown[f"clearance integrators, {DRY}"]["pipeline_error"] == pytest.approx(
+        float(ds.error.sel(scene=DRY, setting=dry_label))
+    )

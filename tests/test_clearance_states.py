@@ -1,5 +1,6 @@
 """The states of the clearance scenes: runs continued in pieces and from a saved state, starts off-centre, the compiled
-NDF integrator against scipy's BDF, peaks against the sampling, and one scene's state with its three-tolerance error bar."""
+NDF integrator against scipy's BDF, peaks against the sampling, and one scene's state with its three-tolerance error
+bar."""
 
 import copy
 
@@ -45,7 +46,10 @@ def test_a_run_in_pieces_is_the_run_in_one_piece(method):
     if method == "dopri5":
         assert np.array_equal(joined, whole)
     else:
-        assert np.abs(_eccentricity(p, joints, joined_states) - _eccentricity(p, joints, states)).max() < 5e-5 * p.clearance
+        assert (
+            np.abs(_eccentricity(p, joints, joined_states) - _eccentricity(p, joints, states)).max()
+            < 5e-5 * p.clearance
+        )
         assert np.abs(joined[:, 0] - whole[:, 0]).max() < 2e-4 * np.abs(whole[:, 0]).max()
     assert run.was.all() and run.latched[0] > 0  # in contact, with an impact velocity latched
 
@@ -90,7 +94,9 @@ def test_the_compiled_ndf_agrees_with_scipys_bdf_and_with_inverse_dynamics():
     t = _cycle_times(p, 0, 360)
     _, ideal_run, *_ = integrate(p, (), ("gravity",), t, ndf)
     ideal = inverse_dynamics(p, t, gravity=True)
-    assert np.abs(ideal_run[:, 0] - ideal["rocker_acceleration"]).max() < 1e-6 * np.abs(ideal["rocker_acceleration"]).max()
+    assert (
+        np.abs(ideal_run[:, 0] - ideal["rocker_acceleration"]).max() < 1e-6 * np.abs(ideal["rocker_acceleration"]).max()
+    )
     p, joints, effects = _scene("decoded", "lubricated_2")
     a = integrate(p, joints, effects, t, ndf)[1]
     b = integrate(p, joints, effects, t, {**ndf, "method": "bdf"})[1]
@@ -105,9 +111,10 @@ def _eccentricity(p, joints, ys):
 
 def test_the_compiled_dop853_is_scipys_dop853_and_its_outputs_do_not_move_its_steps():
     """Second routes for the compiled DOP853 (the dry scenes' integrator): on a dry scene it follows scipy's DOP853 on
-    the same right-hand side (the same algorithm) to rounding until the first impact, and through the first two
-    impacts within its own error (5e-4 c at rtol 1e-9 in the work-precision study); its steps do not land on the outputs, so 14400 outputs a cycle or two end in the same state
-    bit for bit; and a dense output inside a step agrees with a run that ends there (before the impacts)."""
+    the same right-hand side (the same algorithm) to rounding until the first impact, and through the first two impacts
+    within its own error (5e-4 c at rtol 1e-9 in the work-precision study); its steps do not land on the outputs, so
+    14400 outputs a cycle or two end in the same state bit for bit; and a dense output inside a step agrees with a run
+    that ends there (before the impacts)."""
     p, joints, effects = _scene("slender", "dry_2")
     integ = {**DRY, "method": "dop853"}
     t = _cycle_times(p, 0, 14400)[: 14400 // 50 + 1]  # the first two impacts (0.02 cycle, as the work-precision study)
@@ -143,7 +150,9 @@ def test_the_peak_deviation_converges_as_the_sampling_grows():
     finest = peaks[2 * pipeline]
     assert peaks[3600] < 0.9 * finest  # the old grid's peak
     assert abs(peaks[pipeline] - finest) < 1e-3 * finest
-    assert abs(peaks[pipeline] - finest) < 1e-3 * abs(peaks[3600] - finest)  # the spike is resolved only from the pipeline sampling on
+    assert abs(peaks[pipeline] - finest) < 1e-3 * abs(
+        peaks[3600] - finest
+    )  # the spike is resolved only from the pipeline sampling on
 
 
 @pytest.mark.parametrize("n", [720, 721])
@@ -171,12 +180,12 @@ def test_the_ripple_is_the_content_above_the_cutoff_harmonic(n):
 
 
 def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar():
-    """A real scene (link inertias as printed, joint 1 dry, one start): its state is a periodic orbit found before
-    the cap; the judged window starts after the transient and holds whole periods; the measure is the mean over one
-    period; the two check integrators, restarted from the section point, stay on the orbit and move the measure by
-    far less than the margins the claims are decided by (1e-4 of it); the start settled again from its initial state
-    at the first check integrator reaches a recorded state, and the error bar holds the largest of all these changes; the
-    ripple the runner took of the last turn is the ripple of the stored time series' last turn."""
+    """A real scene (link inertias as printed, joint 1 dry, one start): its state is a periodic orbit found before the
+    cap; the judged window starts after the transient and holds whole periods; the measure is the mean over one period;
+    the two check integrators, restarted from the section point, stay on the orbit and move the measure by far less than
+    the margins the claims are decided by (1e-4 of it); the start settled again from its initial state at the first
+    check integrator reaches a recorded state, and the error bar holds the largest of all these changes; the ripple the
+    runner took of the last turn is the ripple of the stored time series' last turn."""
     from linkwork.papers.clearance.studies import scene
 
     cfg = copy.deepcopy(SECTION)
@@ -184,18 +193,29 @@ def test_a_scene_settles_onto_its_state_and_carries_a_three_tolerance_error_bar(
     ds = scene(cfg, "decoded", "dry_1")
     assert str(ds.state_status.values[0]) == "periodic" and int(ds.state_period.values[0]) >= 1
     first, stop, transient = int(ds.window_first[0]), int(ds.window_stop[0]), int(ds.state_transient[0])
-    assert first >= transient and (stop - first) % int(ds.state_period[0]) == 0 and stop <= int(ds.record_cycles[0]) < cfg["states"]["max_cycles"]
+    assert (
+        first >= transient
+        and (stop - first) % int(ds.state_period[0]) == 0
+        and stop <= int(ds.record_cycles[0]) < cfg["states"]["max_cycles"]
+    )
     rms = ds.cycle_deviation.sel(measure="rms", quantity="rocker_acceleration").values[0]
-    assert np.isclose(float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0]), rms[first : first + int(ds.state_period[0])].mean())
+    assert np.isclose(
+        float(ds.judged_mean.sel(measure="rms", quantity="rocker_acceleration")[0]),
+        rms[first : first + int(ds.state_period[0])].mean(),
+    )
     assert (ds.check_kept_state.values == 1).all() and ds.sizes["check"] == 2
     rms = dict(measure="rms", quantity="rocker_acceleration")
     measure = float(ds.judged_mean.sel(**rms)[0])
     assert np.abs(ds.check_delta.sel(**rms)[0]).max() < 1e-4 * measure
     assert str(ds.reach_status.values[0]) in ("periodic", "stationary") and np.isfinite(ds.reach_same_state.values[0])
     largest = max(float(np.abs(ds.check_delta.sel(**rms)[0]).max()), abs(float(ds.reach_delta.sel(**rms)[0])))
-    assert float(ds.numerical_error.sel(**rms)[0]) == pytest.approx(largest + float(ds.convergence_error.sel(**rms)[0]), rel=1e-12)
+    assert float(ds.numerical_error.sel(**rms)[0]) == pytest.approx(
+        largest + float(ds.convergence_error.sel(**rms)[0]), rel=1e-12
+    )
     # on a periodic state a check's own measure is the pipeline's judged measure plus its change, for every measure
-    assert np.allclose(ds.check_mean.values[0], ds.judged_mean.values[0][None] + ds.check_delta.values[0], rtol=1e-12, atol=0.0)
+    assert np.allclose(
+        ds.check_mean.values[0], ds.judged_mean.values[0][None] + ds.check_delta.values[0], rtol=1e-12, atol=0.0
+    )
     assert ds.attrs["sampling_over_contact_frequency"] >= 4.0
     # the ripple of the last turn run, per cycle as the runner took it and again from the stored time series (the
     # figures' record: its last turn, the end point included)
@@ -233,14 +253,32 @@ def test_the_state_a_start_reaches_at_the_check_tolerance_is_compared_with_the_p
     from linkwork.engines.states import settle
     from linkwork.papers.clearance.settling import reach_state
 
-    st = {"chunk_cycles": 4, "max_cycles": 60, "max_period": 4, "section_tolerance": 1e-9, "periods": 3, "min_cycles": 20, "state_tolerance": 0.2}
+    st = {
+        "chunk_cycles": 4,
+        "max_cycles": 60,
+        "max_period": 4,
+        "section_tolerance": 1e-9,
+        "periods": 3,
+        "min_cycles": 20,
+        "state_tolerance": 0.2,
+    }
     orbit2, meas2 = [[0.3, 0.1], [-0.4, 0.2]], [[10.0, 1.0], [12.0, 3.0]]
     pipeline = _Scripted(orbit2, meas2)
     found = settle(pipeline.step, 4, 60, 4, 1e-9, 3, 20, 0.95)
     assert found["period"] == 2
-    same = reach_state(lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
+    same = reach_state(
+        lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7),
+        found,
+        {},
+        {"rtol": 1e-10},
+        st,
+        5,
+        0.95,
+    )
     assert same["same"] == 1.0 and same["period"] == 2 and np.allclose(same["delta"], np.tile([0.5, 0.0], 3))
-    other = reach_state(lambda _c, **_: _Scripted([[0.9, -0.9]], [[30.0, 2.0]]), found, {}, {"rtol": 1e-10}, st, 5, 0.95)
+    other = reach_state(
+        lambda _c, **_: _Scripted([[0.9, -0.9]], [[30.0, 2.0]]), found, {}, {"rtol": 1e-10}, st, 5, 0.95
+    )
     assert other["same"] == 0.0 and other["period"] == 1 and np.allclose(other["delta"], np.tile([30.0 - 11.0, 0.0], 3))
 
     class _Failing:

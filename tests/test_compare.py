@@ -5,7 +5,16 @@ import math
 import numpy as np
 import xarray as xr
 
-from linkwork.pipeline.compare import acceptance, classify, compare, decided_by, evaluate_measure, expand_tables, tolerance_of, verdict_counts
+from linkwork.pipeline.compare import (
+    acceptance,
+    classify,
+    compare,
+    decided_by,
+    evaluate_measure,
+    expand_tables,
+    tolerance_of,
+    verdict_counts,
+)
 
 DS = xr.Dataset(
     {"k": ("angle", np.array([1.0, 3.0, 2.0])), "b": ("angle", np.array([10.0, 20.0, 30.0]))},
@@ -14,7 +23,9 @@ DS = xr.Dataset(
 
 
 def test_measures():
-    m = lambda reduce, **kw: evaluate_measure(DS, {"variable": "k", "reduce": reduce, "dim": "angle", **kw})  # noqa: E731
+    m = lambda reduce, **kw: evaluate_measure(
+        DS, {"variable": "k", "reduce": reduce, "dim": "angle", **kw}
+    )  # noqa: E731
     assert m("max") == 3.0 and m("min") == 1.0 and m("mean") == 2.0 and m("range") == 2.0 and m("max_over_min") == 3.0
     assert m("argmax") == 10.0 and m("argmin") == 0.0
     assert m("at", at={"angle": 20.0}) == 2.0
@@ -29,9 +40,13 @@ def test_verdict_classes():
     assert classify(1.0, 0.005, "eq", 1.005, 0.0, nan, nan) == "matches"
     assert classify(1.0, 0.005, "eq", 1.0051, 0.0, nan, nan) == "deviates"
     assert classify(1.0, 0.005, "eq", nan, 0.0, nan, nan) == "not reproducible"
-    assert classify(1.0, 0.005, "eq", 1.004, 0.002, 1.004, 1.004) == "undetermined (numerics)"  # the error bar straddles
+    assert (
+        classify(1.0, 0.005, "eq", 1.004, 0.002, 1.004, 1.004) == "undetermined (numerics)"
+    )  # the error bar straddles
     assert classify(1.0, 0.005, "eq", 1.004, 0.0, 0.99, 1.02) == "depends on assumptions"  # the inputs' range straddles
-    assert classify(1.0, 0.005, "eq", 1.010, 0.0, 1.002, 1.02) == "depends on assumptions"  # deviates nominally, not robustly
+    assert (
+        classify(1.0, 0.005, "eq", 1.010, 0.0, 1.002, 1.02) == "depends on assumptions"
+    )  # deviates nominally, not robustly
     assert classify(1.0, 0.005, "eq", 1.010, 0.001, 1.008, 1.02) == "deviates"
     assert classify(1.0, 0.005, "eq", 1.000, 0.001, 0.998, 1.003) == "matches"
     assert classify(3.0, 0.0, "ge", 2.9, 0.01, 2.5, 3.5) == "depends on assumptions"
@@ -43,7 +58,10 @@ def test_the_deciding_input_is_the_one_that_crosses():
     region = acceptance(1.0, 0.005, "eq")
     oat = {"a.value": (1.009, 1.011), "b.value": (0.999, 1.010), "c.value": (1.008, 1.030)}
     assert decided_by(region, 1.010, 0.0, oat) == "b"
-    assert decided_by(region, 1.010, 0.0, {"a.value": (1.009, 1.011), "c.value": (1.008, 1.030)}) == "jointly (largest alone: c)"
+    assert (
+        decided_by(region, 1.010, 0.0, {"a.value": (1.009, 1.011), "c.value": (1.008, 1.030)})
+        == "jointly (largest alone: c)"
+    )
 
 
 def test_tolerances():
@@ -77,13 +95,18 @@ def test_tables_expand_cell_by_cell_and_compare():
 
 
 def test_prose_check_finds_code_names_key_paths_and_templates_but_not_marked_config_tables():
-    """The checker the report test uses: it must see each kind of leak, and spare tables marked as config-key listings."""
+    """The checker the report test uses: it must see each kind of leak, and spare tables marked as config-key
+    listings."""
     from prose import leaks, visible_text
 
-    page = ("<p>The verdict turns on compared_solution and fe.damping_ratio; 31.4 {float(ds.x.sel(model='A')):.1f} rad/s.</p>"
-            "<table><thead><tr><th>input (config key)</th></tr></thead><tbody><tr><td>gravity_m_s2</td></tr></tbody></table>"
-            "<table><thead><tr><th>scene</th></tr></thead><tbody><tr><td>dry_both</td></tr></tbody></table>"
-            "<pre>theta4_deg</pre><p>See results/reports/index.html, e.g. the K_h curve, config_sha256.</p>")
+    page = (
+        "<p>The verdict turns on compared_solution and fe.damping_ratio; 31.4 {float(ds.x.sel(model='A')):.1f}"
+        " rad/s.</p><table><thead><tr><th>input (config"
+        " key)</th></tr></thead><tbody><tr><td>gravity_m_s2</td></tr></tbody></table>"
+        "<table><thead><tr><th>scene</th></tr></thead><tbody><tr><td>dry_both</td></tr></tbody></table>"
+        "<pre>theta4_deg</pre><p>See"
+        " results/reports/index.html, e.g. the K_h curve, config_sha256.</p>"
+    )
     found = leaks(visible_text(page))
     assert "compared_solution" in found and "fe.damping_ratio" in found and "dry_both" in found
     assert any("float(" in f for f in found)
@@ -134,16 +157,37 @@ def test_each_scenario_can_carry_its_own_numerical_error_bar():
 
     from linkwork.pipeline.compare import compare
 
-    published = {"quantities": [{"id": "c", "quantity": "a claim", "value": 1, "relation": "ge", "unit": "1", "where": "Sec. 1",
-                                 "tolerance": {"abs": 0.0}, "measure": {"variable": "holds", "reduce": "at", "at": {"claim": "c"}}}]}
+    published = {
+        "quantities": [
+            {
+                "id": "c",
+                "quantity": "a claim",
+                "value": 1,
+                "relation": "ge",
+                "unit": "1",
+                "where": "Sec. 1",
+                "tolerance": {"abs": 0.0},
+                "measure": {"variable": "holds", "reduce": "at", "at": {"claim": "c"}},
+            }
+        ]
+    }
     ds = xr.Dataset({"holds": (("claim",), np.array([0.0]))}, coords={"claim": ["c"]})
-    study = xr.Dataset({"nominal": (("scenario", "quantity"), np.array([[0.0], [0.0]])), "low": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
-                        "high": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
-                        "oat_low": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))), "oat_high": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))),
-                        "samples": ((), 3)},
-                       coords={"scenario": ["start a", "start b"], "quantity": ["|c"], "input": ["x"]})
+    study = xr.Dataset(
+        {
+            "nominal": (("scenario", "quantity"), np.array([[0.0], [0.0]])),
+            "low": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
+            "high": (("scenario", "quantity"), np.array([[0.0], [np.nan]])),
+            "oat_low": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))),
+            "oat_high": (("scenario", "input", "quantity"), np.zeros((2, 1, 1))),
+            "samples": ((), 3),
+        },
+        coords={"scenario": ["start a", "start b"], "quantity": ["|c"], "input": ["x"]},
+    )
     own = compare(published, ds, errors={"c": {0: (1.0, "bar"), 1: (0.0, "bar")}}, uncertainty=study)
-    assert own.verdict.tolist() == ["undetermined (numerics)", "deviates"] and own.numerical_source.tolist() == ["bar", "bar"]
+    assert own.verdict.tolist() == ["undetermined (numerics)", "deviates"] and own.numerical_source.tolist() == [
+        "bar",
+        "bar",
+    ]
     borrowed = compare(published, ds, errors={"c": (1.0, "bar")}, uncertainty=study)
     assert borrowed.verdict.tolist() == ["undetermined (numerics)", "undetermined (numerics)"]
     assert borrowed.numerical_source.tolist() == ["bar", "bar (the first scenario's)"]

@@ -81,13 +81,20 @@ def test_transplanter_bad_input(config, schema):
     _expect(c, schema, "transplanter.geometry.arm_angle_deg", "0.0", "pivot C")
 
 
-@pytest.mark.parametrize(("path", "value", "fragment"), [
-    (("transplanter", "fe", "gravity_m_s2", "value"), 5.0, "not one of its choices"),
-    (("transplanter", "fe", "gravity_m_s2", "choice_labels"), ["gravity off", "gravity on", "gravity doubled"], "3 names for 2 choices"),
-    (("heald", "parameters", "M_P", "value"), 20.0, "outside its own range"),
-    (("heald", "parameters", "M_P", "range"), [12.0, 5.0], "is not a range"),
-    (("heald", "parameters", "M_P", "range"), [8.0, 8.0], "is not a range"),
-])
+@pytest.mark.parametrize(
+    ("path", "value", "fragment"),
+    [
+        (("transplanter", "fe", "gravity_m_s2", "value"), 5.0, "not one of its choices"),
+        (
+            ("transplanter", "fe", "gravity_m_s2", "choice_labels"),
+            ["gravity off", "gravity on", "gravity doubled"],
+            "3 names for 2 choices",
+        ),
+        (("heald", "parameters", "M_P", "value"), 20.0, "outside its own range"),
+        (("heald", "parameters", "M_P", "range"), [12.0, 5.0], "is not a range"),
+        (("heald", "parameters", "M_P", "range"), [8.0, 8.0], "is not a range"),
+    ],
+)
 def test_a_labelled_entry_must_be_a_value_of_its_own_range_or_choices(config, schema, path, value, fragment):
     node = config
     for key in path[:-1]:

@@ -72,7 +72,11 @@ def _single_impact(c, speed: float, steps: int):
     markers = [mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=b, localPosition=[0.0, 0.0, 0.0])) for b in (body, ground)]
     data = mbs.AddNode(ii.NodeGenericData(initialCoordinates=[0.1, 0.0, 0.0, 0.0], numberOfDataCoordinates=4))
     contact = mbs.AddObject(ii.ObjectContactSphereSphere(markerNumbers=markers, nodeNumber=data, **native_contact(c)))
-    sensors = [mbs.AddSensor(ii.SensorObject(objectNumber=contact, outputVariableType=exu.OutputVariableType.Force, storeInternal=True))]
+    sensors = [
+        mbs.AddSensor(
+            ii.SensorObject(objectNumber=contact, outputVariableType=exu.OutputVariableType.Force, storeInternal=True)
+        )
+    ]
     sensors += [mbs.AddSensor(ii.SensorNode(nodeNumber=node, outputVariableType=kind, storeInternal=True))
                 for kind in (exu.OutputVariableType.Position, exu.OutputVariableType.Velocity)]
     mbs.Assemble()
@@ -91,7 +95,9 @@ def _single_impact(c, speed: float, steps: int):
     return force[:, 0], force[:, 1], position[:, 1], velocity[:, 1]  # Exudyn's Force output: on marker 0, the journal
 
 
-@pytest.mark.parametrize("law, elastic", [(law, "hertz-sphere") for law in CONTACT_LAWS] + [("lankarani-nikravesh", "pereira")])
+@pytest.mark.parametrize(
+    "law, elastic", [(law, "hertz-sphere") for law in CONTACT_LAWS] + [("lankarani-nikravesh", "pereira")]
+)
 def test_exudyns_native_contact_is_linkworks_law(law, elastic):
     """Second route for every contact law of the registry (``linkage.CONTACT_LAWS``) and both elastic laws: Exudyn's
     compiled sphere-in-hollow-sphere contact with the parameters ``native_contact`` maps (no friction) on a single

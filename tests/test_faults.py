@@ -33,7 +33,9 @@ print(round(float(cs[0]), 12), round(float(history[-1, 0]), 12))
 def _compile(lib: Path, cache: Path) -> subprocess.CompletedProcess:
     env = {**os.environ, "PYTHONPATH": str(lib), "LINKWORK_CACHE": str(cache)}
     env.pop("NUMBA_CACHE_DIR", None)
-    return subprocess.run([sys.executable, "-c", COMPILE], env=env, capture_output=True, text=True, timeout=600, check=True)
+    return subprocess.run(
+        [sys.executable, "-c", COMPILE], env=env, capture_output=True, text=True, timeout=600, check=True
+    )
 
 
 def _entries(folder: Path) -> list[Path]:
@@ -63,7 +65,9 @@ def test_a_damaged_cache_entry_is_compiled_again_and_named(tmp_path, damage):
     again = _compile(PROJECT / "lib", cache)
     assert again.stdout == first
     named = [line for line in again.stderr.splitlines() if "was unreadable" in line]
-    assert named and all(line.startswith("linkwork: compile cache entry ") and "compiling it again" in line for line in named), again.stderr
+    assert named and all(
+        line.startswith("linkwork: compile cache entry ") and "compiling it again" in line for line in named
+    ), again.stderr
     assert len(named) == len(set(named))
     third = _compile(PROJECT / "lib", cache)  # repaired: read without complaint
     assert third.stdout == first and "unreadable" not in third.stderr
@@ -73,7 +77,11 @@ def test_an_unusable_cache_folder_is_named(tmp_path, monkeypatch):
     a_file = tmp_path / "cache.txt"
     a_file.write_text("not a folder")
     monkeypatch.setenv("LINKWORK_CACHE", str(a_file))
-    assert compilecache.problem() == f"LINKWORK_CACHE={a_file} is a file, not a folder: point LINKWORK_CACHE to a folder (or unset it for ~/.cache/linkwork)"
+    assert (
+        compilecache.problem()
+        == f"LINKWORK_CACHE={a_file} is a file, not a folder: point LINKWORK_CACHE to a folder (or unset it for"
+        " ~/.cache/linkwork)"
+    )
     monkeypatch.setenv("LINKWORK_CACHE", str(tmp_path / "new" / "cache"))
     assert compilecache.problem() is None  # created on first use
     monkeypatch.setattr(os, "access", lambda path, mode: False)  # read-only (root may write anywhere: simulated)

@@ -100,6 +100,8 @@ def test_compiled_newmark_steps_equal_the_numpy_loop_and_a_closed_form():
     omega, dt, steps = 3.0, 0.05, 200
     kk, mm = np.full((1, 1, 1), omega**2), np.ones((1, 1, 1))
     inverse = np.linalg.inv(mm + 0.25 * dt**2 * kk)
-    u = newmark_history(inverse, kk, np.zeros((1, 1, 1)), np.zeros((1, 1)), [1.0], [0.0], [-(omega**2)], dt, steps)[:, 0]
+    u = newmark_history(inverse, kk, np.zeros((1, 1, 1)), np.zeros((1, 1)), [1.0], [0.0], [-(omega**2)], dt, steps)[
+        :, 0
+    ]
     phase = 2 * np.arctan(omega * dt / 2) * np.arange(1, steps + 1)
     assert np.allclose(u, np.cos(phase), atol=1e-10)

@@ -26,7 +26,9 @@ P = parameters(CFG)
 W = omega_grid(CFG["speeds"])
 
 
-@pytest.mark.parametrize("change", [{"k_O": 7.0e3}, {"M_P": 11.5}, {"c_O": 75.0}, {"k_O": 4.5e4, "M_P": 5.5, "c_O": 6.0}])
+@pytest.mark.parametrize(
+    "change", [{"k_O": 7.0e3}, {"M_P": 11.5}, {"c_O": 75.0}, {"k_O": 4.5e4, "M_P": 5.5, "c_O": 6.0}]
+)
 def test_model_b_joint_forces_do_not_depend_on_the_warp_branch(change):
     """Under a velocity drive each branch on the driven node sees the prescribed motion: moving the warp branch's
     parameters leaves Q_E and Q_F unchanged to round-off, while the drive force Q does change (the test can fail)."""
@@ -68,7 +70,9 @@ def test_model_b_kinetostatic_reactions_closed_form_against_the_network():
     """The closed form of model B's reactions against the ideal-joint network solved at the operating speed."""
     np.testing.assert_allclose(kinetostatic_reactions_b(P), kinetostatic_reactions("B", P), rtol=1e-9)
     m_e, _ = reduced_masses(P)
-    assert kinetostatic_reactions_b(P)[0] == pytest.approx(m_e * P["omega_op"] ** 2 * P["stroke_D"], rel=1e-2)  # rigid limit
+    assert kinetostatic_reactions_b(P)[0] == pytest.approx(
+        m_e * P["omega_op"] ** 2 * P["stroke_D"], rel=1e-2
+    )  # rigid limit
 
 
 def test_model_b_ignores_the_assumed_reactions():
@@ -93,7 +97,9 @@ def test_self_consistent_reactions_reproduce_themselves_and_follow_the_clearance
 
 def test_flip_point_bisection():
     assert flip_point(lambda x: x**2 > 2.0, 1.0, 3.0, 1e-9) == pytest.approx(np.sqrt(2.0), rel=1e-8)
-    assert flip_point(lambda x: x < -5.0, 0.0, 3.0, 1e-9) != flip_point(lambda x: x < -5.0, 0.0, 3.0, 1e-9)  # NaN: no flip
+    assert flip_point(lambda x: x < -5.0, 0.0, 3.0, 1e-9) != flip_point(
+        lambda x: x < -5.0, 0.0, 3.0, 1e-9
+    )  # NaN: no flip
 
 
 def test_cam_fourier_coefficients_against_quadrature_and_the_profile():
@@ -147,8 +153,14 @@ def test_sweep_boundary_is_the_flip_value_or_the_closed_form():
     from linkwork.papers.heald.findings import sweep_boundary
 
     published = load_yaml("config/published/heald.yaml")
-    flips = xr.Dataset({"flip_model": ("flip", np.array(["B"], dtype=object)), "flip_claim": ("flip", np.array(["limit_41_89"], dtype=object)),
-                        "flip_input": ("flip", np.array(["M_P"], dtype=object)), "flip_value": ("flip", [9.4213])})
+    flips = xr.Dataset(
+        {
+            "flip_model": ("flip", np.array(["B"], dtype=object)),
+            "flip_claim": ("flip", np.array(["limit_41_89"], dtype=object)),
+            "flip_input": ("flip", np.array(["M_P"], dtype=object)),
+            "flip_value": ("flip", [9.4213]),
+        }
+    )
     boundary = sweep_boundary(CFG, published, flips)
     assert boundary("B", "limit_41_89", "heald_mass", 9.0, 9.5) == 9.4213
     flips["flip_value"] = ("flip", [99.0])  # not in the bracket: located afresh
@@ -156,9 +168,17 @@ def test_sweep_boundary_is_the_flip_value_or_the_closed_form():
     closed = P["k_O"] / upper**2
     assert boundary("B", "limit_41_89", "heald_mass", 9.0, 9.5) == pytest.approx(closed, rel=2e-3)
     # the reaction-ratio sweep is reaction_E over the assumed reaction_F
-    flips = xr.Dataset({"flip_model": ("flip", np.array(["A"], dtype=object)), "flip_claim": ("flip", np.array(["force_E_many_times_F"], dtype=object)),
-                        "flip_input": ("flip", np.array(["reaction_E"], dtype=object)), "flip_value": ("flip", [312.5])})
-    assert sweep_boundary(CFG, published, flips)("A", "force_E_many_times_F", "reaction_ratio", 3.0, 3.2) == pytest.approx(312.5 / P["reaction_F"])
+    flips = xr.Dataset(
+        {
+            "flip_model": ("flip", np.array(["A"], dtype=object)),
+            "flip_claim": ("flip", np.array(["force_E_many_times_F"], dtype=object)),
+            "flip_input": ("flip", np.array(["reaction_E"], dtype=object)),
+            "flip_value": ("flip", [312.5]),
+        }
+    )
+    assert sweep_boundary(CFG, published, flips)(
+        "A", "force_E_many_times_F", "reaction_ratio", 3.0, 3.2
+    ) == pytest.approx(312.5 / P["reaction_F"])
 
 
 def test_cam_window_and_notes():
@@ -167,15 +187,24 @@ def test_cam_window_and_notes():
 
     from linkwork.papers.heald.findings import notes
 
-    f = xr.Dataset({"verdict_sine_nominal": (("model", "claim"), np.array([["matches", "deviates"]], dtype=object)),
-                    "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object)),
-                    "verdict_cam_by_joint_damping": (("model", "claim", "joint_damping"), np.array([[["deviates", "matches"], ["deviates", "deviates"]]], dtype=object)),
-                    "largest_dip_cam_by_joint_damping": (("model", "joint_damping"), [[0.765, 0.0012]]),
-                    "joint_branch_damping_ratio": (("model", "joint_damping"), [[0.0, 0.0498]])},
-                   coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"], "joint_damping": [0.0, 500.0]})
+    f = xr.Dataset(
+        {
+            "verdict_sine_nominal": (("model", "claim"), np.array([["matches", "deviates"]], dtype=object)),
+            "verdict_cam_nominal": (("model", "claim"), np.array([["deviates", "deviates"]], dtype=object)),
+            "verdict_cam_by_joint_damping": (
+                ("model", "claim", "joint_damping"),
+                np.array([[["deviates", "matches"], ["deviates", "deviates"]]], dtype=object),
+            ),
+            "largest_dip_cam_by_joint_damping": (("model", "joint_damping"), [[0.765, 0.0012]]),
+            "joint_branch_damping_ratio": (("model", "joint_damping"), [[0.0, 0.0498]]),
+        },
+        coords={"model": ["B"], "claim": ["forces_grow_with_frequency", "limit_41_89"], "joint_damping": [0.0, 500.0]},
+    )
     text = notes(xr.Dataset(), f)
     assert "model B, forces grow: matches → deviates" in text and "limit" not in text
-    assert "(500 N s/m, a damping ratio of 0.050)" in text and "is matches instead" in text and "from 76% to 0.12%" in text
+    assert (
+        "(500 N s/m, a damping ratio of 0.050)" in text and "is matches instead" in text and "from 76% to 0.12%" in text
+    )
     from linkwork.papers.heald.studies import cam_study
 
     variables, _ = cam_study(CFG, P, ["B"], W[:20], 1e-4)
@@ -200,7 +229,14 @@ def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
     """With the assumed rod masses on D the network differs from eq. (2); the difference is the closed form
     |j w m K_2 / (1 + j w m K_2)| (a second route), it exceeds 10 near the chain's shifted antiresonance and tends to
     m / (m + sum of branch masses) at low frequency."""
-    from linkwork.papers.heald.model import eq2_mobility, eq2_node_mass_difference, eq2_with_node_mass, model_b_parameters, node_mass, reduced_masses
+    from linkwork.papers.heald.model import (
+        eq2_mobility,
+        eq2_node_mass_difference,
+        eq2_with_node_mass,
+        model_b_parameters,
+        node_mass,
+        reduced_masses,
+    )
 
     u = {**P, "c_joint": 0.0, "c_O": 0.0}
     diff, at = eq2_node_mass_difference(P, W)
@@ -213,7 +249,9 @@ def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
     low = np.array([W[0] * 1e-3])
     k_low, _, _ = eq2_mobility(u, low)
     branch_mass = sum(reduced_masses(model_b_parameters(u))) + P["M_P"]
-    assert float(np.abs(eq2_with_node_mass(u, low) - k_low)[0] / np.abs(k_low)[0]) == pytest.approx(m / (m + branch_mass), rel=1e-4)
+    assert float(np.abs(eq2_with_node_mass(u, low) - k_low)[0] / np.abs(k_low)[0]) == pytest.approx(
+        m / (m + branch_mass), rel=1e-4
+    )
 
 
 # --- the inputs each model reads (issue 22: model B's table lists only these) ---------------------------------
@@ -221,8 +259,8 @@ def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
 
 @pytest.mark.parametrize("model", ["A", "B"])
 def test_listed_inputs_are_exactly_those_that_move_the_model(model):
-    """Each labelled parameter moved by 30 % (c_joint, 0 at its assumed value, set to 50 N s/m): the model's drive force,
-    joint forces and resonances move for every listed input and for no other (the listing in the report's input
+    """Each labelled parameter moved by 30 % (c_joint, 0 at its assumed value, set to 50 N s/m): the model's drive
+    force, joint forces and resonances move for every listed input and for no other (the listing in the report's input
     tables is this one)."""
     from linkwork.engines.chains import resonances
     from linkwork.papers.heald.model import MODEL_INPUTS
@@ -245,7 +283,9 @@ def test_listed_inputs_are_exactly_those_that_move_the_model(model):
     from linkwork.papers.heald.uncertainty import model_inputs
 
     listed = {i.path for i in model_inputs(CFG, model)}
-    assert listed == {f"parameters.{n}.value" for n in MODEL_INPUTS[model] if "range" in CFG["parameters"][n]} | {"drive.frequency.value"}
+    assert listed == {f"parameters.{n}.value" for n in MODEL_INPUTS[model] if "range" in CFG["parameters"][n]} | {
+        "drive.frequency.value"
+    }
 
 
 # --- the drive frequency as a scenario (issue 22) ------------------------------------------------------------
@@ -288,8 +328,8 @@ def test_drive_choice_is_a_labelled_scenario_the_uncertainty_study_sees():
 
 def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
     """At R = 10 N, Delta = 0.3 mm, k_n = 2e7 N/m, eta = 2.5, k_O = 5e3 N/m and every mass at its heaviest (M_P = 12 kg)
-    model A with D held is one degree of freedom: the frame P with the levers' springs and masses reduced to it,
-    w^2 = (k_O + (k_E + k_F) / eta^2) / (M_out + (m_E7 + m_F8) / eta^2), about 31 rad/s (the samples reported 72-721)."""
+    model A with D held is one degree of freedom: the frame P with the levers' springs and masses reduced to it, w^2 =
+    (k_O + (k_E + k_F) / eta^2) / (M_out + (m_E7 + m_F8) / eta^2), about 31 rad/s (the samples reported 72-721)."""
     from linkwork.engines.chains import vulfson_stiffness
     from linkwork.papers.heald.studies import lowest_resonance
 
@@ -297,7 +337,17 @@ def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
     for name, entry in CFG["parameters"].items():
         if name.startswith(("m_", "M_")):
             corner[name] = entry["range"][1]
-    corner.update(reaction_E=10.0, reaction_F=10.0, clearance_E=3e-4, clearance_F=3e-4, k_n=2e7, eta7=2.5, eta8=2.5, k_O=5e3, M_P=12.0)
+    corner.update(
+        reaction_E=10.0,
+        reaction_F=10.0,
+        clearance_E=3e-4,
+        clearance_F=3e-4,
+        k_n=2e7,
+        eta7=2.5,
+        eta8=2.5,
+        k_O=5e3,
+        M_P=12.0,
+    )
     k_tau = float(vulfson_stiffness(10.0, 3e-4, 2e7))
     m_out = corner["M_G"] + corner["m_H9"] + corner["M_K"] + corner["m_L10"] + corner["M_P"]
     closed = np.sqrt((5e3 + 2 * k_tau / 2.5**2) / (m_out + (corner["m_E7"] + corner["m_F8"]) / 2.5**2))
@@ -306,8 +356,18 @@ def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
     # the same corner through the study's results function, the one the core's bounded search evaluates
     from linkwork.papers.heald.uncertainty import results
 
-    values = {**{n: e["range"][1] for n, e in CFG["parameters"].items() if n.startswith(("m_", "M_"))},
-              "reaction_E": 10.0, "reaction_F": 10.0, "clearance_E": 3e-4, "clearance_F": 3e-4, "k_n": 2e7, "eta7": 2.5, "eta8": 2.5, "k_O": 5e3, "M_P": 12.0}
+    values = {
+        **{n: e["range"][1] for n, e in CFG["parameters"].items() if n.startswith(("m_", "M_"))},
+        "reaction_E": 10.0,
+        "reaction_F": 10.0,
+        "clearance_E": 3e-4,
+        "clearance_F": 3e-4,
+        "k_n": 2e7,
+        "eta7": 2.5,
+        "eta8": 2.5,
+        "k_O": 5e3,
+        "M_P": 12.0,
+    }
     cfg = {**CFG, "parameters": {n: {**e, "value": values.get(n, e["value"])} for n, e in CFG["parameters"].items()}}
     (ds,) = results(cfg)
     assert float(ds.first_resonance.sel(model="A")) == pytest.approx(closed, rel=1e-9)
@@ -335,7 +395,14 @@ def test_joint_damping_shrinks_the_cam_dips_of_model_b():
     dips = []
     for cj in (0.0, 500.0):
         q = {**P, "c_joint": cj}
-        values, _ = cam_measures("B", q, harmonic_transfer("B", q, W, cam["harmonics"]), c * 1e-4 / abs(c[0]), cam["samples"], cam["significant_harmonic"])
+        values, _ = cam_measures(
+            "B",
+            q,
+            harmonic_transfer("B", q, W, cam["harmonics"]),
+            c * 1e-4 / abs(c[0]),
+            cam["samples"],
+            cam["significant_harmonic"],
+        )
         dips.append(values["largest_dip"])
     assert dips[0] > 0.1 and dips[1] < 0.01
     q = {**P, "c_joint": 500.0}
@@ -358,14 +425,25 @@ def test_answer_is_two_plain_sentences_with_the_results_numbers():
     from linkwork.papers.heald.findings import answer
 
     shaft, half = "drive at the main-shaft frequency", "drive at half the main-shaft frequency"
-    table = pd.DataFrame({"model": ["A", "A", "B"] * 2, "id": ["e", "g", "e"] * 2, "role": "headline", "scenario": [shaft] * 3 + [half] * 3,
-                          "verdict": ["deviates", "depends on assumptions", "matches"] * 2})
+    table = pd.DataFrame(
+        {
+            "model": ["A", "A", "B"] * 2,
+            "id": ["e", "g", "e"] * 2,
+            "role": "headline",
+            "scenario": [shaft] * 3 + [half] * 3,
+            "verdict": ["deviates", "depends on assumptions", "matches"] * 2,
+        }
+    )
     chain = xr.Dataset({"eq2_node_mass": 1.6, "eq2_node_mass_antiresonance": 66.19034,
                         "eq2_denominator_frequencies": ("denominator_factor", [68.657, 1116.66])})
     text = answer(table, chain)
     assert len(re.findall(r"(?<!eq)[.!?](\s|$)", text)) <= 2  # "eq. (2)" is no sentence end
     assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
     assert "one deviates and one depends on assumptions" in text and "one matches" in text
-    assert "1.6 kg" in text and "from eq. (2)'s 68.66 to 66.19 rad/s" in text and "half the shaft frequency changes no verdict" in text
+    assert (
+        "1.6 kg" in text
+        and "from eq. (2)'s 68.66 to 66.19 rad/s" in text
+        and "half the shaft frequency changes no verdict" in text
+    )
     table.loc[5, "verdict"] = "deviates"  # the half-shaft drive changes one verdict of model B
     assert "half the shaft frequency changes 1 of them" in answer(table, chain)

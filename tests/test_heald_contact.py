@@ -56,7 +56,9 @@ def test_the_closed_form_reversal_margin_separates_the_two_cases():
     least-reversal corner does not (its margin below 1)."""
     ranges = {k: tuple(v["range"]) for k, v in SECTION["parameters"].items() if "range" in v}
     nominal = contact.reversal_margin(P, SECTION["cam"])
-    corner = contact.reversal_margin(contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["weight_dominant"]), SECTION["cam"])
+    corner = contact.reversal_margin(
+        contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["weight_dominant"]), SECTION["cam"]
+    )
     assert nominal > 1.0 > corner
 
 

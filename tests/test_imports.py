@@ -31,7 +31,9 @@ def _targets(name: str, path: Path, node: ast.AST, modules: dict[str, Path]) -> 
     for target in wanted:
         while target and target not in modules and "." in target:
             target = target.rpartition(".")[0]
-        if target in modules and target != name and not name.startswith(target + "."):  # a package's own __init__ is not a circle
+        if (
+            target in modules and target != name and not name.startswith(target + ".")
+        ):  # a package's own __init__ is not a circle
             found.append(target)
     return found
 
@@ -99,15 +101,24 @@ def test_no_import_circle_in_the_library():
 
 
 #: The library's layers, lowest first: a module imports only from its own layer or the ones below it.
-LAYERS = (("linkwork", "linkwork.units", "linkwork.configformat", "linkwork.compilecache"), ("linkwork.engines",), ("linkwork.pipeline",),
-          ("linkwork.papers",), ("linkwork.project",))
+LAYERS = (
+    ("linkwork", "linkwork.units", "linkwork.configformat", "linkwork.compilecache"),
+    ("linkwork.engines",),
+    ("linkwork.pipeline",),
+    ("linkwork.papers",),
+    ("linkwork.project",),
+)
 
 
 def _layer(module: str) -> int:
     """The index of the deepest layer prefix that names ``module``."""
     best = -1
     for i, prefixes in enumerate(LAYERS):
-        if any(module == p or module.startswith(p + ".") for p in prefixes if p != "linkwork") or module == "linkwork" and i == 0:
+        if (
+            any(module == p or module.startswith(p + ".") for p in prefixes if p != "linkwork")
+            or module == "linkwork"
+            and i == 0
+        ):
             best = i
     return best
 
@@ -121,5 +132,9 @@ def test_every_import_points_downward():
 
 
 def test_the_layer_check_sees_an_upward_import():
-    assert _layer("linkwork.pipeline.compare") == 2 and _layer("linkwork.papers.heald.studies") == 3 and _layer("linkwork.units") == 0
+    assert (
+        _layer("linkwork.pipeline.compare") == 2
+        and _layer("linkwork.papers.heald.studies") == 3
+        and _layer("linkwork.units") == 0
+    )
     assert _layer("linkwork.project.validate") > _layer("linkwork.papers.heald")

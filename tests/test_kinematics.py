@@ -31,7 +31,9 @@ def crank_rockers(draw):
     coupler, rocker, ground = (draw(st.floats(crank * 1.2, 1.0)) for _ in range(3))
     lengths = sorted((crank, coupler, rocker, ground))
     assume(lengths[0] + lengths[3] < 0.95 * (lengths[1] + lengths[2]))  # Grashof with a 5 % margin
-    lw = FourBar(crank, coupler, rocker, ground, branch=draw(st.sampled_from([1, -1])), ground_angle=draw(st.floats(-3, 3)))
+    lw = FourBar(
+        crank, coupler, rocker, ground, branch=draw(st.sampled_from([1, -1])), ground_angle=draw(st.floats(-3, 3))
+    )
     assume(inversion(lw) == "crank-rocker")
     # well conditioned: transmission angle at least 20 deg (near-singular cases are the hard-case tests)
     assume(np.all(np.sin(four_bar(lw, np.linspace(0, 2 * np.pi, 361)).transmission_angle) > np.sin(np.radians(20))))

@@ -1,5 +1,5 @@
-"""Any planar linkage from config: a six-bar written as a config entry alone, its ideal dynamics by the engine against an
-independent route, the generated right-hand side against the assembly's constraints, and bad descriptions refused
+"""Any planar linkage from config: a six-bar written as a config entry alone, its ideal dynamics by the engine against
+an independent route, the generated right-hand side against the assembly's constraints, and bad descriptions refused
 with their key.
 
 The independent route: the six-bar's closed-form dyad kinematics (``engines.kinematics.solve_chain``: the crank and
@@ -26,7 +26,8 @@ SIX_BAR = yaml.safe_load("""
 bodies:
   crank: {mass_kg: 0.4, inertia_kg_m2: 1.0e-3, points: {O: [-0.05, 0.0], A: [0.05, 0.0]}, angle_guess_deg: 30}
   coupler: {mass_kg: 1.2, inertia_kg_m2: 9.0e-3, points: {A: [-0.15, 0.0], B: [0.15, 0.0]}, angle_guess_deg: -50}
-  bellcrank: {mass_kg: 1.0, inertia_kg_m2: 6.0e-3, points: {O: [-0.05, -0.03], B: [0.15, -0.03], C: [-0.05, 0.12]}, angle_guess_deg: -100}
+  bellcrank: {mass_kg: 1.0, inertia_kg_m2: 6.0e-3, angle_guess_deg: -100,
+              points: {O: [-0.05, -0.03], B: [0.15, -0.03], C: [-0.05, 0.12]}}
   link: {mass_kg: 0.9, inertia_kg_m2: 7.0e-3, points: {C: [-0.15, 0.0], D: [0.15, 0.0]}, angle_guess_deg: 150}
   rocker: {mass_kg: 0.7, inertia_kg_m2: 2.5e-3, points: {O: [-0.1, 0.0], D: [0.1, 0.0]}, angle_guess_deg: -120}
 ground: {O2: [0.0, 0.0], O4: [0.3, 0.0], O6: [0.3, 0.3]}
@@ -46,8 +47,17 @@ from linkwork.units import STANDARD_GRAVITY as G  # noqa: E402
 
 def _chain() -> Chain:
     """The same six-bar as a crank and three dyads, by its link lengths (m): the independent route's geometry."""
-    return Chain(ground={"O2": (0.0, 0.0), "O4": (0.3, 0.0), "O6": (0.3, 0.3)}, crank_pivot="O2", crank_tip="A", crank_length=0.1,
-                 dyads=(Dyad("B", "A", "O4", 0.3, 0.2, -1), Dyad("C", "O4", "B", 0.15, 0.25, 1), Dyad("D", "C", "O6", 0.3, 0.2, 1)))
+    return Chain(
+        ground={"O2": (0.0, 0.0), "O4": (0.3, 0.0), "O6": (0.3, 0.3)},
+        crank_pivot="O2",
+        crank_tip="A",
+        crank_length=0.1,
+        dyads=(
+            Dyad("B", "A", "O4", 0.3, 0.2, -1),
+            Dyad("C", "O4", "B", 0.15, 0.25, 1),
+            Dyad("D", "C", "O6", 0.3, 0.2, 1),
+        ),
+    )
 
 
 #: Each body of the route: (mass, inertia, a point the chain knows, that point in the body frame, the link giving the
@@ -72,7 +82,9 @@ def independent_route(theta, theta_d, theta_dd, gravity=True):
         w, a = theta_d * ln.rate, theta_dd * ln.rate + theta_d**2 * ln.accel
         vp = theta_d[:, None] * pt.vel
         ap = theta_dd[:, None] * pt.vel + (theta_d**2)[:, None] * pt.acc
-        r = np.stack([np.cos(phi) * sx - np.sin(phi) * sy, np.sin(phi) * sx + np.cos(phi) * sy], axis=-1)  # centre -> point
+        r = np.stack(
+            [np.cos(phi) * sx - np.sin(phi) * sy, np.sin(phi) * sx + np.cos(phi) * sy], axis=-1
+        )  # centre -> point
         perp = np.stack([-r[:, 1], r[:, 0]], axis=-1)
         v = vp - w[:, None] * perp
         acc = ap - a[:, None] * perp + (w**2)[:, None] * r
@@ -120,7 +132,8 @@ def test_six_bar_forward_dynamics_reproduces_the_independent_route():
 
 
 def test_a_driver_given_as_a_fourier_series_moves_the_crank_so():
-    """The driver theta0 + omega t + a1 cos(omega t) + b2 sin(2 omega t): engine (inverse and forward) against the route."""
+    """The driver theta0 + omega t + a1 cos(omega t) + b2 sin(2 omega t): engine (inverse and forward) against the
+    route."""
     spec = copy.deepcopy(SIX_BAR)
     spec["driver"].update(cos_deg=[6.0, 0.0], sin_deg=[0.0, -4.0])
     linkage = describe.check(spec, "linkages.six_bar")
@@ -158,29 +171,96 @@ def _edit(path: str, value):
 
 BAD = [
     # (what, edit, the key named, words of the message)
-    ("a joint naming an unknown point", ("joints.C.bearing", "link.X"), "linkages.six_bar.joints.C.bearing", "unknown point 'X'"),
-    ("a joint naming an unknown body", ("joints.C.bearing", "lever.C"), "linkages.six_bar.joints.C.bearing", "unknown body 'lever'"),
-    ("a joint missing: a free motion left", ("joints.O6", None), "linkages.six_bar.joints", "2 free motions besides the driver"),
-    ("a body not connected to the ground", ("bodies.weight", {"mass_kg": 1.0, "inertia_kg_m2": 0.1, "points": {"P": [0.0, 0.0]}}),
-     "linkages.six_bar.bodies.weight", "not connected to the ground"),
-    ("a driver on a body that is not grounded", ("driver.body", "coupler"), "linkages.six_bar.driver.body", "not pinned to the ground"),
+    (
+        "a joint naming an unknown point",
+        ("joints.C.bearing", "link.X"),
+        "linkages.six_bar.joints.C.bearing",
+        "unknown point 'X'",
+    ),
+    (
+        "a joint naming an unknown body",
+        ("joints.C.bearing", "lever.C"),
+        "linkages.six_bar.joints.C.bearing",
+        "unknown body 'lever'",
+    ),
+    (
+        "a joint missing: a free motion left",
+        ("joints.O6", None),
+        "linkages.six_bar.joints",
+        "2 free motions besides the driver",
+    ),
+    (
+        "a body not connected to the ground",
+        ("bodies.weight", {"mass_kg": 1.0, "inertia_kg_m2": 0.1, "points": {"P": [0.0, 0.0]}}),
+        "linkages.six_bar.bodies.weight",
+        "not connected to the ground",
+    ),
+    (
+        "a driver on a body that is not grounded",
+        ("driver.body", "coupler"),
+        "linkages.six_bar.driver.body",
+        "not pinned to the ground",
+    ),
     ("a linkage that cannot assemble", ("ground.O6", [0.3, 0.9]), "linkages.six_bar.driver", "does not assemble"),
     ("a joint of a body to itself", ("joints.C.bearing", "bellcrank.O"), "linkages.six_bar.joints.C", "to itself"),
-    ("a clearance reading a key of an effect it does not name",
-     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["lubrication"], "viscosity_Pa_s": 0.1,
-                             "length_m": 0.02, "e0_m": 1e-6, "friction": 0.1}), "linkages.six_bar.joints.D.clearance.friction", "unknown key"),
-    ("friction without contact",
-     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["friction"]}),
-     "linkages.six_bar.joints.D.clearance.effects", "friction needs contact"),
-    ("a film cap beyond the clearance",
-     ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["lubrication"], "viscosity_Pa_s": 0.1,
-                             "length_m": 0.02, "e0_m": 2e-4}), "linkages.six_bar.joints.D.clearance.e0_m", "below the radial clearance"),
+    (
+        "a clearance reading a key of an effect it does not name",
+        (
+            "joints.D.clearance",
+            {
+                "journal_radius_m": 0.0099,
+                "bearing_radius_m": 0.01,
+                "effects": ["lubrication"],
+                "viscosity_Pa_s": 0.1,
+                "length_m": 0.02,
+                "e0_m": 1e-6,
+                "friction": 0.1,
+            },
+        ),
+        "linkages.six_bar.joints.D.clearance.friction",
+        "unknown key",
+    ),
+    (
+        "friction without contact",
+        ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["friction"]}),
+        "linkages.six_bar.joints.D.clearance.effects",
+        "friction needs contact",
+    ),
+    (
+        "a film cap beyond the clearance",
+        (
+            "joints.D.clearance",
+            {
+                "journal_radius_m": 0.0099,
+                "bearing_radius_m": 0.01,
+                "effects": ["lubrication"],
+                "viscosity_Pa_s": 0.1,
+                "length_m": 0.02,
+                "e0_m": 2e-4,
+            },
+        ),
+        "linkages.six_bar.joints.D.clearance.e0_m",
+        "below the radial clearance",
+    ),
     ("a negative mass", ("bodies.link.mass_kg", -1.0), "linkages.six_bar.bodies.link.mass_kg", "positive"),
-    ("a spring with a negative stiffness", ("springs", {"w": {"point": "link.C", "rest_m": [0.0, 0.0], "stiffness_N_m": [-1.0, 0.0]}}),
-     "linkages.six_bar.springs.w.stiffness_N_m", "must not be negative"),
-    ("a spring on a ground point", ("springs", {"w": {"point": "ground.O2", "rest_m": [0.0, 0.0], "stiffness_N_m": [1.0, 0.0]}}),
-     "linkages.six_bar.springs.w.point", "point of a body"),
-    ("a rocking driver without its motion", ("driver.rocking", True), "linkages.six_bar.driver.cos_deg", "needs its motion"),
+    (
+        "a spring with a negative stiffness",
+        ("springs", {"w": {"point": "link.C", "rest_m": [0.0, 0.0], "stiffness_N_m": [-1.0, 0.0]}}),
+        "linkages.six_bar.springs.w.stiffness_N_m",
+        "must not be negative",
+    ),
+    (
+        "a spring on a ground point",
+        ("springs", {"w": {"point": "ground.O2", "rest_m": [0.0, 0.0], "stiffness_N_m": [1.0, 0.0]}}),
+        "linkages.six_bar.springs.w.point",
+        "point of a body",
+    ),
+    (
+        "a rocking driver without its motion",
+        ("driver.rocking", True),
+        "linkages.six_bar.driver.cos_deg",
+        "needs its motion",
+    ),
     ("an unknown output body", ("output", "sley"), "linkages.six_bar.output", "unknown body"),
 ]
 
@@ -220,9 +300,20 @@ def test_exudyn_built_from_the_same_description_drives_the_six_bar_alike():
 
 
 #: The six-bar's rocker held by a spring-damper at its pin D and its crank rocked by a given motion (config form).
-SPRUNG = {**copy.deepcopy(SIX_BAR), "springs": {"w": {"point": "rocker.D", "rest_m": [0.35, 0.45], "stiffness_N_m": [400.0, 900.0],
-                                                      "damping_N_s_m": [3.0, 5.0]}},
-          "driver": {"body": "crank", "speed_rad_s": 20.0, "start_angle_deg": 30, "cos_deg": [20.0, 5.0], "sin_deg": [10.0, 0.0], "rocking": True}}
+SPRUNG = {
+    **copy.deepcopy(SIX_BAR),
+    "springs": {
+        "w": {"point": "rocker.D", "rest_m": [0.35, 0.45], "stiffness_N_m": [400.0, 900.0], "damping_N_s_m": [3.0, 5.0]}
+    },
+    "driver": {
+        "body": "crank",
+        "speed_rad_s": 20.0,
+        "start_angle_deg": 30,
+        "cos_deg": [20.0, 5.0],
+        "sin_deg": [10.0, 0.0],
+        "rocking": True,
+    },
+}
 
 
 def test_a_spring_and_a_rocking_driver_from_config_balance_the_drivers_power():

@@ -57,9 +57,14 @@ def _package(tmp_path: Path) -> Path:
 def test_closure_follows_every_kind_of_import(tmp_path):
     lib = _package(tmp_path)
     names = {str(p.relative_to(tmp_path)) for p in closure("linkwork.a", lib)}
-    assert names == {f"lib/linkwork/{n}" for n in ("__init__.py", "a.py", "b.py", "sub/__init__.py", "sub/c.py", "d.py", "e.py")}
+    assert names == {
+        f"lib/linkwork/{n}" for n in ("__init__.py", "a.py", "b.py", "sub/__init__.py", "sub/c.py", "d.py", "e.py")
+    }
     # an entry given by name brings its parent packages (they run when it is imported)
-    assert {str(p.relative_to(tmp_path)) for p in closure("linkwork.sub.c", lib)} >= {"lib/linkwork/__init__.py", "lib/linkwork/sub/__init__.py"}
+    assert {str(p.relative_to(tmp_path)) for p in closure("linkwork.sub.c", lib)} >= {
+        "lib/linkwork/__init__.py",
+        "lib/linkwork/sub/__init__.py",
+    }
     report = {str(p.relative_to(tmp_path)) for p in closure(tmp_path / "reports/r.py", lib)}
     assert report == {"reports/r.py", "reports/_helper.py", "lib/linkwork/__init__.py", "lib/linkwork/b.py"}
 
@@ -68,7 +73,9 @@ def test_closure_of_the_real_studies_keeps_papers_apart():
     lib = PROJECT / "lib"
     for paper in ("stiffness", "beatup", "clearance", "transplanter", "heald"):
         files = {str(p.relative_to(lib)) for p in closure(f"linkwork.papers.{paper}.studies", lib)}
-        others = {f for f in files if f.startswith("linkwork/papers/") and f.count("/") == 3 and f.split("/")[2] != paper}
+        others = {
+            f for f in files if f.startswith("linkwork/papers/") and f.count("/") == 3 and f.split("/")[2] != paper
+        }
         assert not others, f"{paper} reaches {others}"
     heald = {str(p.relative_to(lib)) for p in closure("linkwork.papers.heald.studies", lib)}
     assert "linkwork/engines/kinematics.py" not in heald and "linkwork/engines/chains.py" in heald
@@ -134,9 +141,13 @@ def test_every_lib_module_docstring_and_no_paper_imports_another():
         if rel[0] == "papers" and len(rel) == 3:
             for other in ("stiffness", "beatup", "clearance", "transplanter", "heald"):
                 if other != rel[1]:
-                    assert f"papers.{other}" not in text and f"from ..{other}" not in text, f"{path} imports paper {other}"
+                    assert (
+                        f"papers.{other}" not in text and f"from ..{other}" not in text
+                    ), f"{path} imports paper {other}"
         if rel[0] == "engines":
-            assert "papers" not in text.split('"""', 2)[-1] and "pipeline" not in text.split('"""', 2)[-1], f"engine {path} imports a paper or the pipeline"
+            assert (
+                "papers" not in text.split('"""', 2)[-1] and "pipeline" not in text.split('"""', 2)[-1]
+            ), f"engine {path} imports a paper or the pipeline"
 
 
 def test_results_load_names_the_file_and_the_rebuild_command(tmp_path):
@@ -165,12 +176,21 @@ def test_scene_keys_follow_the_effects():
     from linkwork.papers.clearance.adapter import parameters, scene_keys
 
     section = load_yaml("config/config.yaml")["clearance"]
-    section["scenes"]["film_only"] = {"clearance_joints": [1], "effects": ["lubrication", "contact", "gravity"], "integrator": "stiff"}
+    section["scenes"]["film_only"] = {
+        "clearance_joints": [1],
+        "effects": ["lubrication", "contact", "gravity"],
+        "integrator": "stiff",
+    }
     dry = scene_keys(section, "slender", "dry_1")
     lub = scene_keys(section, "slender", "lubricated_1")
     film_only = scene_keys(section, "slender", "film_only")
     ideal = scene_keys(section, "decoded", "ideal")
-    assert "joints.friction" in dry and "joints.friction" in lub and "joints.friction" not in film_only and "joints.friction" not in ideal
+    assert (
+        "joints.friction" in dry
+        and "joints.friction" in lub
+        and "joints.friction" not in film_only
+        and "joints.friction" not in ideal
+    )
     assert "assumed.v0_m_s" in lub and "assumed.v0_m_s" not in film_only
     assert "joints.viscosity_Pa_s" in lub and "joints.viscosity_Pa_s" not in dry
     assert not any(k.startswith("integrators") for k in ideal) and "integrators.explicit" in dry
@@ -186,23 +206,38 @@ def test_no_report_or_script_is_left_over_from_the_flat_layout():
         assert "report_context" not in text and "linkwork.config " not in text, path
 
 
-@pytest.mark.parametrize("name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"])
+@pytest.mark.parametrize(
+    "name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"]
+)
 def test_reports_only_load_and_format(name):
     """A report imports presentation helpers only, never a numerical lib module, and holds no reductions of results."""
     text = (PROJECT / "reports" / f"{name}.py").read_text()
     imports = [line for line in text.splitlines() if line.startswith(("import ", "from "))]
-    allowed = ("import json", "import textwrap", "import matplotlib.pyplot as plt", "from matplotlib.patches import", "import numpy as np",
-               "import pandas as pd", "from _common import", "from linkwork.papers import PAPERS", f"from linkwork.papers.{name} import CITATION",
-               # presentation constants: the verdict classes' names and meanings, the clearance paper's words for its code names
-               "from linkwork.pipeline.compare import VERDICT", "from linkwork.papers.clearance.words import",
-               "from linkwork.units import")  # unit conversions at the report's boundary
+    allowed = (
+        "import json",
+        "import textwrap",
+        "import matplotlib.pyplot as plt",
+        "from matplotlib.patches import",
+        "import numpy as np",
+        "import pandas as pd",
+        "from _common import",
+        "from linkwork.papers import PAPERS",
+        f"from linkwork.papers.{name} import CITATION",
+        # presentation constants: the verdict classes' names and meanings, the clearance paper's words for its code
+        # names
+        "from linkwork.pipeline.compare import VERDICT",
+        "from linkwork.papers.clearance.words import",
+        "from linkwork.units import",
+    )  # unit conversions at the report's boundary
     assert all(line.startswith(allowed) for line in imports), imports
     for reduction in (".max()", ".min()", ".mean()", "np.mean(", "np.median(", "np.abs(", "np.interp(", "np.polyfit("):
         assert reduction not in text, f"reports/{name}.py computes {reduction}"
     textwrap.dedent(text)  # (readable as a script)
 
 
-@pytest.mark.parametrize("name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"])
+@pytest.mark.parametrize(
+    "name", ["stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index"]
+)
 def test_only_the_declared_reports_show_wall_times(name):
     """Wall times reach a report only through a timings side file: a report outside MEASURED_REPORTS neither
     names one in its rule inputs nor reads one, so it renders to the same bytes on every rerun."""
@@ -214,7 +249,9 @@ def test_only_the_declared_reports_show_wall_times(name):
     assert rules.count(entry) == 1, name
     block = rules[rules.index(entry):].split("\n\n", 1)[0]  # the registration up to the next blank line
     reads = "timings" in script or "time_s" in script or "timings" in block
-    assert reads == (name in MEASURED_REPORTS), f"reports/{name}.py: reads wall times {reads}, declared {name in MEASURED_REPORTS}"
+    assert reads == (
+        name in MEASURED_REPORTS
+    ), f"reports/{name}.py: reads wall times {reads}, declared {name in MEASURED_REPORTS}"
 
 
 def test_fingerprints_split_measured_reports_from_results(tmp_path):
@@ -224,13 +261,21 @@ def test_fingerprints_split_measured_reports_from_results(tmp_path):
 
     (tmp_path / "results/reports").mkdir(parents=True)
     (tmp_path / "results/a").mkdir()
-    for rel, text in {"results/a/x.nc": "1", "results/reports/accuracy.html": "t=1", "results/reports/beatup.html": "b"}.items():
+    for rel, text in {
+        "results/a/x.nc": "1",
+        "results/reports/accuracy.html": "t=1",
+        "results/reports/beatup.html": "b",
+    }.items():
         (tmp_path / rel).write_text(text)
     first = fingerprints(tmp_path)
     assert sorted(first) == ["results/a/x.nc", "results/reports/accuracy.html", "results/reports/beatup.html"]
     (tmp_path / "results/reports/accuracy.html").write_text("t=2")
-    assert compare(first, fingerprints(tmp_path)) == {"identical": ["results/a/x.nc", "results/reports/beatup.html"],
-                                                      "measured": ["results/reports/accuracy.html"], "differing": [], "missing": []}
+    assert compare(first, fingerprints(tmp_path)) == {
+        "identical": ["results/a/x.nc", "results/reports/beatup.html"],
+        "measured": ["results/reports/accuracy.html"],
+        "differing": [],
+        "missing": [],
+    }
     (tmp_path / "results/reports/beatup.html").write_text("c")
     (tmp_path / "results/a/x.nc").unlink()
     split = compare(first, fingerprints(tmp_path))
@@ -246,7 +291,9 @@ def test_readme_measured_figures_are_rendered_from_the_benchmark_files():
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     block = module.render()
-    assert block in (PROJECT / "docs" / "measured.md").read_text(), "run `python benchmarks/readme.py` after a benchmark"
+    assert (
+        block in (PROJECT / "docs" / "measured.md").read_text()
+    ), "run `python benchmarks/readme.py` after a benchmark"
     for name in module.SECTIONS:
         assert (PROJECT / "benchmarks" / "measured" / f"{name}.json").exists(), name
 
@@ -280,8 +327,12 @@ def test_slurm_profile_requests_cover_the_measured_jobs():
             assert req["mem_mb"] >= 1.5 * measured[rule]["max_rss_mb"], rule
             assert req["runtime"] * 60 >= 5 * measured[rule]["max_wall_s"], rule
     for rule in local & set(measured):
-        assert measured[rule]["max_wall_s"] < 5.0, f"{rule} runs on the submitting host but took {measured[rule]['max_wall_s']:.1f} s"
-    assert not set(profile.get("default-resources", [])), "site settings (partition, account) belong to a profile of the user's"
+        assert (
+            measured[rule]["max_wall_s"] < 5.0
+        ), f"{rule} runs on the submitting host but took {measured[rule]['max_wall_s']:.1f} s"
+    assert not set(
+        profile.get("default-resources", [])
+    ), "site settings (partition, account) belong to a profile of the user's"
 
 
 def test_slurm_profile_sets_no_site():
@@ -309,26 +360,58 @@ def test_the_figure_check_stops_a_render_that_draws_outside_the_canvas(tmp_path,
         plt.show()
         """))
     env = {**os.environ, "LINKWORK_CHECK_FIGURES": "1"}
-    proc = subprocess.run([sys.executable, str(PROJECT / "workflow/scripts/render_report.py"), str(notebook), str(tmp_path / "tiny.html")],
-                          env=env, capture_output=True, text=True, timeout=300)
+    proc = subprocess.run(
+        [
+            sys.executable,
+            str(PROJECT / "workflow/scripts/render_report.py"),
+            str(notebook),
+            str(tmp_path / "tiny.html"),
+        ],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
     if outside:
         assert proc.returncode != 0 and "figure 'probe' draws over" in proc.stderr, proc.stderr[-2000:]
         assert not (tmp_path / "tiny.html").exists()
     else:
         assert proc.returncode == 0, proc.stderr[-2000:]
-        assert "data:image/png;base64" in (tmp_path / "tiny.html").read_text() or "image/png" in (tmp_path / "tiny.html").read_text()
+        assert (
+            "data:image/png;base64" in (tmp_path / "tiny.html").read_text()
+            or "image/png" in (tmp_path / "tiny.html").read_text()
+        )
 
 
 def test_values_only_strips_labels_but_keeps_what_a_rule_names():
     """A study receives values: a labelled entry keeps its value (and only the label fields a rule names)."""
     from linkwork.configformat import labelled_entries, values_only
 
-    section = {"fe": {"damping_ratio": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"},
-                      "steps": 3},
-               "gravity": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}}
+    section = {
+        "fe": {
+            "damping_ratio": {
+                "value": 0.02,
+                "status": "assumed",
+                "reason": "r",
+                "range": [0.01, 0.05],
+                "range_reason": "rr",
+            },
+            "steps": 3,
+        },
+        "gravity": {
+            "value": 0.0,
+            "status": "assumed",
+            "reason": "g",
+            "choices": [0.0, 9.8],
+            "choice_labels": ["off", "on"],
+        },
+    }
     out = values_only(section)
     assert out == {"fe": {"damping_ratio": {"value": 0.02}, "steps": 3}, "gravity": {"value": 0.0}}
-    assert values_only(section, keep=["fe.damping_ratio.range"])["fe"]["damping_ratio"] == {"value": 0.02, "range": [0.01, 0.05]}
+    assert values_only(section, keep=["fe.damping_ratio.range"])["fe"]["damping_ratio"] == {
+        "value": 0.02,
+        "range": [0.01, 0.05],
+    }
     assert section["fe"]["damping_ratio"]["reason"] == "r"  # a copy: the config is untouched
     assert list(labelled_entries(section)) == ["fe.damping_ratio", "gravity"]
     assert labelled_entries(section)["gravity"]["choice_labels"] == ["off", "on"]
@@ -341,9 +424,25 @@ def test_a_rules_params_change_with_a_reason_only_where_the_rule_names_it():
 
     from linkwork.configformat import DESIGN_FIELDS, narrow
 
-    section = {"fe": {"damping_ratio": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"},
-                      "steps": 3},
-               "gravity": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}}
+    section = {
+        "fe": {
+            "damping_ratio": {
+                "value": 0.02,
+                "status": "assumed",
+                "reason": "r",
+                "range": [0.01, 0.05],
+                "range_reason": "rr",
+            },
+            "steps": 3,
+        },
+        "gravity": {
+            "value": 0.0,
+            "status": "assumed",
+            "reason": "g",
+            "choices": [0.0, 9.8],
+            "choice_labels": ["off", "on"],
+        },
+    }
     edited = copy.deepcopy(section)
     edited["fe"]["damping_ratio"]["reason"] = "another reason"
     edited["gravity"]["reason"] = "another reason"
@@ -353,7 +452,9 @@ def test_a_rules_params_change_with_a_reason_only_where_the_rule_names_it():
         for fields in ((), DESIGN_FIELDS):
             assert narrow(edited, paths, fields) == narrow(section, paths, fields)  # a reason reaches no study
     assert narrow(ranged, ["fe", "gravity"]) == narrow(section, ["fe", "gravity"])
-    assert narrow(ranged, ["fe.damping_ratio", "fe.damping_ratio.range"]) != narrow(section, ["fe.damping_ratio", "fe.damping_ratio.range"])
+    assert narrow(ranged, ["fe.damping_ratio", "fe.damping_ratio.range"]) != narrow(
+        section, ["fe.damping_ratio", "fe.damping_ratio.range"]
+    )
     design = narrow(section, ["fe", "gravity"], DESIGN_FIELDS)
     assert design["gravity"] == {"value": 0.0, "choices": [0.0, 9.8], "choice_labels": ["off", "on"]}
     assert design["fe"]["damping_ratio"] == {"value": 0.02, "range": [0.01, 0.05]}
@@ -362,10 +463,18 @@ def test_a_rules_params_change_with_a_reason_only_where_the_rule_names_it():
 def test_assumptions_hold_every_labelled_entry_whole():
     from linkwork.pipeline.assumptions import assumptions
 
-    section = {"a": {"value": 1.0, "status": "sourced", "reason": "printed"},
-               "b": {"c": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"}},
-               "g": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8], "choice_labels": ["gravity off", "gravity on"]},
-               "n": 3}
+    section = {
+        "a": {"value": 1.0, "status": "sourced", "reason": "printed"},
+        "b": {"c": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05], "range_reason": "rr"}},
+        "g": {
+            "value": 0.0,
+            "status": "assumed",
+            "reason": "g",
+            "choices": [0.0, 9.8],
+            "choice_labels": ["gravity off", "gravity on"],
+        },
+        "n": 3,
+    }
     ds = assumptions(section)
     assert list(ds.entry.values) == ["a", "b.c", "g"]
     assert list(ds.range.values) == ["", "0.01–0.05", "gravity off / gravity on"]
@@ -373,16 +482,27 @@ def test_assumptions_hold_every_labelled_entry_whole():
 
 
 def test_papers_are_found_by_their_packages_and_a_module_reading_them_depends_on_each(tmp_path):
-    """A package with TITLE, CITATION and ORDER in its __init__ is a paper, in ORDER; a paper's own modules do not import
-    its siblings, and a module that reads PAPERS has every paper's __init__ in its import closure."""
+    """A package with TITLE, CITATION and ORDER in its __init__ is a paper, in ORDER; a paper's own modules do not
+    import its siblings, and a module that reads PAPERS has every paper's __init__ in its import closure."""
     import subprocess
     import sys
 
     from linkwork.papers import CITATIONS, PAPERS
 
-    assert list(PAPERS) == ["stiffness", "beatup", "clearance", "transplanter", "heald"] and set(CITATIONS) == set(PAPERS)
-    probe = "import sys, linkwork.papers.stiffness.studies; print(sorted(m for m in sys.modules if m.count('.') == 2 and m.startswith('linkwork.papers.')))"
-    out = subprocess.run([sys.executable, "-c", probe], env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")}, capture_output=True, text=True, check=True)
+    assert list(PAPERS) == ["stiffness", "beatup", "clearance", "transplanter", "heald"] and set(CITATIONS) == set(
+        PAPERS
+    )
+    probe = (
+        "import sys, linkwork.papers.stiffness.studies; print(sorted(m for m in sys.modules if m.count('.') == 2 and"
+        " m.startswith('linkwork.papers.')))"
+    )
+    out = subprocess.run(
+        [sys.executable, "-c", probe],
+        env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")},
+        capture_output=True,
+        text=True,
+        check=True,
+    )
     assert out.stdout.strip() == "['linkwork.papers.stiffness']"
     lib = PROJECT / "lib"
     readme = {str(p.relative_to(lib)) for p in closure("linkwork.project.readme", lib)}

@@ -108,10 +108,13 @@ def test_finish_job_runs_the_exit_handlers_flushes_and_leaves_a_written_result_w
 
 def test_strings_concatenated_from_files_of_different_widths_are_written_whole(tmp_path):
     """Two results whose labels have different lengths, read back and concatenated (as a gather step does), then
-    written: no label is cut to the first file's width (it was: the heald study's second scenario counted no samples)."""
+    written: no label is cut to the first file's width (it was: the heald study's second scenario counted no
+    samples)."""
     def labelled(labels):
-        return xr.Dataset({"k": ("sample", np.arange(len(labels), dtype=float), {"units": "1", "long_name": "k"})},
-                          coords={"sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "label"})})
+        return xr.Dataset(
+            {"k": ("sample", np.arange(len(labels), dtype=float), {"units": "1", "long_name": "k"})},
+            coords={"sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "label"})},
+        )
 
     short, long = ["drive at the shaft"] * 2, ["drive at half the shaft frequency"] * 2
     parts = [xr.load_dataset(results.write(labelled(x), tmp_path / f"{k}.nc")) for k, x in enumerate((short, long))]
@@ -124,13 +127,19 @@ def test_every_result_has_its_checksum_and_a_truncated_or_replaced_one_is_named(
     another valid one, stops with one line naming the file and the command that rebuilds it."""
     table = results.write_text("a,b\n" + "".join(f"{i},{i * i}\n" for i in range(1000)), tmp_path / "comparison.csv")
     line = results.checksum_path(table).read_text()
-    assert line == f"{hashlib.sha256(table.read_bytes()).hexdigest()}  {table.resolve()}\n"  # outside the working folder: absolute
+    assert (
+        line == f"{hashlib.sha256(table.read_bytes()).hexdigest()}  {table.resolve()}\n"
+    )  # outside the working folder: absolute
     assert len(results.load(table)) == 1000
     table.write_bytes(table.read_bytes()[:3000])  # head -c 3000: still a valid CSV of fewer rows
     with pytest.raises(results.UnreadableResult) as info:
         results.load(table)
     message = str(info.value)
-    assert f"cannot read {table}" in message and "does not match its checksum" in message and f"snakemake --force {table}" in message
+    assert (
+        f"cannot read {table}" in message
+        and "does not match its checksum" in message
+        and f"snakemake --force {table}" in message
+    )
     assert "\n" not in message
     first, other = results.write(_ds(), tmp_path / "first.nc"), results.write(_ds() * 2, tmp_path / "other.nc")
     first.write_bytes(other.read_bytes())
@@ -138,7 +147,9 @@ def test_every_result_has_its_checksum_and_a_truncated_or_replaced_one_is_named(
         results.load(first)
     first.write_bytes(other.read_bytes())  # another result copied over it with its own checksum
     results.checksum_path(first).write_bytes(results.checksum_path(other).read_bytes())
-    with pytest.raises(results.UnreadableResult, match="first.nc .its checksum is that of .*other.nc: another result copied over it"):
+    with pytest.raises(
+        results.UnreadableResult, match="first.nc .its checksum is that of .*other.nc: another result copied over it"
+    ):
         results.load(first)
     results.checksum_path(other).unlink()  # no checksum beside it (a config file): read as it is
     assert float(results.load(other).k[1]) == 2.0
@@ -175,11 +186,18 @@ def test_a_full_disk_is_one_line_naming_the_file_and_leaves_no_temporary(tmp_pat
             return real(self, *args, **kwargs)
 
         monkeypatch.setattr(Path, "write_text", full)
-        write, name, reason = lambda: results.write_text("a,b\n1,2\n", tmp_path / "out.csv"), "out.csv", "No space left on device"
+        write, name, reason = (
+            lambda: results.write_text("a,b\n1,2\n", tmp_path / "out.csv"),
+            "out.csv",
+            "No space left on device",
+        )
     with pytest.raises(results.ResultWriteError) as info:
         write()
-    assert str(info.value) == (f"cannot write {tmp_path / name} ({reason}): free disk space or make {tmp_path} writable, "
-                               "then run snakemake again")
+    assert (
+        str(info.value)
+        == f"cannot write {tmp_path / name} ({reason}): free disk space or make {tmp_path} writable, "
+        "then run snakemake again"
+    )
     assert list(tmp_path.iterdir()) == []
 
 
@@ -214,6 +232,8 @@ def test_a_results_folder_that_cannot_be_written_is_named(tmp_path, monkeypatch)
         return real(*args, dir=dir, **kwargs)
 
     monkeypatch.setattr(tempfile, "mkstemp", refused)
-    assert results.unwritable(tmp_path / "results") == (
-        f"{tmp_path / 'results' / 'stiffness'} cannot be written (Operation not permitted): make {tmp_path / 'results'} writable again "
-        f"(chmod -R u+w {tmp_path / 'results'}), then run snakemake")
+    assert (
+        results.unwritable(tmp_path / "results")
+        == f"{tmp_path / 'results' / 'stiffness'} cannot be written (Operation not permitted): make"
+        f" {tmp_path / 'results'} writable again (chmod -R u+w {tmp_path / 'results'}), then run snakemake"
+    )

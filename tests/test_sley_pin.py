@@ -17,7 +17,9 @@ def test_the_engine_moves_the_sley_as_the_papers_chain_does():
     """The description built from the six-bar's lengths, assembled and driven by the engine: the sley angle and its
     angular acceleration over a turn against ``model.sley_motion`` (the dyad chain, theta6'' omega^2), to 1e-9."""
     mech = six_bar(SECTION["sixbar"])
-    omega = CRANK_SENSES[crank_sense(SECTION["sixbar"])] * rpm_to_rad_s(SECTION["sley_pin"]["loom_speed_rev_min"]["value"])
+    omega = CRANK_SENSES[crank_sense(SECTION["sixbar"])] * rpm_to_rad_s(
+        SECTION["sley_pin"]["loom_speed_rev_min"]["value"]
+    )
     front = dead_centres(mech).front
     linkage = _linkage(mech, SECTION["sley_pin"], omega, front, None)
     t = np.linspace(0.0, linkage.driver.period, 181)
@@ -31,9 +33,16 @@ def test_the_engine_moves_the_sley_as_the_papers_chain_does():
 
 def test_the_sley_pin_study_records_a_settled_state_and_its_error_bar():
     """A short run of the study (a coarse turn, few turns): the state is found, the peaks are finite and the clearance
-    scene's acceleration differs from the ideal one (the pin's impacts), the ideal pin's peak equals the ideal curve's."""
-    section = {**SECTION, "sley_pin": {**SECTION["sley_pin"], "points_per_turn": 1800,
-                                        "states": {**SECTION["sley_pin"]["states"], "min_cycles": 4, "check_cycles": 2}}}
+    scene's acceleration differs from the ideal one (the pin's impacts), the ideal pin's peak equals the ideal
+    curve's."""
+    section = {
+        **SECTION,
+        "sley_pin": {
+            **SECTION["sley_pin"],
+            "points_per_turn": 1800,
+            "states": {**SECTION["sley_pin"]["states"], "min_cycles": 4, "check_cycles": 2},
+        },
+    }
     ds = study(section)
     assert ds.attrs["state_status"] in ("periodic", "stationary")
     assert np.isfinite(ds.peak_in_window.values).all() and (ds.pin_peak_in_window_numerical_error.values >= 0.0).all()

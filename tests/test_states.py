@@ -101,11 +101,15 @@ def test_settle_finds_a_period_three_orbit_after_a_long_transient_and_judges_non
     step, asked = _stepper(record, measures)
     # min_cycles 100: the orbit is proven (its section within 1e-4 of the last period) before 100 cycles could be
     # judged as a stationary record, which the period-3 pattern's own scatter would let a geometric approach pass
-    found = settle(step, chunk=4, max_cycles=400, max_period=8, section_tol=1e-4, periods=3, min_cycles=100, confidence=0.95)
+    found = settle(
+        step, chunk=4, max_cycles=400, max_period=8, section_tol=1e-4, periods=3, min_cycles=100, confidence=0.95
+    )
     assert found["status"] == PERIODIC and found["period"] == 3
     first, stop = found["window"]
     assert first >= found["transient"] > 60 and (stop - first) % 3 == 0 and stop - first >= 3
-    assert sum(asked) < found["transient"] + (3 + 1) * 3 + 4  # stopped within a chunk of the proof (periods + 1 periods), far from the cap
+    assert (
+        sum(asked) < found["transient"] + (3 + 1) * 3 + 4
+    )  # stopped within a chunk of the proof (periods + 1 periods), far from the cap
     off = np.abs(record[: found["transient"] - 3] - ORBIT3[np.arange(found["transient"] - 3) % 3]).max(axis=1)
     assert off.max() > 1e-4
 
@@ -125,11 +129,15 @@ def test_settle_judges_a_noisy_state_only_after_its_transient_has_gone():
     measures = (100.0 + 30.0 * noise * np.exp(-np.arange(n) / 20.0) + noise * rng.standard_normal(n))[:, None]
     points = rng.standard_normal((n, 2))  # a section that never repeats
     step, _ = _stepper(points, measures)
-    found = settle(step, chunk=4, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95)
+    found = settle(
+        step, chunk=4, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95
+    )
     assert found["status"] == STATIONARY and found["period"] == 0
     first, stop = found["window"]
     assert stop - first >= 50
-    left = float(np.mean(30.0 * noise * np.exp(-np.arange(first, stop) / 20.0)))  # the transient's share of the judged mean
+    left = float(
+        np.mean(30.0 * noise * np.exp(-np.arange(first, stop) / 20.0))
+    )  # the transient's share of the judged mean
     assert left < 0.5 * noise and first == found["transient"] and first <= stop // 3
 
 
@@ -141,7 +149,9 @@ def test_a_drift_that_never_stops_reaches_the_cap_and_says_so():
     n = 120
     measures = np.linspace(100.0, 160.0, n)[:, None] + 0.1 * np.random.default_rng(1).standard_normal((n, 1))
     step, _ = _stepper(np.random.default_rng(2).standard_normal((n, 2)), measures)
-    found = settle(step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95)
+    found = settle(
+        step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95
+    )
     assert found["status"] == CAP and found["points"].shape[0] == n
     assert not thirds_agree(measures.T, 0.95)[0]
     assert thirds_agree(100.0 + np.random.default_rng(4).standard_normal((2, 90)), 0.95)[0]
@@ -160,9 +170,21 @@ def test_settle_reads_only_the_rows_it_is_given_and_returns_every_row():
     measures = np.stack([steady, drifting], axis=1)
     points = rng.standard_normal((n, 2))
     step, _ = _stepper(points, measures)
-    read_all = settle(step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95)
+    read_all = settle(
+        step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95
+    )
     step, _ = _stepper(points, measures)
-    first_only = settle(step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95, rows=(0,))
+    first_only = settle(
+        step,
+        chunk=10,
+        max_cycles=n,
+        max_period=8,
+        section_tol=1e-3,
+        periods=3,
+        min_cycles=50,
+        confidence=0.95,
+        rows=(0,),
+    )
     assert read_all["status"] == CAP
     assert first_only["status"] == STATIONARY and first_only["measures"].shape[1] == 2
     assert np.array_equal(first_only["measures"], measures[: first_only["measures"].shape[0]])

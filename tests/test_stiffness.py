@@ -138,7 +138,8 @@ def test_tables_form_is_the_printed_tables_integrated():
             total = 0.0
             for (n, m), length, s in zip(rows, (l1, l2, l3), SECTIONS, strict=True):
                 total += quad(
-                    lambda x: n(x) ** 2 / (s.youngs_modulus * s.area) + m(x) ** 2 / (s.youngs_modulus * s.second_moment),
+                    lambda x: n(x) ** 2 / (s.youngs_modulus * s.area)
+                    + m(x) ** 2 / (s.youngs_modulus * s.second_moment),
                     0.0,
                     length,
                     epsrel=1e-13,
@@ -266,7 +267,11 @@ def test_pinned_stiffness_changes_with_each_part_as_its_formula_says():
     from linkwork.papers.stiffness.model import PINNED_PARTS, pinned_output_compliance
 
     base = pinned_output_compliance(LINKAGE, SECTIONS, ALPHA)
-    coupler = (SECTIONS[0], Section(SECTIONS[1].youngs_modulus, 2 * SECTIONS[1].area, SECTIONS[1].second_moment), SECTIONS[2])
+    coupler = (
+        SECTIONS[0],
+        Section(SECTIONS[1].youngs_modulus, 2 * SECTIONS[1].area, SECTIONS[1].second_moment),
+        SECTIONS[2],
+    )
     changed = pinned_output_compliance(LINKAGE, coupler, ALPHA)
     i = PINNED_PARTS.index("coupler axial")
     assert np.allclose(changed[:, i], base[:, i] / 2, rtol=1e-14)
@@ -274,8 +279,8 @@ def test_pinned_stiffness_changes_with_each_part_as_its_formula_says():
 
 
 def test_mobility_counts_agree_with_the_null_space_of_the_pinned_frame():
-    """Grübler's counts against the rank of the FE stiffness: with the crank held and O' free the pinned frame has
-    two mechanism modes (so a horizontal force at O' finds no elastic resistance: no pinned K_h); with O' pivoted none."""
+    """Grübler's counts against the rank of the FE stiffness: with the crank held and O' free the pinned frame has two
+    mechanism modes (so a horizontal force at O' finds no elastic resistance: no pinned K_h); with O' pivoted none."""
     from linkwork.papers.stiffness.model import MOBILITY_CASES, planar_mobility
 
     counts = [planar_mobility(*case) for case in MOBILITY_CASES.values()]
@@ -310,8 +315,14 @@ def test_findings_state_one_grid_angles_in_degrees_and_the_axial_verdict():
     # crank angles: our value minus the published one in degrees, on the circle (70 deg against 280 deg is 150 deg)
     assert fnd.deviation_unit.sel(quantity_id="K_h_argmin") == "deg"
     assert float(fnd.deviation_shown.sel(form="equilibrium", quantity_id="K_h_argmin")) == 150.0
-    assert float(fnd.deviation_shown.sel(form="equilibrium", quantity_id="K_h_argmax")) == head.loc[("equilibrium", "K_h_argmax"), "reproduced"] - 100
-    assert np.isclose(float(fnd.deviation_shown.sel(form="tables", quantity_id="K_c_max")), head.loc[("tables", "K_c_max"), "relative_deviation"])
+    assert (
+        float(fnd.deviation_shown.sel(form="equilibrium", quantity_id="K_h_argmax"))
+        == head.loc[("equilibrium", "K_h_argmax"), "reproduced"] - 100
+    )
+    assert np.isclose(
+        float(fnd.deviation_shown.sel(form="tables", quantity_id="K_c_max")),
+        head.loc[("tables", "K_c_max"), "relative_deviation"],
+    )
     # the axial verdict follows its threshold: 22.8 % of x_O' is not negligible at 5 %, is at 30 %
     assert 0.2 < float(fnd.axial_share_largest_force) < 0.25 and not fnd.axial_terms_negligible.any()
     _, loose = _compared(axial_negligible_share=0.3)
@@ -348,7 +359,10 @@ def test_the_conclusion_is_one_verdict_per_form_and_counted_once():
         counted = int(fnd.verdict_count.sel(count_model=form, role="headline").isel(count_scenario=0).sum())
         assert counted == int(fnd.headline_total.sel(form=form)) + 1 == 9
     assert list(fnd.conclusion_verdict.values) == ["matches"] * (len(forms) - 1) + ["deviates"]
-    assert int(fnd.verdict_count.sel(count_model="tables", role="headline", verdict="matches").isel(count_scenario=0)) == int(fnd.headline_matches.sel(form="tables")) + 1
+    assert (
+        int(fnd.verdict_count.sel(count_model="tables", role="headline", verdict="matches").isel(count_scenario=0))
+        == int(fnd.headline_matches.sel(form="tables")) + 1
+    )
     # the combined verdict: one stiffness found near constant makes the conclusion deviate
     claims = table[table.id.isin(CONCLUSION)].copy()
     forms = forms[:3]
@@ -360,7 +374,10 @@ def test_the_conclusion_is_one_verdict_per_form_and_counted_once():
     # a threshold claim shows our max/min itself, not a percentage of the threshold
     assert str(fnd.deviation_unit.sel(quantity_id="K_h_not_constant").values) == "ratio"
     head = table[table.role == "headline"].set_index(["model", "id"])
-    assert float(fnd.deviation_shown.sel(form="tables", quantity_id="K_h_not_constant")) == head.loc[("tables", "K_h_not_constant"), "reproduced"]
+    assert (
+        float(fnd.deviation_shown.sel(form="tables", quantity_id="K_h_not_constant"))
+        == head.loc[("tables", "K_h_not_constant"), "reproduced"]
+    )
     # eq. (8) is Table 1 integrated: the printed form's K_h is the tables' (why two rows of section 6 agree)
     assert int(fnd.printed_K_h_same_as_tables) == 1
 
@@ -381,18 +398,37 @@ def test_the_pinned_form_judges_the_conclusion_on_the_real_joints():
     check_finite(fnd, "findings")  # the writer's check: a NaN says what it means (no pinned K_h)
     assert np.isnan(float(fnd.deviation_shown.sel(form="pinned", quantity_id="K_h_max")))
     # K_h has no pinned counterpart: every K_h row of the pinned form is 'not reproducible', saying why
-    assert _ids(table, "pinned", "not reproducible") == {"K_h_max", "K_h_argmax", "K_h_min", "K_h_argmin", "K_h_mean", "K_h_not_constant"}
+    assert _ids(table, "pinned", "not reproducible") == {
+        "K_h_max",
+        "K_h_argmax",
+        "K_h_min",
+        "K_h_argmin",
+        "K_h_mean",
+        "K_h_not_constant",
+    }
     missing = table[(table.model == "pinned") & table.id.str.startswith("K_h")]
-    assert missing.reproduced.isna().all() and missing.numerical_error.isna().all() and missing.input_source.str.contains("mobility 2").all()
+    assert (
+        missing.reproduced.isna().all()
+        and missing.numerical_error.isna().all()
+        and missing.input_source.str.contains("mobility 2").all()
+    )
     assert int(fnd.pinned_K_h_exists) == 0 and int(fnd.pinned_free_mobility) == 2
     # the pinned K_c claim reads the pinned output stiffness's own max/min (about 1.05, below 1.2): it deviates
     row = table[(table.model == "pinned") & (table.id == "K_c_not_constant")].iloc[0]
-    assert row.reproduced == float(ds.K_pinned.max() / ds.K_pinned.min()) and 1.0 < row.reproduced < 1.2 and row.verdict == "deviates"
+    assert (
+        row.reproduced == float(ds.K_pinned.max() / ds.K_pinned.min())
+        and 1.0 < row.reproduced < 1.2
+        and row.verdict == "deviates"
+    )
     # the pinned K_c numbers are the pinned output stiffness's extremes and mean, several times the published K_c
     pinned = table[(table.model == "pinned")].set_index("id")
-    assert pinned.reproduced["K_c_min"] == float(ds.K_pinned.min()) and pinned.reproduced["K_c_mean"] == float(ds.K_pinned.mean())
+    assert pinned.reproduced["K_c_min"] == float(ds.K_pinned.min()) and pinned.reproduced["K_c_mean"] == float(
+        ds.K_pinned.mean()
+    )
     # the scenario decides the conclusion: it holds welded, deviates pinned
-    assert list(fnd.conclusion_by_joints.values) == ["matches", "deviates"] and int(fnd.conclusion_decided_by_joints) == 1
+    assert (
+        list(fnd.conclusion_by_joints.values) == ["matches", "deviates"] and int(fnd.conclusion_decided_by_joints) == 1
+    )
     # the defensible model's count holds the conclusion over the joint model, which decides it: depends on assumptions
     counted = fnd.verdict_count.sel(count_model="equilibrium", role="headline").isel(count_scenario=0)
     assert int(counted.sel(verdict="matches")) == int(fnd.headline_matches.sel(form="equilibrium")) == 0
@@ -405,8 +441,9 @@ def test_the_pinned_form_judges_the_conclusion_on_the_real_joints():
 
 
 def test_a_pinned_mechanism_that_varies_considerably_changes_the_verdict():
-    """A longer crank and a stiff rocker make the pinned output vary by more than 1.2: the pinned K_c claim then matches,
-    so the pinned conclusion is 'not reproducible' (K_h has no counterpart), still not a match, and the answer says so."""
+    """A longer crank and a stiff rocker make the pinned output vary by more than 1.2: the pinned K_c claim then
+    matches, so the pinned conclusion is 'not reproducible' (K_h has no counterpart), still not a match, and the answer
+    says so."""
     cfg = load_yaml("config/config.yaml")["stiffness"]
     members = {k: dict(v) for k, v in cfg["members"].items()}
     members["BO"]["second_moment_m4"] *= 1e4
@@ -414,7 +451,9 @@ def test_a_pinned_mechanism_that_varies_considerably_changes_the_verdict():
     assert float(fnd.pinned_max_over_min) > 1.2 and int(fnd.pinned_varies_considerably) == 1
     assert "K_c_not_constant" in _ids(table, "pinned", "matches")
     assert list(fnd.conclusion_by_joints.values) == ["matches", "not reproducible"]
-    counted = fnd.verdict_count.sel(count_model="equilibrium", role="headline", verdict="not reproducible").isel(count_scenario=0)
+    counted = fnd.verdict_count.sel(count_model="equilibrium", role="headline", verdict="not reproducible").isel(
+        count_scenario=0
+    )
     assert int(counted) == 1
     assert "so with the joints pinned it is 'not reproducible'" in fnd.attrs["answer"]
 
@@ -427,7 +466,11 @@ def test_the_answer_is_two_plain_sentences_read_from_the_findings():
     assert len(re.findall(r"[.!?](?:\s|$)", text)) == 2, text
     assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
     assert text.startswith("The published stiffness numbers follow the paper's own Tables 1–2")
-    assert f"({int(fnd.headline_matches.sel(form='tables'))} of {int(fnd.headline_total.sel(form='tables'))} within rounding)" in text
+    assert (
+        f"({int(fnd.headline_matches.sel(form='tables'))} of {int(fnd.headline_total.sel(form='tables'))} within"
+        " rounding)"
+        in text
+    )
     assert "statics none of the 8 match" in text and int(fnd.headline_matches.sel(form="equilibrium")) == 0
     assert "depends on the joint model: it holds with the joints welded" in text
     assert f"max/min {float(fnd.welded_max_over_min_least):.2f}–{float(fnd.welded_max_over_min_most):.2f}" in text
@@ -456,32 +499,51 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     results.write(ds, tmp_path / "stiffness.nc")
     results.write(fnd, tmp_path / "findings.nc")
     table.to_csv(tmp_path / "comparison.csv", index=False)
-    inputs = {"result": tmp_path / "stiffness.nc", "findings": tmp_path / "findings.nc", "comparison": tmp_path / "comparison.csv",
-              "published": Path("config/published/stiffness.yaml").resolve()}
+    inputs = {
+        "result": tmp_path / "stiffness.nc",
+        "findings": tmp_path / "findings.nc",
+        "comparison": tmp_path / "comparison.csv",
+        "published": Path("config/published/stiffness.yaml").resolve(),
+    }
     out = tmp_path / "stiffness.html"
     args = [a for k, v in inputs.items() for a in ("--input", f"{k}={v}")]
-    proc = subprocess.run([sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
-                          env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"}, capture_output=True, text=True, timeout=600)
+    proc = subprocess.run(
+        [sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
+        env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"},
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stderr[-3000:]
     page = out.read_text()
     assert "Traceback" not in page and 'vnd.jupyter.stderr" tabindex' not in page  # no warning or error printed
     body = page[page.index("<body"):]
-    text = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<style.*?</style>|<script.*?</script>", "", body, flags=re.S))))
+    text = re.sub(
+        r"\s+",
+        " ",
+        html.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<style.*?</style>|<script.*?</script>", "", body, flags=re.S))),
+    )
     answer = re.sub(r"\s+", " ", fnd.attrs["answer"])
     heading = text.index("The stiffness paper (Huang, Wu, Li 2022)")
     assert text.index(answer) > heading
     # the answer, then the one figure (its caption), then the paper's citation and the rest
     first_figure = body.index("<img")
     assert body.index("Does the paper hold up?") < first_figure < body.index("What the paper does")
-    assert text.index("Figure: Linear stiffness K_h (N/m, left) and rotational stiffness K_c (N·m/rad, right)") < text.index("Paper.")
+    assert text.index(
+        "Figure: Linear stiffness K_h (N/m, left) and rotational stiffness K_c (N·m/rad, right)"
+    ) < text.index("Paper.")
     assert f"the pinned one by {float(fnd.pinned_max_over_min):.2f}" in text
     prose = text[:text.index("Provenance")]
-    assert not re.findall(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b", prose), sorted(set(re.findall(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b", prose)))
+    assert not re.findall(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b", prose), sorted(
+        set(re.findall(r"\b[a-z][a-z0-9]*_[a-z0-9_]+\b", prose))
+    )
     assert "stiffness." not in prose.replace("stiffness. ", "") and not re.search(r"\{[^}]*\}", prose)
     # the conclusion judged on the pinned joints is stated, with the joint model as the deciding scenario
     plain = re.sub(r" ([:;,.])", r"\1", text)
     assert "The joint model decides it: welded joints, matches; pinned joints, deviates." in plain
-    assert "its 5 numbers are not reproducible" in plain  # the pinned mechanism's K_h numbers, counted from the comparison
+    assert (
+        "its 5 numbers are not reproducible" in plain
+    )  # the pinned mechanism's K_h numbers, counted from the comparison
     assert "On the machine's pinned joints its verdict is deviates" in plain
 
 
@@ -490,7 +552,10 @@ def test_the_conclusion_on_the_machine_depends_on_the_joint_model_where_it_decid
     where welded and pinned agree, 'depends on assumptions' where they disagree."""
     from linkwork.papers.stiffness.findings import physical_verdict
 
-    assert physical_verdict({"equilibrium": "matches", "tables": "matches", "pinned": "deviates"}) == "depends on assumptions"
+    assert (
+        physical_verdict({"equilibrium": "matches", "tables": "matches", "pinned": "deviates"})
+        == "depends on assumptions"
+    )
     assert physical_verdict({"equilibrium": "matches", "tables": "matches", "pinned": "matches"}) == "matches"
     assert physical_verdict({"equilibrium": "deviates", "pinned": "deviates"}) == "deviates"
     assert physical_verdict({"equilibrium": "matches", "pinned": "not reproducible"}) == "not reproducible"

@@ -4,7 +4,16 @@ colour ranges), and why the heald sweep does not sweep the warp branch."""
 import numpy as np
 import pytest
 
-from linkwork.pipeline.sweeps import COLOUR_FLOOR_FACTOR, batches, crossings, gather, grid, interpret, points_dataset, trend
+from linkwork.pipeline.sweeps import (
+    COLOUR_FLOOR_FACTOR,
+    batches,
+    crossings,
+    gather,
+    grid,
+    interpret,
+    points_dataset,
+    trend,
+)
 
 from conftest import load_yaml
 
@@ -35,21 +44,34 @@ def test_crossing_is_exact_for_a_power_law_on_a_log_axis():
     assert crossings(x, np.log(y), np.log(10.0)) == pytest.approx(np.sqrt(10.0), rel=1e-12)
     assert crossings(x, y, 4.0) == 2.0  # a grid value exactly at the threshold
     assert np.isnan(crossings(x, y, 100.0)) and np.isnan(crossings(x, -y, 0.5))
-    assert crossings(np.array([-1.0, 1.0]), np.array([0.0, 2.0]), 1.0) == pytest.approx(0.0)  # linear where x is not positive
+    assert crossings(np.array([-1.0, 1.0]), np.array([0.0, 2.0]), 1.0) == pytest.approx(
+        0.0
+    )  # linear where x is not positive
 
 
 def test_trend_change_and_monotone_lines():
     v = np.array([[1.0, 2.0], [1.5, 1.0], [2.0, 3.0]])  # axis 0 swept; line 0 monotone (+100 %), line 1 not (+50 %)
     t = trend(v)
-    assert t["change_low"] == pytest.approx(0.5) and t["change_high"] == pytest.approx(1.0) and t["monotone_fraction"] == 0.5
+    assert (
+        t["change_low"] == pytest.approx(0.5)
+        and t["change_high"] == pytest.approx(1.0)
+        and t["monotone_fraction"] == 0.5
+    )
 
 
 def test_interpret_states_crossings_and_a_colour_range_that_does_not_exaggerate():
     axes = {"clearance_m": [1e-5, 2e-5, 4e-5, 8e-5], "reaction_ratio_EF": [1.0, 2.0, 4.0]}
     pts = grid(axes)
-    values = [{"r": p["reaction_ratio_EF"] * (1 + p["clearance_m"] * 1e3), "flat": 1.0 + 0.05 * p["clearance_m"] / 8e-5} for p in pts]
+    values = [
+        {"r": p["reaction_ratio_EF"] * (1 + p["clearance_m"] * 1e3), "flat": 1.0 + 0.05 * p["clearance_m"] / 8e-5}
+        for p in pts
+    ]
     ds = gather(axes, [points_dataset(pts, values, {"r": ("1", "ratio"), "flat": ("N", "a 5 % change")})])
-    out = interpret(ds, {"clearance_m": 2.1e-5, "reaction_ratio_EF": 2.0}, {"r": {"value": 3.0, "along": "reaction_ratio_EF", "label": "t"}})
+    out = interpret(
+        ds,
+        {"clearance_m": 2.1e-5, "reaction_ratio_EF": 2.0},
+        {"r": {"value": 3.0, "along": "reaction_ratio_EF", "label": "t"}},
+    )
     assert out.attrs["reference_clearance_m"] == 2e-5
     # r = ratio x (1 + 1e3 c) crosses 3 on the log ratio axis at 3 / (1 + 1e3 c) when that lies on the grid
     for c, cross, side in zip(axes["clearance_m"], out.r_threshold_crossing.values, out.r_threshold_side.values):
@@ -59,9 +81,12 @@ def test_interpret_states_crossings_and_a_colour_range_that_does_not_exaggerate(
         y0, y1 = x[k] * (1 + c * 1e3), x[k + 1] * (1 + c * 1e3)  # linear in y, log in x between the two grid values
         f = (3.0 - y0) / (y1 - y0)
         assert side == 0 and cross == pytest.approx(np.exp(np.log(x[k]) + f * np.log(x[k + 1] / x[k])), rel=1e-12)
-    assert float(out.threshold_holds_fraction.sel(output="r")) == pytest.approx(np.mean(np.array([v["r"] for v in values]) >= 3.0))
+    assert float(out.threshold_holds_fraction.sel(output="r")) == pytest.approx(
+        np.mean(np.array([v["r"] for v in values]) >= 3.0)
+    )
     assert np.isnan(float(out.threshold_value.sel(output="flat")))
-    # the 5 % map: centred on its reference value, the colour range is the floor, and its whole spread takes a few % of the bar
+    # the 5 % map: centred on its reference value, the colour range is the floor, and its whole spread takes a few % of
+    # the bar
     low, high, ref = (float(out[k].sel(output="flat")) for k in ("colour_low", "colour_high", "reference_value"))
     assert high / ref == pytest.approx(COLOUR_FLOOR_FACTOR) and ref / low == pytest.approx(COLOUR_FLOOR_FACTOR)
     assert np.log(ds.flat.values.max() / ds.flat.values.min()) / np.log(high / low) < 0.04
@@ -121,7 +146,9 @@ def test_a_clearance_sweep_point_is_the_scene_settled_from_the_first_start():
     cfg = copy.deepcopy(load_yaml("config/config.yaml")["clearance"])
     cfg["numerics"]["points_per_cycle"] = 1800  # coarser than the pipeline's, the same for both routes
     c = cfg["joints"]["bearing_radius_m"] - cfg["joints"]["journal_radius_m"]
-    out = sweep_point(cfg, {"clearance_m": c, "crank_speed_rad_s": cfg["crank_speed_rad_s"]}, {"scene": "dry_2", "variant": "decoded"})
+    out = sweep_point(
+        cfg, {"clearance_m": c, "crank_speed_rad_s": cfg["crank_speed_rad_s"]}, {"scene": "dry_2", "variant": "decoded"}
+    )
     ds = scene(cfg, "decoded", "dry_2", first_start_only=True, check=False)
     p = parameters(cfg, "decoded", "dry_2")
     per = cfg["numerics"]["points_per_cycle"]
@@ -147,7 +174,11 @@ def test_resolved_trend_counts_only_changes_beyond_the_cycle_spread():
     assert trend_class(r["resolved_up"], r["resolved_down"]) == "partly"
     assert trend_class(1.0, 0.0) == "grows" and trend_class(0.0, 1.0) == "falls" and trend_class(0.0, 0.0) == "none"
     # a scatter larger than every change: nothing is a trend, however monotone the lines
-    assert resolved_trend(v[:, :1], np.full((3, 1), 1.0)) == {"resolved_up": 0.0, "resolved_down": 0.0, "resolved_steps": 0.0}
+    assert resolved_trend(v[:, :1], np.full((3, 1), 1.0)) == {
+        "resolved_up": 0.0,
+        "resolved_down": 0.0,
+        "resolved_steps": 0.0,
+    }
     axes = {"clearance_m": [1e-5, 2e-5, 4e-5], "crank_speed_rad_s": [10.0, 20.0, 30.0]}
     pts = grid(axes)
     vals = [{"y": 1.0 + p["clearance_m"] * 1e5, "y_spread": 0.1} for p in pts]  # grows by 1 per grid step in clearance
@@ -165,7 +196,9 @@ def test_clearance_ideal_response_is_periodic_so_one_cycle_serves_every_recorded
     from linkwork.papers.clearance.fourbar import inverse_dynamics
     from linkwork.papers.clearance.adapter import parameters
 
-    p = parameters(config["clearance"], config["sweeps"]["clearance"]["variant"], config["sweeps"]["clearance"]["scene"])
+    p = parameters(
+        config["clearance"], config["sweeps"]["clearance"]["variant"], config["sweeps"]["clearance"]["scene"]
+    )
     period = 2 * np.pi / p.crank_speed
     t = np.linspace(0.0, period, 73)
     first, later = inverse_dynamics(p, t, True), inverse_dynamics(p, t + 2 * period, True)

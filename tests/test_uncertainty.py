@@ -31,7 +31,9 @@ def test_design_choices_are_scenarios_never_sampled_values():
         for s in block[1:5]:  # one at a time: exactly the input named in `moved` besides the scenario's choice
             assert set(s.values) == {s.moved, "c.value"}
         corners = block[5:9]
-        assert sorted((s.values["a.value"], s.values["b.value"]) for s in corners) == sorted(itertools.product((0.5, 2.0), (1e-5, 1e-2)))
+        assert sorted((s.values["a.value"], s.values["b.value"]) for s in corners) == sorted(
+            itertools.product((0.5, 2.0), (1e-5, 1e-2))
+        )
         lhs = block[9:]
         a = np.array([s.values["a.value"] for s in lhs])
         b = np.array([s.values["b.value"] for s in lhs])
@@ -42,7 +44,18 @@ def test_design_choices_are_scenarios_never_sampled_values():
     assert len(samples(ins, 0, 3, corner_limit=3)) == 3 * 5  # more corners than the limit: none
 
 
-def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, evaluations=200, choices=None, workers=1, flat_rtol=1e-9):
+def _toy_study(
+    fun,
+    names,
+    ranges,
+    published,
+    lhs_points=8,
+    corner_limit=0,
+    evaluations=200,
+    choices=None,
+    workers=1,
+    flat_rtol=1e-9,
+):
     """A toy paper: inputs ``names`` in ``ranges`` (config section {name: labelled entry}), its results the
     variables of ``fun(**inputs)``; the study's samples, summary and bounded searches as a paper's gather runs them."""
     import xarray as xr
@@ -50,11 +63,18 @@ def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, eval
     from linkwork.pipeline.search import searcher
     from linkwork.pipeline.uncertainty import batch_dataset, gathered
 
-    cfg = {n: {"value": float(np.mean(r)), "status": "assumed", "reason": "toy", "range": list(r)} for n, r in zip(names, ranges)}
+    cfg = {
+        n: {"value": float(np.mean(r)), "status": "assumed", "reason": "toy", "range": list(r)}
+        for n, r in zip(names, ranges)
+    }
     if choices:
         cfg["mode"] = {"value": choices[0], "status": "assumed", "reason": "toy", "choices": list(choices)}
-    cfg["uncertainty"] = {"lhs_points": lhs_points, "batch_size": 1000, "seed": 1, "search": {"corner_limit": corner_limit, "evaluations": evaluations, "xtol": 1e-4,
-                                                                                       "flat_rtol": flat_rtol}}
+    cfg["uncertainty"] = {
+        "lhs_points": lhs_points,
+        "batch_size": 1000,
+        "seed": 1,
+        "search": {"corner_limit": corner_limit, "evaluations": evaluations, "xtol": 1e-4, "flat_rtol": flat_rtol},
+    }
     ins = list(labelled_inputs({k: v for k, v in cfg.items() if k != "uncertainty"}))
 
     def results(c):
@@ -68,8 +88,16 @@ def _toy_study(fun, names, ranges, published, lhs_points=8, corner_limit=0, eval
 
 
 def _entry(name, value, tol, relation="eq"):
-    return {"id": name, "quantity": name, "value": value, "unit": "1", "where": "text", "tolerance": {"abs": tol}, "relation": relation,
-            "measure": {"variable": name, "reduce": "value"}}
+    return {
+        "id": name,
+        "quantity": name,
+        "value": value,
+        "unit": "1",
+        "where": "text",
+        "tolerance": {"abs": tol},
+        "relation": relation,
+        "measure": {"variable": name, "reduce": "value"},
+    }
 
 
 def test_the_interval_finds_a_corner_that_the_samples_miss():
@@ -154,7 +182,13 @@ def test_batches_cover_every_sample_once():
 
 def test_labelled_inputs_are_the_ranged_entries():
     found = [i.path for i in labelled_inputs(SECTION["assumed"], "assumed.")]
-    assert found == ["assumed.joint_length_m.value", "assumed.v0_m_s.value", "assumed.v1_m_s.value", "assumed.impact_velocity_floor_m_s.value", "assumed.e0_m.value"]
+    assert found == [
+        "assumed.joint_length_m.value",
+        "assumed.v0_m_s.value",
+        "assumed.v1_m_s.value",
+        "assumed.impact_velocity_floor_m_s.value",
+        "assumed.e0_m.value",
+    ]
 
 
 @pytest.fixture(scope="module")
@@ -178,18 +212,23 @@ def test_a_clearance_batch_moves_only_the_scenes_that_read_its_input():
     assert all(len({s["label"].rsplit(" ", 1)[0] for s in j["samples"]}) == 1 for j in found)
     for variant in SECTION["variants"]:
         assert jobs[("assumed.e0_m.value low", variant)] == ["lubricated_1", "lubricated_2", "lubricated_both"]
-        # v1 and the impact-velocity floor enter every scene with contact: the dry ones and the lubricated ones (their dry contact)
+        # v1 and the impact-velocity floor enter every scene with contact: the dry ones and the lubricated ones (their
+        # dry contact)
         friction = [n for n, spec in SECTION["scenes"].items() if "friction" in spec["effects"]]
-        assert jobs[("assumed.v1_m_s.value high", variant)] == friction == ["dry_1", "dry_2", "dry_both", "lubricated_1", "lubricated_2", "lubricated_both"]
+        assert (
+            jobs[("assumed.v1_m_s.value high", variant)]
+            == friction
+            == ["dry_1", "dry_2", "dry_both", "lubricated_1", "lubricated_2", "lubricated_both"]
+        )
         assert jobs[("assumed.impact_velocity_floor_m_s.value low", variant)] == friction
     assert not any("off-centre" in label for label, _ in jobs)  # the other start is a scenario at the nominal inputs
 
 
 def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_scenario(small_clearance):
     """Two routes to a sample: the batch (narrow config, only the moved scenes, continued from the nominal state)
-    gathered with the nominal claims, against the scene rerun directly at the moved value from the same state.  A
-    moved scene's measure is the direct rerun's; a scene the input does not enter keeps the nominal measure; the
-    nominal sample reproduces the nominal claims where its margins decide them (else it enters no range: NaN); the second
+    gathered with the nominal claims, against the scene rerun directly at the moved value from the same state.  A moved
+    scene's measure is the direct rerun's; a scene the input does not enter keeps the nominal measure; the nominal
+    sample reproduces the nominal claims where its margins decide them (else it enters no range: NaN); the second
     start's scenario takes the nominal runs' second start."""
     from linkwork.configformat import pick
     from linkwork.papers.clearance import uncertainty
@@ -201,8 +240,12 @@ def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_
     nominal = claims(cfg, list(nominal_runs.values()))
     label = "assumed.e0_m.value high"
     job = next(j for j in uncertainty.batch_jobs(cfg) if label in [s["label"] for s in j["samples"]])
-    keys = sorted({k for s in job["scenes"] for k in scene_keys(cfg, "decoded", s) if not k.startswith("check_integrators.")})
-    part = uncertainty.batch(pick(cfg, keys), job["samples"], job["variant"], nominal=[nominal_runs[s] for s in job["scenes"]])
+    keys = sorted(
+        {k for s in job["scenes"] for k in scene_keys(cfg, "decoded", s) if not k.startswith("check_integrators.")}
+    )
+    part = uncertainty.batch(
+        pick(cfg, keys), job["samples"], job["variant"], nominal=[nominal_runs[s] for s in job["scenes"]]
+    )
     moved = part.judged.sel(sample=label, statistic="judged_mean").isel(variant=0)
     lubricated, dry = ["lubricated_1", "lubricated_2", "lubricated_both"], ["dry_1", "dry_2", "dry_both"]
     assert np.isfinite(moved.sel(scene=lubricated)).all()
@@ -212,10 +255,20 @@ def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_
     at = apply(cfg, next(s for s in job["samples"] if s["label"] == label)["values"])
     for k, name in enumerate(COMPARED):
         if name in lubricated:  # the direct route: the scene rerun at the moved film cap, from the nominal state
-            direct = scene(at, "decoded", name, first_start_only=True, check=False, memory=nominal_runs[name].window_memory.values[0])
+            direct = scene(
+                at,
+                "decoded",
+                name,
+                first_start_only=True,
+                check=False,
+                memory=nominal_runs[name].window_memory.values[0],
+            )
             np.testing.assert_allclose(means.isel(scene=k).values, direct.judged_mean.values[0], rtol=1e-12)
         else:
-            np.testing.assert_array_equal(means.isel(scene=k).values, nominal.mean_deviation.sel(variant="decoded", scene=name).isel(start=0).values)
+            np.testing.assert_array_equal(
+                means.isel(scene=k).values,
+                nominal.mean_deviation.sel(variant="decoded", scene=name).isel(start=0).values,
+            )
     for claim in nominal.claim.values:
         value = float(gathered.value.sel(sample="nominal", quantity=f"decoded|{claim}"))
         if int(nominal.outcome_by_start.sel(variant="decoded", claim=claim).isel(start=0)) >= 0:
@@ -223,7 +276,9 @@ def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_
         else:  # the nominal sample, undetermined within its margins, enters no range (as every sample)
             assert np.isnan(value)
         other = f"start {nominal.start.values[1]} | nominal"
-        assert float(gathered.value.sel(sample=other, quantity=f"decoded|{claim}")) == float(nominal.holds_by_start.sel(variant="decoded", claim=claim).isel(start=1))
+        assert float(gathered.value.sel(sample=other, quantity=f"decoded|{claim}")) == float(
+            nominal.holds_by_start.sel(variant="decoded", claim=claim).isel(start=1)
+        )
     assert list(gathered.scenario.values) == [f"start {s}" for s in nominal.start.values]
 
 
@@ -238,8 +293,15 @@ def test_a_transplanter_sample_optimised_from_the_nominal_optimum_reaches_the_co
     initial = np.array(cfg["initial_diameters_m"], dtype=float)
     nominal, _ = slsqp(problem(cfg), initial, ftol)
     material = f"materials.{cfg['material']['name']}"
-    corner = apply(cfg, {f"{material}.youngs_modulus_Pa.value": cfg["materials"][cfg["material"]["name"]]["youngs_modulus_Pa"]["range"][0],
-                         f"{material}.density_kg_m3.value": cfg["materials"][cfg["material"]["name"]]["density_kg_m3"]["range"][1]})
+    corner = apply(
+        cfg,
+        {
+            f"{material}.youngs_modulus_Pa.value": cfg["materials"][cfg["material"]["name"]]["youngs_modulus_Pa"][
+                "range"
+            ][0],
+            f"{material}.density_kg_m3.value": cfg["materials"][cfg["material"]["name"]]["density_kg_m3"]["range"][1],
+        },
+    )
     cold, cold_info = slsqp(problem(corner), initial, ftol)
     warm, warm_info = slsqp(problem(corner), nominal, ftol)
     assert cold_info["success"] and warm_info["success"]
@@ -276,7 +338,9 @@ def test_scenarios_searched_side_by_side_give_the_same_study():
     two = _toy_study(*args, lhs_points=4, choices=("x", "y", "z"), workers=2)
     assert one.sizes["scenario"] == 3
     assert one.identical(two)
-    assert float(one.low.sel(quantity="|f").isel(scenario=0)) == pytest.approx(0.0, abs=1e-6)  # a = 0.3, b = 0: an interior minimum
+    assert float(one.low.sel(quantity="|f").isel(scenario=0)) == pytest.approx(
+        0.0, abs=1e-6
+    )  # a = 0.3, b = 0: an interior minimum
 
 
 def test_a_value_flat_over_the_box_is_not_searched():

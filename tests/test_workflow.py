@@ -41,13 +41,36 @@ OUTPUTS = [
 ]
 REPORTS = ("stiffness", "beatup", "heald", "transplanter", "clearance", "accuracy", "sweeps", "index")
 ALL_JOBS = {
-    "all": 1, "stiffness": 1, "stiffness_accuracy": 1, "stiffness_compare": 1,
-    "beatup_sixbar": 1, "beatup_window": 1, "beatup_accuracy": 1, "beatup_compare": 1, "beatup_sley_pin": 1,
-    "heald_chain": 1, "heald_accuracy": 1, "heald_compare": 1, "heald_contact": 1,
-    "transplanter_optim": 1, "transplanter_ked": 1, "transplanter_at_published": 1, "transplanter_accuracy": 1, "transplanter_compare": 1,
-    "clearance_scene": 14, "clearance_contact_law": 2, "clearance_claims": 1, "clearance_work_precision": 1, "clearance_compare": 1,
-    "accuracy_summary": 1, "sweep_point": 6, "sweep_gather": 2, "report": 8,
-    "uncertainty_batch": 17, "uncertainty_gather": 4, "readme_findings": 1,  # 1 + 2 + 4 + 10 (clearance: one per variant and input)
+    "all": 1,
+    "stiffness": 1,
+    "stiffness_accuracy": 1,
+    "stiffness_compare": 1,
+    "beatup_sixbar": 1,
+    "beatup_window": 1,
+    "beatup_accuracy": 1,
+    "beatup_compare": 1,
+    "beatup_sley_pin": 1,
+    "heald_chain": 1,
+    "heald_accuracy": 1,
+    "heald_compare": 1,
+    "heald_contact": 1,
+    "transplanter_optim": 1,
+    "transplanter_ked": 1,
+    "transplanter_at_published": 1,
+    "transplanter_accuracy": 1,
+    "transplanter_compare": 1,
+    "clearance_scene": 14,
+    "clearance_contact_law": 2,
+    "clearance_claims": 1,
+    "clearance_work_precision": 1,
+    "clearance_compare": 1,
+    "accuracy_summary": 1,
+    "sweep_point": 6,
+    "sweep_gather": 2,
+    "report": 8,
+    "uncertainty_batch": 17,
+    "uncertainty_gather": 4,
+    "readme_findings": 1,  # 1 + 2 + 4 + 10 (clearance: one per variant and input)
     "assumptions": 5,  # one per paper: the labelled entries, whole (the reports' reasons)
     "linkage": 1,  # one per linkage of your own (config linkages)
 }
@@ -66,7 +89,12 @@ def _env(root: Path, trace: Path | None = None) -> dict[str, str]:
 
 def snakemake(root: Path, *args: str, check: bool = True, trace: Path | None = None) -> subprocess.CompletedProcess:
     proc = subprocess.run(
-        [sys.executable, "-m", "snakemake", *args], cwd=root, env=_env(root, trace), capture_output=True, text=True, timeout=900
+        [sys.executable, "-m", "snakemake", *args],
+        cwd=root,
+        env=_env(root, trace),
+        capture_output=True,
+        text=True,
+        timeout=900,
     )
     if check and proc.returncode != 0:
         raise AssertionError(f"snakemake {' '.join(args)} failed:\n{proc.stdout[-5000:]}\n{proc.stderr[-5000:]}")
@@ -161,7 +189,8 @@ def test_config_text_reaches_the_reports_escaped(built):
 
 
 def test_a_corrupted_result_names_the_file_and_the_command_that_rebuilds_it(clone):
-    """A truncated result makes the next rule stop with one line naming the file and the rebuild command, which works."""
+    """A truncated result makes the next rule stop with one line naming the file and the rebuild command, which
+    works."""
     target = "results/stiffness/stiffness.nc"
     (clone / target).write_bytes((clone / target).read_bytes()[:2000])
     proc = snakemake(clone, "--cores", "1", "results/reports/stiffness.html", check=False)
@@ -235,11 +264,24 @@ def test_a_full_disk_stops_a_job_in_one_line_and_leaves_no_temporary(clone, tmp_
     (hook / "sitecustomize.py").write_text(FULL_DISK, encoding="utf-8")
     env = _env(clone)
     env["PYTHONPATH"] = f"{hook}{os.pathsep}{env['PYTHONPATH']}"
-    for target, said in (("results/reports/stiffness.html", "(No space left on device)"), ("results/stiffness/stiffness.nc", "(NetCDF: HDF error)")):
-        proc = subprocess.run([sys.executable, "-m", "snakemake", "--cores", "1", "--force", target], cwd=clone, env=env,
-                              capture_output=True, text=True, timeout=900)
+    for target, said in (
+        ("results/reports/stiffness.html", "(No space left on device)"),
+        ("results/stiffness/stiffness.nc", "(NetCDF: HDF error)"),
+    ):
+        proc = subprocess.run(
+            [sys.executable, "-m", "snakemake", "--cores", "1", "--force", target],
+            cwd=clone,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=900,
+        )
         message = proc.stdout + proc.stderr
-        lines = [line for line in message.splitlines() if f"cannot write {target}" in line or f"cannot write {clone / target}" in line]
+        lines = [
+            line
+            for line in message.splitlines()
+            if f"cannot write {target}" in line or f"cannot write {clone / target}" in line
+        ]
         assert proc.returncode != 0 and lines and said in lines[0] and "free disk space" in lines[0], message[-3000:]
         assert "Traceback" not in message, message[-3000:]
         assert not list((clone / "results").rglob("*.tmp")), list((clone / "results").rglob("*.tmp"))
@@ -262,13 +304,16 @@ def test_snakemakes_own_report_holds_the_reports_and_tables_with_captions(built,
 #: A sixth paper, as a maintainer would add one: its package, its rule file, its report and its published numbers;
 #: no shared file is edited.
 TOY_PAPER = {
-    "lib/linkwork/papers/toy/__init__.py": '''"""Paper ``toy``: a test's."""
+    "lib/linkwork/papers/toy/__init__.py": (
+        '''"""Paper ``toy``: a test's."""
 
 TITLE = "Toy 2026: one printed number"
 CITATION = "A. Toy, One printed number, a test's journal 1(1), 2026"
 ORDER = 6
-''',
-    "lib/linkwork/papers/toy/studies.py": '''"""The toy paper's study."""
+'''
+    ),
+    "lib/linkwork/papers/toy/studies.py": (
+        '''"""The toy paper's study."""
 
 import xarray as xr
 
@@ -276,16 +321,20 @@ import xarray as xr
 def study(cfg):
     """Rule study: the toy paper's one number."""
     return xr.Dataset({"answer": ((), 42.0, {"units": "1", "long_name": "the answer"})})
-''',
-    "lib/linkwork/papers/toy/checks.py": '''"""The toy paper's checks: none (it has no config section)."""
+'''
+    ),
+    "lib/linkwork/papers/toy/checks.py": (
+        '''"""The toy paper's checks: none (it has no config section)."""
 
 RESULT_VARIABLES = frozenset({"answer"})
 
 
 def check(section, key="toy"):
     """Nothing to check."""
-''',
-    "lib/linkwork/papers/toy/findings.py": '''"""The toy paper's number beside ours."""
+'''
+    ),
+    "lib/linkwork/papers/toy/findings.py": (
+        '''"""The toy paper's number beside ours."""
 
 from ...pipeline.compare import compare_datasets, counts_dataset, findings_attrs
 
@@ -296,8 +345,10 @@ def compare(cfg, published, result):
     findings = counts_dataset(table)
     findings.attrs.update(findings_attrs("Toy 2026", "", "", "It holds up: its one number is ours."))
     return table, findings
-''',
-    "workflow/rules/toy.smk": '''# Paper "toy": one printed number (a test's).
+'''
+    ),
+    "workflow/rules/toy.smk": (
+        """# Paper "toy": one printed number (a test's).
 
 
 rule toy:
@@ -328,8 +379,10 @@ rule toy_compare:
 
 
 REPORT_INPUTS["toy"] = paper_report("toy", result="results/toy/result.nc")
-''',
-    "reports/toy.py": '''# %% [markdown]
+"""
+    ),
+    "reports/toy.py": (
+        """# %% [markdown]
 # # The toy paper, reproduced
 
 # %%
@@ -338,11 +391,15 @@ from _common import answer, comparison_table, inputs, load
 files = inputs()
 answer(load(files["findings"]))
 comparison_table(load(files["comparison"]))
-''',
-    "config/published/toy.yaml": '''paper: toy
+"""
+    ),
+    "config/published/toy.yaml": (
+        """paper: toy
 quantities:
-  - {id: answer, quantity: the printed number, value: 42.0, unit: "1", where: "p. 1", tolerance: {abs: 0.5}, measure: {variable: answer, reduce: value}}
-''',
+  - {id: answer, quantity: the printed number, value: 42.0, unit: "1", where: "p. 1", tolerance: {abs: 0.5},
+     measure: {variable: answer, reduce: value}}
+"""
+    ),
 }
 
 
@@ -355,8 +412,12 @@ def test_a_sixth_paper_joins_the_dag_the_index_and_the_findings_without_a_shared
         (clone / rel).write_text(text, encoding="utf-8")
     assert all(p.read_bytes() == data for p, data in shared.items())  # nothing shared was touched
     planned = job_listing(clone)
-    assert {"toy", "toy_compare", "assumptions:toy", "report:toy", "report:index", "readme_findings"} <= {j.split("/")[0] for j in planned}, sorted(planned)
-    snakemake(clone, "--cores", "2", "results/reports/index.html", "results/readme_findings.md", "results/reports/toy.html")
+    assert {"toy", "toy_compare", "assumptions:toy", "report:toy", "report:index", "readme_findings"} <= {
+        j.split("/")[0] for j in planned
+    }, sorted(planned)
+    snakemake(
+        clone, "--cores", "2", "results/reports/index.html", "results/readme_findings.md", "results/reports/toy.html"
+    )
     assert "Toy 2026: one printed number" in (clone / "results/readme_findings.md").read_text()
     assert "toy.html" in (clone / "results/reports/index.html").read_text()
     assert "It holds up: its one number is ours." in (clone / "results/reports/toy.html").read_text()
@@ -466,7 +527,15 @@ def _set_key(path: Path, key: str, value) -> None:
 
 def test_the_spec_covers_every_paper_the_sweeps_and_the_linkages():
     assert len(SPEC) >= 15
-    assert {row["key"].split(".")[0] for row in SPEC} == {"stiffness", "beatup", "heald", "transplanter", "clearance", "sweeps", "linkages"}
+    assert {row["key"].split(".")[0] for row in SPEC} == {
+        "stiffness",
+        "beatup",
+        "heald",
+        "transplanter",
+        "clearance",
+        "sweeps",
+        "linkages",
+    }
 
 
 def test_single_key_edits_rerun_exactly_what_reads_the_key(built, declared, tmp_path):
@@ -495,13 +564,18 @@ def test_readme_findings_are_what_a_fresh_run_computes(built):
     readme = (PROJECT / "README.md").read_text()
     mine = readme[readme.index(START): readme.index(END) + len(END)]
     fresh = (built / "results/readme_findings.md").read_text().strip()
-    assert NUMBER.sub("#", mine) == NUMBER.sub("#", fresh), "the README's findings differ in words from the results: run `make readme`"
+    assert NUMBER.sub("#", mine) == NUMBER.sub(
+        "#", fresh
+    ), "the README's findings differ in words from the results: run `make readme`"
     for a, b in zip(NUMBER.findall(mine), NUMBER.findall(fresh), strict=True):
-        assert abs(float(a) - float(b)) <= 1e-3 * max(abs(float(b)), 1e-12), f"README {a} vs results {b}: run `make readme`"
+        assert abs(float(a) - float(b)) <= 1e-3 * max(
+            abs(float(b)), 1e-12
+        ), f"README {a} vs results {b}: run `make readme`"
 
 
 def test_every_report_renders_in_headless_chromium(built):
-    """Each report loads in a real browser with no console error and every image decodes; screenshots kept in results/."""
+    """Each report loads in a real browser with no console error and every image decodes; screenshots kept in
+    results/."""
     from browser import check_pages
 
     pages = sorted((built / "results/reports").glob("*.html"))
@@ -553,7 +627,11 @@ def traced_modules(built: Path) -> dict[str, set[str]]:
         owner = r if r["outputs"] else by_pid.get(r["ppid"])
         if owner is None or not owner["outputs"]:
             continue  # the snakemake process itself, or a helper process of no job
-        files = {str(Path(f).resolve().relative_to(built.resolve())) for f in r["files"] if f and Path(f).resolve().is_relative_to(built.resolve())}
+        files = {
+            str(Path(f).resolve().relative_to(built.resolve()))
+            for f in r["files"]
+            if f and Path(f).resolve().is_relative_to(built.resolve())
+        }
         jobs.setdefault(owner["outputs"][0], set()).update(files)
     return jobs
 
@@ -597,18 +675,33 @@ def test_editing_any_lib_module_reruns_exactly_its_dependants(built, declared, t
     assert not failures, "\n".join(failures)
     # the layout's promise, as examples: an engine reaches several papers, a paper reaches only itself
     users = {rel: {j.split(":")[0] for j, spec in declared.items() if rel in spec["input"]} for rel in LIB_MODULES}
-    assert {"stiffness", "beatup_sixbar", "transplanter_optim", "clearance_scene"} <= users["lib/linkwork/engines/kinematics.py"]
+    assert {"stiffness", "beatup_sixbar", "transplanter_optim", "clearance_scene"} <= users[
+        "lib/linkwork/engines/kinematics.py"
+    ]
     assert not {r for r in users["lib/linkwork/engines/kinematics.py"] if r.startswith("heald")}
     heald = [j for j, spec in declared.items() if "lib/linkwork/papers/heald/model.py" in spec["input"]]
-    assert heald and all(j.startswith("heald_") or ":heald" in j for j in heald), heald  # its rules, sweep and uncertainty
+    assert heald and all(
+        j.startswith("heald_") or ":heald" in j for j in heald
+    ), heald  # its rules, sweep and uncertainty
 
 
 def test_unactivated_environment_runs_the_reports(clone):
     """`.venv/bin/snakemake` without activating the environment: the report rule finds jupytext."""
     env = dict(os.environ, PATH="/usr/bin:/bin", PYTHONPATH=str(clone / "lib"))
     proc = subprocess.run(
-        [str(Path(sys.executable).parent / "snakemake"), "--cores", "1", "--forcerun", "report", "results/reports/stiffness.html"],
-        cwd=clone, env=env, capture_output=True, text=True, timeout=600,
+        [
+            str(Path(sys.executable).parent / "snakemake"),
+            "--cores",
+            "1",
+            "--forcerun",
+            "report",
+            "results/reports/stiffness.html",
+        ],
+        cwd=clone,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
     )
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-3000:]
     assert "data:image/png;base64" in (clone / "results/reports/stiffness.html").read_text()
@@ -643,8 +736,13 @@ def test_a_killed_run_completes_on_the_next_run(tmp_path, sig):
         root = copy_project(tmp_path / f"killed{attempt}")
         proc = subprocess.Popen(
             [sys.executable, "-m", "snakemake", target, "--cores", "1"],
-            cwd=root, env=_env(root), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True,
-            # Ctrl-C as a terminal delivers it: a SIGINT ignored by a parent (make, a CI shell) would be inherited and Python
+            cwd=root,
+            env=_env(root),
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+            # Ctrl-C as a terminal delivers it: a SIGINT ignored by a parent (make, a CI shell) would be inherited and
+            # Python
             # would then install no KeyboardInterrupt handler in Snakemake
             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
         )

@@ -43,7 +43,11 @@ def _said(path: str, exc: BaseException) -> None:
     if path in _SAID:  # numba reads the index again before it writes the entry anew
         return
     _SAID.add(path)
-    print(f"linkwork: compile cache entry {path} was unreadable ({type(exc).__name__}); compiling it again", file=sys.stderr, flush=True)
+    print(
+        f"linkwork: compile cache entry {path} was unreadable ({type(exc).__name__}); compiling it again",
+        file=sys.stderr,
+        flush=True,
+    )
 
 
 def use_for_numba() -> None:

@@ -63,7 +63,9 @@ def values_only(section: Mapping[str, Any], keep: Iterable[str] = (), fields: It
 
     def strip(node: Any, path: tuple[str, ...]) -> Any:
         if is_labelled(node):
-            return {k: copy.deepcopy(v) for k, v in node.items() if k == "value" or k in everywhere or (*path, k) in kept}
+            return {
+                k: copy.deepcopy(v) for k, v in node.items() if k == "value" or k in everywhere or (*path, k) in kept
+            }
         if isinstance(node, Mapping):
             return {k: strip(v, (*path, k)) for k, v in node.items()}
         return copy.deepcopy(node)

@@ -21,7 +21,12 @@ def _record() -> None:
         for name, module in list(sys.modules.items())
         if name == "linkwork" or name.startswith("linkwork.") or name == "_common"
     )
-    record = {"pid": os.getpid(), "ppid": os.getppid(), "outputs": [str(o) for o in job.output] if job is not None else [], "files": files}
+    record = {
+        "pid": os.getpid(),
+        "ppid": os.getppid(),
+        "outputs": [str(o) for o in job.output] if job is not None else [],
+        "files": files,
+    }
     with open(os.path.join(_DIR, f"{os.getpid()}.json"), "w", encoding="utf-8") as fh:
         json.dump(record, fh)
 

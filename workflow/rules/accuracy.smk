@@ -1,6 +1,8 @@
 # Across the pipeline: what accuracy costs in time, for every numerical method.
 
-ACCURACY_PAPERS = [p for p in PAPERS if (LIB / "linkwork" / "papers" / p / "accuracy.py").is_file()]  # the papers with an accuracy study
+ACCURACY_PAPERS = [
+    p for p in PAPERS if (LIB / "linkwork" / "papers" / p / "accuracy.py").is_file()
+]  # the papers with an accuracy study
 
 
 rule accuracy_summary:

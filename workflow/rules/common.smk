@@ -64,14 +64,25 @@ def paper_report(paper, **results):
     """A paper report's inputs: its results by name, and the files every paper report reads (call it after the paper's
     UNCERTAINTY entry)."""
     uncertainty = {"uncertainty": f"results/{paper}/uncertainty.nc"} if paper in UNCERTAINTY else {}
-    return {**results, **uncertainty, "comparison": f"results/{paper}/comparison.csv", "findings": f"results/{paper}/findings.nc",
-            "published": f"config/published/{paper}.yaml", "assumptions": f"results/{paper}/assumptions.nc"}
+    return {
+        **results,
+        **uncertainty,
+        "comparison": f"results/{paper}/comparison.csv",
+        "findings": f"results/{paper}/findings.nc",
+        "published": f"config/published/{paper}.yaml",
+        "assumptions": f"results/{paper}/assumptions.nc",
+    }
 
 
 def comparison_table(paper):
-    """A paper's comparison table as a rule output, shown with its caption in Snakemake's report (snakemake --report)."""
-    return report(f"results/{paper}/comparison.csv", caption="../report/comparison.rst", category="Published numbers beside ours",
-                  labels={"paper": paper, "file": "comparison.csv"})
+    """A paper's comparison table as a rule output, shown with its caption in Snakemake's report
+    (snakemake --report)."""
+    return report(
+        f"results/{paper}/comparison.csv",
+        caption="../report/comparison.rst",
+        category="Published numbers beside ours",
+        labels={"paper": paper, "file": "comparison.csv"},
+    )
 
 
 def section(paper, *paths, design=False):
@@ -85,8 +96,19 @@ def assumptions_cfg(paper):
     """Every labelled entry of a paper's section, whole (the assumptions rule: the reports' reasons and ranges)."""
     return labelled_entries(config.get(paper, {}))  # a paper without a config section has no labelled entry
 
+
 # On a cluster (profiles/slurm) these run on the submitting host: each reads finished results and computes for
 # about a second (benchmarks/measured/job_resources.json), less than a submission costs. Locally: no effect.
 localrules:
-    all, readme_findings, accuracy_summary, sweep_gather, clearance_claims, clearance_crosscheck_summary,
-    stiffness_compare, beatup_compare, heald_compare, transplanter_compare, clearance_compare, assumptions,
+    all,
+    readme_findings,
+    accuracy_summary,
+    sweep_gather,
+    clearance_claims,
+    clearance_crosscheck_summary,
+    stiffness_compare,
+    beatup_compare,
+    heald_compare,
+    transplanter_compare,
+    clearance_compare,
+    assumptions,

@@ -8,15 +8,21 @@ UNCERTAINTY["heald"] = {"cfg": lambda index: section("heald", *HEALD_MODEL, "mod
 
 
 def heald_sweep_cfg():
-    """The paper's config values a point of the heald sweep reads (the swept clearance and reaction come as the point)."""
+    """The paper's config values a point of the heald sweep reads (the swept clearance and reaction come as the
+    point)."""
     swept = ("clearance_E", "clearance_F", "reaction_E")
-    return section("heald", *(f"parameters.{p}" for p in config["heald"]["parameters"] if p not in swept), "excitation", "speeds")
+    return section(
+        "heald", *(f"parameters.{p}" for p in config["heald"]["parameters"] if p not in swept), "excitation", "speeds"
+    )
 
 
 SWEEP["heald"] = {
     "cfg": heald_sweep_cfg,
-    "reference": lambda: {"clearance_m": config["heald"]["parameters"]["clearance_E"]["value"],
-                          "reaction_ratio_EF": config["heald"]["parameters"]["reaction_E"]["value"] / config["heald"]["parameters"]["reaction_F"]["value"]},
+    "reference": lambda: {
+        "clearance_m": config["heald"]["parameters"]["clearance_E"]["value"],
+        "reaction_ratio_EF": config["heald"]["parameters"]["reaction_E"]["value"]
+        / config["heald"]["parameters"]["reaction_F"]["value"],
+    },
     # the gather draws the map's threshold from the published claim, and shows that the warp branch cannot change
     # Q_E, Q_F in model B (the paper's values it reads itself)
     "gather_inputs": lambda: {"published": "config/published/heald.yaml"},
@@ -31,7 +37,9 @@ rule heald_chain:
         "results/heald/chain.nc",
     params:
         study="linkwork.papers.heald.studies:chain",
-        cfg=section("heald", *HEALD_MODEL, "models", "sweeps", "cam", "cam.rise_fraction.range", "parameters.c_joint.range"),
+        cfg=section(
+            "heald", *HEALD_MODEL, "models", "sweeps", "cam", "cam.rise_fraction.range", "parameters.c_joint.range"
+        ),
     script:
         STUDY
 
@@ -67,19 +75,30 @@ rule heald_compare:
 
 
 rule heald_contact:
-    # one job of about a minute that the heald report waits for: among the first to start, not alone at the end
-    priority: CHAIN_HEAD_PRIORITY
     input:
         code=code("linkwork.papers.heald.contact"),
     output:
         "results/heald/contact.nc",
+    # one job of about a minute that the heald report waits for: among the first to start, not alone at the end
+    priority: CHAIN_HEAD_PRIORITY
     params:
         study="linkwork.papers.heald.contact:study",
         # values and ranges of the parameters (a case sets some to a range's end); the drive's choice, not its labels
-        cfg=section("heald", "parameters", "drive.frequency.value", "cam.rise_fraction.value", "cam.harmonics", "cam.samples", "contact", design=True),
+        cfg=section(
+            "heald",
+            "parameters",
+            "drive.frequency.value",
+            "cam.rise_fraction.value",
+            "cam.harmonics",
+            "cam.samples",
+            "contact",
+            design=True,
+        ),
     script:
         STUDY
 
 
 # the inputs of the paper's report (reports.smk renders it)
-REPORT_INPUTS["heald"] = paper_report("heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc", contact="results/heald/contact.nc")
+REPORT_INPUTS["heald"] = paper_report(
+    "heald", result="results/heald/chain.nc", accuracy="results/heald/accuracy.nc", contact="results/heald/contact.nc"
+)

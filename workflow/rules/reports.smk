@@ -6,14 +6,14 @@
 
 
 rule assumptions:
-    # the one rule that reads the reasons: an edit of a reason reruns this step and its paper's report, nothing else
-    priority: GATE_PRIORITY
     input:
         code=code("linkwork.pipeline.assumptions"),
     output:
         "results/{paper}/assumptions.nc",
     wildcard_constraints:
         paper="|".join(PAPERS),
+    # the one rule that reads the reasons: an edit of a reason reruns this step and its paper's report, nothing else
+    priority: GATE_PRIORITY
     params:
         study="linkwork.pipeline.assumptions:assumptions",
         paper=lambda wildcards: wildcards.paper,
@@ -23,7 +23,11 @@ rule assumptions:
 
 
 # the reports across papers (each paper's own report is registered by its rule file)
-REPORT_INPUTS["accuracy"] = {"result": "results/accuracy/summary.nc", "timings": "results/accuracy/timings.json", **ACCURACY_REPORT_INPUTS}
+REPORT_INPUTS["accuracy"] = {
+    "result": "results/accuracy/summary.nc",
+    "timings": "results/accuracy/timings.json",
+    **ACCURACY_REPORT_INPUTS,
+}
 REPORT_INPUTS["sweeps"] = {"result": "results/sweeps/clearance.nc", "heald": "results/sweeps/heald.nc"}
 # the index links to the paper reports but reads only their comparison files: it renders beside them
 REPORT_INPUTS["index"] = {
@@ -43,13 +47,18 @@ def report_inputs(wildcards):
 
 
 rule report:
-    priority: lambda wildcards: REPORT_PRIORITY.get(wildcards.report, 0)
     input:
         unpack(report_inputs),
     output:
-        report("results/reports/{report}.html", caption="../report/report.rst", category="Reports", labels={"report": "{report}"}),
+        report(
+            "results/reports/{report}.html",
+            caption="../report/report.rst",
+            category="Reports",
+            labels={"report": "{report}"},
+        ),
     wildcard_constraints:
         report="|".join(REPORT_INPUTS),
+    priority: lambda wildcards: REPORT_PRIORITY.get(wildcards.report, 0)
     script:
         "../scripts/render_report.py"
 

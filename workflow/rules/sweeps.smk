@@ -3,6 +3,8 @@
 from linkwork.pipeline.sweeps import batches as sweep_batches, grid as sweep_grid
 
 SWEEPS = [s for s in config["sweeps"] if s != "grid"]
+
+
 def sweep_axes(name):
     return config["sweeps"][name][config["sweeps"]["grid"]]
 
@@ -13,7 +15,8 @@ def sweep_jobs(name):
 
 
 def sweep_cfg(name):
-    """The paper's config values a point of this sweep reads (the paper's SWEEP entry; the swept values come as the point)."""
+    """The paper's config values a point of this sweep reads (the paper's SWEEP entry; the swept values come as the
+    point)."""
     return SWEEP[name]["cfg"]()
 
 
@@ -29,8 +32,11 @@ def sweep_spec(name):
 
 def sweep_gather_inputs(wildcards):
     name = wildcards.sweep
-    return {"points": expand("results/sweeps/{sweep}/job_{index}.nc", sweep=name, index=range(len(sweep_jobs(name)))),
-            "code": code(f"linkwork.papers.{name}.sweep"), **SWEEP[name].get("gather_inputs", lambda: {})()}
+    return {
+        "points": expand("results/sweeps/{sweep}/job_{index}.nc", sweep=name, index=range(len(sweep_jobs(name)))),
+        "code": code(f"linkwork.papers.{name}.sweep"),
+        **SWEEP[name].get("gather_inputs", lambda: {})(),
+    }
 
 
 def sweep_args(wildcards):
@@ -38,7 +44,6 @@ def sweep_args(wildcards):
 
 
 rule sweep_point:
-    priority: LONG_JOB_PRIORITY
     input:
         code=lambda wildcards: code(f"linkwork.papers.{wildcards.sweep}.sweep"),
     output:
@@ -46,6 +51,7 @@ rule sweep_point:
     wildcard_constraints:
         sweep="|".join(SWEEPS),
         index=r"\d+",
+    priority: LONG_JOB_PRIORITY
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.sweep}.sweep:sweep",
         cfg=lambda wildcards: sweep_cfg(wildcards.sweep),
@@ -55,16 +61,21 @@ rule sweep_point:
 
 
 rule sweep_gather:
-    priority: GATE_PRIORITY
     input:
         unpack(sweep_gather_inputs),
     output:
         "results/sweeps/{sweep}.nc",
     wildcard_constraints:
         sweep="|".join(SWEEPS),
+    priority: GATE_PRIORITY
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.sweep}.sweep:gathered",
-        cfg=lambda wildcards: {"grid": config["sweeps"]["grid"], "axes": sweep_axes(wildcards.sweep), "spec": sweep_spec(wildcards.sweep),
-                               "reference": sweep_reference(wildcards.sweep), **SWEEP[wildcards.sweep].get("gather_cfg", lambda: {})()},
+        cfg=lambda wildcards: {
+            "grid": config["sweeps"]["grid"],
+            "axes": sweep_axes(wildcards.sweep),
+            "spec": sweep_spec(wildcards.sweep),
+            "reference": sweep_reference(wildcards.sweep),
+            **SWEEP[wildcards.sweep].get("gather_cfg", lambda: {})(),
+        },
     script:
         STUDY

@@ -4,7 +4,9 @@ import importlib
 from linkwork.pipeline.uncertainty import batches as uncertainty_batches
 from linkwork.pipeline.uncertainty import sample_count
 
-UNCERTAIN_PAPERS = list(UNCERTAINTY)  # each paper's rule file registers its study (common.smk); stiffness: every input is printed
+UNCERTAIN_PAPERS = list(
+    UNCERTAINTY
+)  # each paper's rule file registers its study (common.smk); stiffness: every input is printed
 
 
 def uncertainty_cfg(paper, index):
@@ -34,19 +36,26 @@ def uncertainty_batch_count(paper):
 
 def uncertainty_inputs(wildcards):
     facts = UNCERTAINTY[wildcards.paper]
-    inputs = facts["batch_inputs"](int(wildcards.index)) if "batch_inputs" in facts else {"published": f"config/published/{wildcards.paper}.yaml"}
+    inputs = (
+        facts["batch_inputs"](int(wildcards.index))
+        if "batch_inputs" in facts
+        else {"published": f"config/published/{wildcards.paper}.yaml"}
+    )
     return {**inputs, "code": code(f"linkwork.papers.{wildcards.paper}.uncertainty")}
 
 
 def uncertainty_gather_inputs(wildcards):
-    batches = expand("results/uncertainty/{paper}/batch_{index}.nc", paper=wildcards.paper, index=range(uncertainty_batch_count(wildcards.paper)))
+    batches = expand(
+        "results/uncertainty/{paper}/batch_{index}.nc",
+        paper=wildcards.paper,
+        index=range(uncertainty_batch_count(wildcards.paper)),
+    )
     extra = {"published": f"config/published/{wildcards.paper}.yaml"}  # the searches read the acceptance regions
     extra.update(UNCERTAINTY[wildcards.paper].get("gather_inputs", lambda: {})())
     return {"batches": batches, **extra, "code": code(f"linkwork.papers.{wildcards.paper}.uncertainty")}
 
 
 rule uncertainty_batch:
-    priority: CHAIN_HEAD_PRIORITY
     input:
         unpack(uncertainty_inputs),
     output:
@@ -54,6 +63,7 @@ rule uncertainty_batch:
     wildcard_constraints:
         paper="|".join(UNCERTAIN_PAPERS),
         index=r"\d+",
+    priority: CHAIN_HEAD_PRIORITY
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.paper}.uncertainty:batch",
         cfg=lambda wildcards: uncertainty_cfg(wildcards.paper, int(wildcards.index)),
@@ -63,17 +73,17 @@ rule uncertainty_batch:
 
 
 rule uncertainty_gather:
-    # it starts as soon as its batches are in, on half the cores: on two cores a two-thread gather waited for both
-    # to be free, which the clearance jobs never left them until the end (it then ran alone for 44 s)
-    priority: CHAIN_HEAD_PRIORITY + 1
-    # the scenarios' bounded searches run side by side (linkwork.pipeline.search.refine, one process per thread)
-    threads: max(1, (workflow.cores or 2) // 2)
     input:
         unpack(uncertainty_gather_inputs),
     output:
         "results/{paper}/uncertainty.nc",
     wildcard_constraints:
         paper="|".join(UNCERTAIN_PAPERS),
+    # it starts as soon as its batches are in, on half the cores: on two cores a two-thread gather waited for both
+    # to be free, which the clearance jobs never left them until the end (it then ran alone for 44 s)
+    priority: CHAIN_HEAD_PRIORITY + 1
+    # the scenarios' bounded searches run side by side (linkwork.pipeline.search.refine, one process per thread)
+    threads: max(1, (workflow.cores or 2) // 2)
     params:
         study=lambda wildcards: f"linkwork.papers.{wildcards.paper}.uncertainty:gather",
         cfg=lambda wildcards: uncertainty_gather_cfg(wildcards.paper),

@@ -3,14 +3,14 @@
 As a rule script: the notebook is ``input.notebook``; every other named input except ``code`` is passed
 to the report by name.  By hand: ``render_report.py NOTEBOOK.py OUTPUT.html [--input KEY=PATH[,PATH...] ...]``.
 
-The cells run in this process, in an IPython shell with the inline matplotlib backend (no kernel to
-start: a report is one job and one process).  Inputs reach the report as absolute paths in the environment
-variable LINKWORK_REPORT (JSON: {"inputs": {...}}); a list input is a list of paths.  A cell that raises
-stops the render with the cell and the error.  Code cells are hidden in the HTML; figures are embedded as
-data URIs at the figure's own size (the layout is constrained, so IPython's default 'tight' bounding box, an
-extra pass over every artist's extent, adds nothing); with LINKWORK_CHECK_FIGURES=1 (the tests) a figure that draws outside its
-canvas stops the render.  Cell ids are derived from the notebook's path and the cell's position, so rendering the same
-report twice writes the same bytes.  The HTML is written atomically.
+The cells run in this process, in an IPython shell with the inline matplotlib backend (no kernel to start: a report is
+one job and one process).  Inputs reach the report as absolute paths in the environment variable LINKWORK_REPORT (JSON:
+{"inputs": {...}}); a list input is a list of paths.  A cell that raises stops the render with the cell and the error.
+Code cells are hidden in the HTML; figures are embedded as data URIs at the figure's own size (the layout is
+constrained, so IPython's default 'tight' bounding box, an extra pass over every artist's extent, adds nothing); with
+LINKWORK_CHECK_FIGURES=1 (the tests) a figure that draws outside its canvas stops the render.  Cell ids are derived from
+the notebook's path and the cell's position, so rendering the same report twice writes the same bytes.  The HTML is
+written atomically.
 """
 
 import argparse
@@ -55,9 +55,17 @@ def _figure_png(fig) -> str:
     if os.environ.get("LINKWORK_CHECK_FIGURES") == "1":
         drawn = fig.get_tightbbox(fig.canvas.get_renderer())
         width, height = fig.get_size_inches()
-        if drawn.x0 < -CANVAS_SLACK_IN or drawn.y0 < -CANVAS_SLACK_IN or drawn.x1 > width + CANVAS_SLACK_IN or drawn.y1 > height + CANVAS_SLACK_IN:
+        if (
+            drawn.x0 < -CANVAS_SLACK_IN
+            or drawn.y0 < -CANVAS_SLACK_IN
+            or drawn.x1 > width + CANVAS_SLACK_IN
+            or drawn.y1 > height + CANVAS_SLACK_IN
+        ):
             title = fig.get_suptitle() or (fig.axes[0].get_title() if fig.axes else "")
-            _OUTSIDE.append(f"figure {title!r} draws over ({drawn.x0:.2f}, {drawn.y0:.2f})-({drawn.x1:.2f}, {drawn.y1:.2f}) in, its canvas is {width:.2f} x {height:.2f} in")
+            _OUTSIDE.append(
+                f"figure {title!r} draws over ({drawn.x0:.2f}, {drawn.y0:.2f})-({drawn.x1:.2f}, {drawn.y1:.2f}) in, its"
+                f" canvas is {width:.2f} x {height:.2f} in"
+            )
     return png
 
 
@@ -113,7 +121,10 @@ def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     import jupytext
     from nbconvert import HTMLExporter
 
-    absolute = {k: [str(Path(p).resolve()) for p in v] if isinstance(v, list) else str(Path(v).resolve()) for k, v in inputs.items()}
+    absolute = {
+        k: [str(Path(p).resolve()) for p in v] if isinstance(v, list) else str(Path(v).resolve())
+        for k, v in inputs.items()
+    }
     os.environ["LINKWORK_REPORT"] = json.dumps({"inputs": absolute})
     output, template = output.resolve(), template.resolve()
     start = time.perf_counter()
@@ -126,8 +137,13 @@ def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
         sys.exit(f"render_report: {notebook}: {exc}")
     stable_ids(nb, notebook.name)
     nb.metadata["title"] = page_title(nb)  # nbconvert's page title (else "Notebook")
-    exporter = HTMLExporter(template_name=template.parent.name, extra_template_basedirs=[str(template.resolve().parent.parent)], exclude_input=True,
-                            exclude_input_prompt=True, exclude_output_prompt=True)
+    exporter = HTMLExporter(
+        template_name=template.parent.name,
+        extra_template_basedirs=[str(template.resolve().parent.parent)],
+        exclude_input=True,
+        exclude_input_prompt=True,
+        exclude_output_prompt=True,
+    )
     html, _ = exporter.from_notebook_node(nb)
     from linkwork.pipeline.results import ResultWriteError, write_text
 
@@ -155,7 +171,12 @@ def _cli() -> None:
 
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
-    render(Path(sm.input.notebook), Path(sm.output[0]), {k: v for k, v in sm.input.items() if k not in SKIPPED}, Path(sm.input.template))
+    render(
+        Path(sm.input.notebook),
+        Path(sm.output[0]),
+        {k: v for k, v in sm.input.items() if k not in SKIPPED},
+        Path(sm.input.template),
+    )
     from linkwork.pipeline.results import finish_job
 
     finish_job()  # no interpreter teardown: the page is written and closed

@@ -236,7 +236,9 @@ def network_system(net: Network, w: NDArray[np.float64], amp: ComplexArray) -> t
     return a, rhs
 
 
-def solve_network(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0, singular_rcond: float = 1.0e-13) -> ChainResponse:
+def solve_network(
+    net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0, singular_rcond: float = 1.0e-13
+) -> ChainResponse:
     """Route 1: node velocities and constraint forces at every w (rad/s, > 0).
 
     The unknowns are the node velocities and one multiplier per constraint
@@ -294,7 +296,9 @@ def assemble_matrices(net: Network) -> tuple[FloatArray, FloatArray, FloatArray,
     return mats["mass"], mats["spring"], mats["damper"], g
 
 
-def solve_matrices(net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0) -> tuple[ComplexArray, ComplexArray]:
+def solve_matrices(
+    net: Network, omega: ArrayLike, drive_amplitude: ArrayLike = 1.0
+) -> tuple[ComplexArray, ComplexArray]:
     """Route 2: (input force or input velocity, node velocities) from (K - w^2 M + j w C) X = F.
 
     Constraints are eliminated with an orthonormal null-space basis T of G
@@ -383,7 +387,9 @@ def series_parallel_mobility(tree, omega: ArrayLike) -> ComplexArray:
     if isinstance(tree, Series):
         return sum((series_parallel_mobility(c, w) for c in tree.children), np.zeros(w.shape, dtype=complex))
     if isinstance(tree, Parallel):
-        return 1.0 / sum((1.0 / series_parallel_mobility(c, w) for c in tree.children), np.zeros(w.shape, dtype=complex))
+        return 1.0 / sum(
+            (1.0 / series_parallel_mobility(c, w) for c in tree.children), np.zeros(w.shape, dtype=complex)
+        )
     if isinstance(tree, Through):
         return series_parallel_mobility(tree.child, w) / tree.ratio**2
     raise TypeError(f"not a chain tree node: {tree!r}")

@@ -161,9 +161,11 @@ def local_matrices(kind: str, youngs_modulus: float, area: float, second_moment:
 
 
 @lru_cache(maxsize=256)
-def _shape_integrals(kind: str, length: float, gauss_points: int) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Integrals of the shape-function products over one element of ``length`` (m), scattered into the
-    element's dof layout: (int N'^T N' (axial), int N^T N (axial), int H''^T H'' (transverse), int H^T H (transverse))."""
+def _shape_integrals(
+    kind: str, length: float, gauss_points: int
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Integrals of the shape-function products over one element of ``length`` (m), scattered into the element's dof
+    layout: (int N'^T N' (axial), int N^T N (axial), int H''^T H'' (transverse), int H^T H (transverse))."""
     lay = LAYOUTS[kind]
     xi, w = _gauss(gauss_points)
     shapes = cubic_hermite if kind == "frame6" else quintic_hermite
@@ -209,7 +211,9 @@ def _curvature_shapes(kind: str, length: float, points: int) -> FloatArray:
     return d2h
 
 
-def element_strain_extremes(kind: str, length: float, half_depth: float, local_u: FloatArray, points: int = 9) -> FloatArray:
+def element_strain_extremes(
+    kind: str, length: float, half_depth: float, local_u: FloatArray, points: int = 9
+) -> FloatArray:
     """max over the element of |h v''| + |u'| (the strain of eq. (8) divided by E), for local dof vectors (..., n)."""
     lay = LAYOUTS[kind]
     d2h = _curvature_shapes(kind, float(length), points)
@@ -310,15 +314,37 @@ def gather(mesh: BeamMesh, u: FloatArray) -> FloatArray:
     return padded[..., np.where(table >= 0, table, u.shape[-1])]
 
 
-def newmark_history(step_inverse: FloatArray, k: FloatArray, c: FloatArray, f: FloatArray, u0: FloatArray, v0: FloatArray,
-                    a0: FloatArray, dt: float, steps: int, beta: float = 0.25, gamma: float = 0.5) -> FloatArray:
+def newmark_history(
+    step_inverse: FloatArray,
+    k: FloatArray,
+    c: FloatArray,
+    f: FloatArray,
+    u0: FloatArray,
+    v0: FloatArray,
+    a0: FloatArray,
+    dt: float,
+    steps: int,
+    beta: float = 0.25,
+    gamma: float = 0.5,
+) -> FloatArray:
     """Newmark's method on M u'' + C u' + K u = F with matrices that vary periodically over ``f.shape[0]`` steps
     (angle index s of step number i is (i + 1) mod n): displacements (m) after each of ``steps`` steps of ``dt`` (s)
     from u0, v0, a0.  ``step_inverse[s]`` is (M + gamma dt C + beta dt^2 K)^-1 at angle s.  Compiled (numba); the
     same operations in the same order as the loop in numpy, so the same numbers to the bit
     (tests/test_fem.py checks both)."""
-    return _newmark_compiled(step_inverse, k, c, f, np.asarray(u0, dtype=float), np.asarray(v0, dtype=float), np.asarray(a0, dtype=float),
-                         float(dt), int(steps), float(beta), float(gamma))
+    return _newmark_compiled(
+        step_inverse,
+        k,
+        c,
+        f,
+        np.asarray(u0, dtype=float),
+        np.asarray(v0, dtype=float),
+        np.asarray(a0, dtype=float),
+        float(dt),
+        int(steps),
+        float(beta),
+        float(gamma),
+    )
 
 
 def newmark_steps(step_inverse, k, c, f, ud, vd, ad, dt, steps, beta, gamma):

@@ -49,7 +49,9 @@ class PenaltyProblem:
         sy = float(np.sum((1.0 - sigma / self.allowable) ** 2))
         sz = float(np.sum((x * self.lengths / (self.reference_diameter * self.lengths[0])) ** 2))
         ok = g > 0
-        sg = float(r * np.sum(1.0 / g[ok]) + r**-0.5 * np.sum(g[~ok] ** 2) + (1e6 * np.sum(~ok) if (~ok).any() else 0.0))
+        sg = float(
+            r * np.sum(1.0 / g[ok]) + r**-0.5 * np.sum(g[~ok] ** 2) + (1e6 * np.sum(~ok) if (~ok).any() else 0.0)
+        )
         sh = 0.0
         return {"SY": sy, "SZ": sz, "SG": sg, "SH": sh, "SS": sy + sz + sg + sh, "g": g, "sigma": sigma}
 
@@ -64,7 +66,15 @@ class SumtResult:
     evaluations: int = 0
 
 
-def sumt(problem: PenaltyProblem, x0: FloatArray, r0: float, factor: float, iterations: int, xtol: float, inner_maxiter: int = 2000) -> SumtResult:
+def sumt(
+    problem: PenaltyProblem,
+    x0: FloatArray,
+    r0: float,
+    factor: float,
+    iterations: int,
+    xtol: float,
+    inner_maxiter: int = 2000,
+) -> SumtResult:
     """Minimise SS(x, r(k)) for r(k) = r0 factor^k, k = 0..iterations-1, each from the previous optimum.
 
     Inner minimiser: Nelder-Mead in millimetres (xtol in m).  The history holds, per k, r, x and
@@ -85,7 +95,15 @@ def sumt(problem: PenaltyProblem, x0: FloatArray, r0: float, factor: float, iter
         x_new = res.x * 1e-3
         result.evaluations += int(res.nfev)
         parts = problem.parts(x_new, r)
-        result.history.append({"k": k, "r": r, "x": x_new.copy(), **{p: parts[p] for p in ("SY", "SZ", "SG", "SH", "SS")}, "g": parts["g"].copy()})
+        result.history.append(
+            {
+                "k": k,
+                "r": r,
+                "x": x_new.copy(),
+                **{p: parts[p] for p in ("SY", "SZ", "SG", "SH", "SS")},
+                "g": parts["g"].copy(),
+            }
+        )
         converged = np.max(np.abs(x_new - x)) < xtol and k > 0
         x = x_new
         if converged:
@@ -100,8 +118,15 @@ def slsqp(problem: PenaltyProblem, x0: FloatArray, ftol: float = 1e-10, maxiter:
 
     fun = lambda y: (lambda p: p["SY"] + p["SZ"])(problem.parts(y * 1e-3, 1.0))  # noqa: E731
     cons = {"type": "ineq", "fun": lambda y: problem.constraints(y * 1e-3)}
-    res = minimize(fun, np.asarray(x0) * 1e3, method="SLSQP", constraints=[cons], options={"ftol": ftol, "maxiter": maxiter})
-    return res.x * 1e-3, {"success": bool(res.success), "message": str(res.message), "evaluations": int(res.nfev), "objective": float(res.fun)}
+    res = minimize(
+        fun, np.asarray(x0) * 1e3, method="SLSQP", constraints=[cons], options={"ftol": ftol, "maxiter": maxiter}
+    )
+    return res.x * 1e-3, {
+        "success": bool(res.success),
+        "message": str(res.message),
+        "evaluations": int(res.nfev),
+        "objective": float(res.fun),
+    }
 
 
 def gradient(f: Callable[[FloatArray], float], x: FloatArray, step: float) -> FloatArray:

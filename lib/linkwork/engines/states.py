@@ -140,12 +140,31 @@ def settle(step, chunk: int, max_cycles: int, max_period: int, section_tol: floa
         period, transient = section_period(x, max_period, 0.0, section_tol, periods)
         if period != NOT_PERIODIC:
             first, stop = judged_window(n, period, transient, period)
-            return {"status": PERIODIC, "period": period, "transient": transient, "window": (first, stop), "points": x, "measures": m, "change": 0.0}
+            return {
+                "status": PERIODIC,
+                "period": period,
+                "transient": transient,
+                "window": (first, stop),
+                "points": x,
+                "measures": m,
+                "change": 0.0,
+            }
         tested = m if rows is None else m[:, list(rows)]
         cut = truncation_point(tested.T)
         # a cut beyond a third of the record says the transient may still leave a bias in the window: not yet
-        ok, change = thirds_agree(tested[cut:].T, confidence) if n - cut >= min_cycles and cut <= n // 3 else (False, float("inf"))
+        ok, change = (
+            thirds_agree(tested[cut:].T, confidence)
+            if n - cut >= min_cycles and cut <= n // 3
+            else (False, float("inf"))
+        )
         if ok or n >= max_cycles:
             cut = cut if ok else n // 3
-            return {"status": STATIONARY if ok else CAP, "period": NOT_PERIODIC, "transient": cut, "window": (cut, n), "points": x, "measures": m,
-                    "change": thirds_agree(tested[cut:].T, confidence)[1]}
+            return {
+                "status": STATIONARY if ok else CAP,
+                "period": NOT_PERIODIC,
+                "transient": cut,
+                "window": (cut, n),
+                "points": x,
+                "measures": m,
+                "change": thirds_agree(tested[cut:].T, confidence)[1],
+            }

@@ -28,8 +28,8 @@ def _declared() -> list[tuple[int, str, str, str]]:
 
 
 def __getattr__(name: str):
-    """``PAPERS`` (name -> title, in report order) and ``CITATIONS`` (name -> the paper's source and the seed file of its
-    text), found on first reading."""
+    """``PAPERS`` (name -> title, in report order) and ``CITATIONS`` (name -> the paper's source and the seed file of
+    its text), found on first reading."""
     if name not in ("PAPERS", "CITATIONS"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     found = _declared()

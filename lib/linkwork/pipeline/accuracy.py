@@ -18,7 +18,9 @@ import xarray as xr
 DIM = "wp_point"
 
 
-def summary_variables(method: str | Sequence[str], settings: Sequence[str], errors: Sequence[float], pipeline: str | Sequence[str]) -> dict[str, Any]:
+def summary_variables(
+    method: str | Sequence[str], settings: Sequence[str], errors: Sequence[float], pipeline: str | Sequence[str]
+) -> dict[str, Any]:
     """Data variables of the standard accuracy summary for one method, or one method per point (dimension ``wp_point``).
 
     ``pipeline``: the setting(s) the pipeline uses; ``highlights`` shows one pipeline setting per method, so a study
@@ -33,9 +35,21 @@ def summary_variables(method: str | Sequence[str], settings: Sequence[str], erro
         raise ValueError(f"summary_variables: {len(methods)} methods for {n} settings")
     return {
         "wp_method": (DIM, np.array(methods, dtype=object), {"units": "1", "long_name": "numerical method"}),
-        "wp_setting": (DIM, np.array(list(settings), dtype=object), {"units": "1", "long_name": "setting of that point"}),
-        "wp_error": (DIM, np.asarray(errors, dtype=float), {"units": "1", "long_name": "relative error against the method's reference"}),
-        "wp_pipeline": (DIM, np.array([int(s in chosen) for s in settings]), {"units": "1", "long_name": "1 for the setting the pipeline uses"}),
+        "wp_setting": (
+            DIM,
+            np.array(list(settings), dtype=object),
+            {"units": "1", "long_name": "setting of that point"},
+        ),
+        "wp_error": (
+            DIM,
+            np.asarray(errors, dtype=float),
+            {"units": "1", "long_name": "relative error against the method's reference"},
+        ),
+        "wp_pipeline": (
+            DIM,
+            np.array([int(s in chosen) for s in settings]),
+            {"units": "1", "long_name": "1 for the setting the pipeline uses"},
+        ),
     }
 
 
@@ -43,7 +57,13 @@ def collect(studies: Sequence[xr.Dataset], timings: Sequence[Mapping[str, Any]])
     """One table over every method: errors (Dataset) and times (dict ``method/setting`` -> s)."""
     methods, settings, errors, pipeline, seconds = [], [], [], [], {}
     for study, times in zip(studies, timings, strict=True):
-        for m, s, e, p in zip(study.wp_method.values, study.wp_setting.values, study.wp_error.values, study.wp_pipeline.values, strict=True):
+        for m, s, e, p in zip(
+            study.wp_method.values,
+            study.wp_setting.values,
+            study.wp_error.values,
+            study.wp_pipeline.values,
+            strict=True,
+        ):
             methods.append(str(m))
             settings.append(str(s))
             errors.append(float(e))
@@ -53,7 +73,9 @@ def collect(studies: Sequence[xr.Dataset], timings: Sequence[Mapping[str, Any]])
     variables["wp_method"] = (DIM, np.array(methods, dtype=object), variables["wp_method"][2])
     variables["wp_pipeline"] = (DIM, np.array(pipeline), variables["wp_pipeline"][2])
     ds = xr.Dataset({k.removeprefix("wp_"): v for k, v in variables.items()})
-    ds = ds.rename({DIM: "point"}).assign_coords(point=("point", np.arange(len(errors)), {"units": "1", "long_name": "study point"}))
+    ds = ds.rename({DIM: "point"}).assign_coords(
+        point=("point", np.arange(len(errors)), {"units": "1", "long_name": "study point"})
+    )
     ds.attrs.update(title="What accuracy costs in time, per numerical method")
     return ds, seconds
 
@@ -63,7 +85,11 @@ def highlights(ds: xr.Dataset, seconds: Mapping[str, float]) -> dict[str, dict[s
     its time as a multiple of the pipeline's).  Times are wall-clock, so these go to the timings side file."""
     out: dict[str, dict[str, Any]] = {}
     for method in dict.fromkeys(str(m) for m in ds.method.values):
-        rows = [(str(s), float(e), int(p), seconds[f"{method}/{s}"]) for m, s, e, p in zip(ds.method.values, ds.setting.values, ds.error.values, ds.pipeline.values, strict=True) if m == method]
+        rows = [
+            (str(s), float(e), int(p), seconds[f"{method}/{s}"])
+            for m, s, e, p in zip(ds.method.values, ds.setting.values, ds.error.values, ds.pipeline.values, strict=True)
+            if m == method
+        ]
         chosen = [r for r in rows if r[2]]
         others = [r for r in rows if not r[2]]
         if not chosen or not others:
@@ -81,5 +107,8 @@ def summary(cfg: Mapping[str, Any], **studies: Any) -> tuple[xr.Dataset, dict[st
     """Rule study: gather every paper's accuracy study (inputs named <paper> and <paper>_t)."""
     names = [k for k in studies if not k.endswith("_t")]
     ds, seconds = collect([studies[k] for k in names], [studies[f"{k}_t"] for k in names])
-    return ds, {"method": "median of repeats after a warm-up, time.perf_counter, measured inside each study", "seconds": seconds,
-                "highlights": highlights(ds, seconds)}
+    return ds, {
+        "method": "median of repeats after a warm-up, time.perf_counter, measured inside each study",
+        "seconds": seconds,
+        "highlights": highlights(ds, seconds),
+    }

@@ -28,13 +28,38 @@ def assumptions(cfg: Mapping[str, Any]):
     text = {"units": "1"}
     return xr.Dataset(
         {
-            "value": ("entry", column(lambda e: str(e["value"])), {**text, "long_name": "value (SI; a choice: its name)"}),
-            "status": ("entry", column(lambda e: str(e["status"])), {**text, "long_name": "sourced, inferred or assumed"}),
+            "value": (
+                "entry",
+                column(lambda e: str(e["value"])),
+                {**text, "long_name": "value (SI; a choice: its name)"},
+            ),
+            "status": (
+                "entry",
+                column(lambda e: str(e["status"])),
+                {**text, "long_name": "sourced, inferred or assumed"},
+            ),
             "reason": ("entry", column(lambda e: str(e["reason"])), {**text, "long_name": "why this value"}),
-            "range": ("entry", column(lambda e: " / ".join(map(str, e.get("choice_labels", e["choices"]))) if "choices" in e else _text(e.get("range"))),
-                      {**text, "long_name": "plausible range, or the alternatives of a choice ('' if none)"}),
-            "range_reason": ("entry", column(lambda e: str(e.get("range_reason", ""))), {**text, "long_name": "why that range ('' if none)"}),
-            "entry_json": ("entry", column(lambda e: json.dumps(e, sort_keys=True)), {**text, "long_name": "the whole entry as JSON"}),
+            "range": (
+                "entry",
+                column(
+                    lambda e: (
+                        " / ".join(map(str, e.get("choice_labels", e["choices"])))
+                        if "choices" in e
+                        else _text(e.get("range"))
+                    )
+                ),
+                {**text, "long_name": "plausible range, or the alternatives of a choice ('' if none)"},
+            ),
+            "range_reason": (
+                "entry",
+                column(lambda e: str(e.get("range_reason", ""))),
+                {**text, "long_name": "why that range ('' if none)"},
+            ),
+            "entry_json": (
+                "entry",
+                column(lambda e: json.dumps(e, sort_keys=True)),
+                {**text, "long_name": "the whole entry as JSON"},
+            ),
         },
         coords={"entry": ("entry", np.array(list(found), dtype=object), {**text, "long_name": "config key path"})},
         attrs={"title": "labelled config entries: values, statuses, reasons, ranges"},

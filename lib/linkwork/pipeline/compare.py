@@ -54,27 +54,68 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-VERDICTS = ("matches", "matches as printed", "depends on assumptions", "not reconciled", "undetermined (numerics)", "deviates as printed",
-            "deviates", "not reproducible")
+VERDICTS = (
+    "matches",
+    "matches as printed",
+    "depends on assumptions",
+    "not reconciled",
+    "undetermined (numerics)",
+    "deviates as printed",
+    "deviates",
+    "not reproducible",
+)
 #: Each class in a few plain words, for legends and the index.
 VERDICT_MEANING = {
-    "matches": "within the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit, within it), with our error bar",
+    "matches": (
+        "within the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit,"
+        " within it), with our error bar"
+    ),
     "matches as printed": "within the tolerance at the printed values; the last printed digit of an input moves it out",
     "depends on assumptions": "matches under a consistent set of assumptions, fails under others",
     "not reconciled": "matches only under assumptions where other rows of the paper fail",
     "undetermined (numerics)": "our own numerical error bar straddles the tolerance",
     "deviates as printed": "outside the tolerance at the printed values; only the last printed digit moves it in",
-    "deviates": "outside the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit, within it), with our error bar",
+    "deviates": (
+        "outside the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit,"
+        " within it), with our error bar"
+    ),
     "not reproducible": "the paper lacks what reproducing it needs",
 }
 #: One colour per class, for tables and the index's matrix.
-VERDICT_COLOURS = {"matches": "#a6dba0", "matches as printed": "#d9f0d3", "depends on assumptions": "#c6dbef", "not reconciled": "#9e9ac8",
-                   "undetermined (numerics)": "#fee391", "deviates as printed": "#fcbba1", "deviates": "#ef8a62", "not reproducible": "#d9d9d9"}
+VERDICT_COLOURS = {
+    "matches": "#a6dba0",
+    "matches as printed": "#d9f0d3",
+    "depends on assumptions": "#c6dbef",
+    "not reconciled": "#9e9ac8",
+    "undetermined (numerics)": "#fee391",
+    "deviates as printed": "#fcbba1",
+    "deviates": "#ef8a62",
+    "not reproducible": "#d9d9d9",
+}
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
-    "model", "scenario", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance", "tolerance_source",
-    "reproduced", "deviation", "relative_deviation", "numerical_error", "numerical_source",
-    "input_low", "input_high", "input_source", "decided_by", "in_consistent_set", "verdict",
+    "model",
+    "scenario",
+    "id",
+    "role",
+    "quantity",
+    "where",
+    "published",
+    "relation",
+    "unit",
+    "tolerance",
+    "tolerance_source",
+    "reproduced",
+    "deviation",
+    "relative_deviation",
+    "numerical_error",
+    "numerical_source",
+    "input_low",
+    "input_high",
+    "input_source",
+    "decided_by",
+    "in_consistent_set",
+    "verdict",
 ]
 
 
@@ -163,7 +204,9 @@ def classify(published: float, tolerance: float, relation: str, nominal: float, 
     return "not reconciled" if consistent is False else "depends on assumptions"
 
 
-def crossing_inputs(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> list[str]:
+def crossing_inputs(
+    region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]
+) -> list[str]:
     """The inputs (key paths) that, moved alone within their ranges, change the verdict."""
     e = abs(error) if np.isfinite(error) else 0.0
     base_inside = _inside(nominal - e, nominal + e, region)
@@ -174,7 +217,9 @@ def crossing_inputs(region: tuple[float, float], nominal: float, error: float, o
     return [name for name, (lo, hi) in oat.items() if np.isfinite(lo) and changes(lo, hi)]
 
 
-def decided_by(region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]) -> str:
+def decided_by(
+    region: tuple[float, float], nominal: float, error: float, oat: Mapping[str, tuple[float, float]]
+) -> str:
     """Which inputs, moved alone within their ranges, change the verdict (else the one that moves our value most)."""
     crossing = [input_name(name) for name in crossing_inputs(region, nominal, error, oat)]
     if crossing:
@@ -231,8 +276,16 @@ def compare(
     input).  The first scenario's values are read from ``ds``; another scenario's from the study's nominal
     point of that scenario (with its own numerical error bars where ``errors`` gives them, else the first scenario's).
     """
-    scenario_labels = [str(x) for x in uncertainty.scenario.values] if uncertainty is not None and "scenario" in uncertainty.dims else [""]
-    rows = [row for n, label in enumerate(scenario_labels) for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label)]
+    scenario_labels = (
+        [str(x) for x in uncertainty.scenario.values]
+        if uncertainty is not None and "scenario" in uncertainty.dims
+        else [""]
+    )
+    rows = [
+        row
+        for n, label in enumerate(scenario_labels)
+        for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label)
+    ]
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
@@ -245,15 +298,24 @@ def _study_at(uncertainty: xr.Dataset | None, n: int, key: str) -> dict[str, Any
         return None
     q = keys.index(key)
     inputs = [str(i) for i in uncertainty.input.values]
-    kinds = [str(k) for k in uncertainty.input_kind.values] if "input_kind" in uncertainty else ["assumed"] * len(inputs)
+    kinds = (
+        [str(k) for k in uncertainty.input_kind.values] if "input_kind" in uncertainty else ["assumed"] * len(inputs)
+    )
     consistent = float(uncertainty.in_consistent_set.values[n, q]) if "in_consistent_set" in uncertainty else math.nan
     return {
         "nominal": float(uncertainty.nominal.values[n, q]),
-        "low": float(uncertainty.low.values[n, q]), "high": float(uncertainty.high.values[n, q]),
-        "oat": {name: (float(uncertainty.oat_low.values[n, k, q]), float(uncertainty.oat_high.values[n, k, q])) for k, name in enumerate(inputs)},
+        "low": float(uncertainty.low.values[n, q]),
+        "high": float(uncertainty.high.values[n, q]),
+        "oat": {
+            name: (float(uncertainty.oat_low.values[n, k, q]), float(uncertainty.oat_high.values[n, k, q]))
+            for k, name in enumerate(inputs)
+        },
         "rounding": {name for name, kind in zip(inputs, kinds, strict=True) if kind == "rounding"},
         "consistent": None if not np.isfinite(consistent) else bool(consistent),
-        "source": f"{_scenario_samples(uncertainty, n)} samples over {len(inputs)} inputs" + (", then bounded searches" if "low_at" in uncertainty else ""),
+        "source": (
+            f"{_scenario_samples(uncertainty, n)} samples over {len(inputs)} inputs"
+            + (", then bounded searches" if "low_at" in uncertainty else "")
+        ),
     }
 
 
@@ -261,7 +323,9 @@ def _scenario_samples(uncertainty: xr.Dataset, n: int) -> int:
     """How many samples the uncertainty study evaluated in scenario ``n`` (all of them where it names no scenarios)."""
     if "sample_scenario" not in uncertainty or "scenario" not in uncertainty.dims:
         return int(uncertainty.samples)
-    return int((np.asarray(uncertainty.sample_scenario.values).astype(str) == str(uncertainty.scenario.values[n])).sum())
+    return int(
+        (np.asarray(uncertainty.sample_scenario.values).astype(str) == str(uncertainty.scenario.values[n])).sum()
+    )
 
 
 def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, errors: Mapping[str, tuple[float, str]],
@@ -288,7 +352,12 @@ def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, err
             low, high, source, consistent = study["low"], study["high"], study["source"], study["consistent"]
             region = acceptance(value, tol, relation)
             crossing = crossing_inputs(region, reproduced, error, study["oat"])
-            rounding_only = bool(study["rounding"]) and set(study["oat"]) <= study["rounding"] or bool(crossing) and set(crossing) <= study["rounding"]
+            rounding_only = (
+                bool(study["rounding"])
+                and set(study["oat"]) <= study["rounding"]
+                or bool(crossing)
+                and set(crossing) <= study["rounding"]
+            )
         elif entry["measure"] is None:
             source = "not reproducible: nothing to propagate"
         verdict_class = classify(value, tol, relation, reproduced, error, low, high, rounding_only, consistent)
@@ -297,12 +366,28 @@ def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, err
         deviation = reproduced - value
         rows.append(
             {
-                "model": model, "scenario": scenario, "id": entry["id"], "role": entry.get("role", "headline"), "quantity": entry["quantity"],
-                "where": entry["where"], "published": value, "relation": relation, "unit": entry["unit"], "tolerance": tol,
-                "tolerance_source": entry.get("tolerance_source", HALF_DIGIT), "reproduced": reproduced, "deviation": deviation,
-                "relative_deviation": deviation / value if value != 0 else math.nan, "numerical_error": error, "numerical_source": error_source,
-                "input_low": low, "input_high": high, "input_source": source, "decided_by": decider,
-                "in_consistent_set": np.nan if consistent is None else float(consistent), "verdict": verdict_class,
+                "model": model,
+                "scenario": scenario,
+                "id": entry["id"],
+                "role": entry.get("role", "headline"),
+                "quantity": entry["quantity"],
+                "where": entry["where"],
+                "published": value,
+                "relation": relation,
+                "unit": entry["unit"],
+                "tolerance": tol,
+                "tolerance_source": entry.get("tolerance_source", HALF_DIGIT),
+                "reproduced": reproduced,
+                "deviation": deviation,
+                "relative_deviation": deviation / value if value != 0 else math.nan,
+                "numerical_error": error,
+                "numerical_source": error_source,
+                "input_low": low,
+                "input_high": high,
+                "input_source": source,
+                "decided_by": decider,
+                "in_consistent_set": np.nan if consistent is None else float(consistent),
+                "verdict": verdict_class,
             }
         )
     return rows
@@ -333,7 +418,10 @@ def compare_datasets(
     variants = [str(v) for v in ds[dim].values] if dim else [""]
     errors = errors or {}
     return pd.concat(
-        [compare(published, ds.sel({dim: v}) if dim else ds, model=v, errors=errors.get(v), uncertainty=uncertainty) for v in variants],
+        [
+            compare(published, ds.sel({dim: v}) if dim else ds, model=v, errors=errors.get(v), uncertainty=uncertainty)
+            for v in variants
+        ],
         ignore_index=True,
     )
 
@@ -346,22 +434,61 @@ def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
     models = list(dict.fromkeys(table["model"]))
     scen_of = scenario_of(table)
     scens = list(dict.fromkeys(scen_of))
-    counts = np.array([[[[int(((table.model == m) & (scen_of == s) & (table.role == r) & (table.verdict == v)).sum()) for v in VERDICTS]
-                         for r in ROLES] for s in scens] for m in models])
+    counts = np.array(
+        [
+            [
+                [
+                    [
+                        int(((table.model == m) & (scen_of == s) & (table.role == r) & (table.verdict == v)).sum())
+                        for v in VERDICTS
+                    ]
+                    for r in ROLES
+                ]
+                for s in scens
+            ]
+            for m in models
+        ]
+    )
     return xr.Dataset(
-        {"verdict_count": (("count_model", "count_scenario", "role", "verdict"), counts,
-                           {"units": "1", "long_name": "comparison rows per model, scenario, role and verdict class"})},
-        coords={"count_model": ("count_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the comparison block"}),
-                "count_scenario": ("count_scenario", np.array(scens, dtype=object), {"units": "1", "long_name": "named scenario ('' : the paper's single reading)"}),
-                "role": ("role", np.array(ROLES, dtype=object), {"units": "1", "long_name": "headline claim or table cell (a trivial check)"}),
-                "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict class"})},
+        {
+            "verdict_count": (
+                ("count_model", "count_scenario", "role", "verdict"),
+                counts,
+                {"units": "1", "long_name": "comparison rows per model, scenario, role and verdict class"},
+            )
+        },
+        coords={
+            "count_model": (
+                "count_model",
+                np.array(models, dtype=object),
+                {"units": "1", "long_name": "model variant of the comparison block"},
+            ),
+            "count_scenario": (
+                "count_scenario",
+                np.array(scens, dtype=object),
+                {"units": "1", "long_name": "named scenario ('' : the paper's single reading)"},
+            ),
+            "role": (
+                "role",
+                np.array(ROLES, dtype=object),
+                {"units": "1", "long_name": "headline claim or table cell (a trivial check)"},
+            ),
+            "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict class"}),
+        },
     )
 
 
 #: Each class as a count reads in prose ('3 match').
-COUNT_WORDS = {"matches": "match", "matches as printed": "match as printed", "depends on assumptions": "depend on assumptions",
-               "not reconciled": "not reconciled with the other rows", "undetermined (numerics)": "undetermined by numerics",
-               "deviates as printed": "deviate as printed", "deviates": "deviate", "not reproducible": "not reproducible"}
+COUNT_WORDS = {
+    "matches": "match",
+    "matches as printed": "match as printed",
+    "depends on assumptions": "depend on assumptions",
+    "not reconciled": "not reconciled with the other rows",
+    "undetermined (numerics)": "undetermined by numerics",
+    "deviates as printed": "deviate as printed",
+    "deviates": "deviate",
+    "not reproducible": "not reproducible",
+}
 
 
 def scenario_of(table: pd.DataFrame) -> pd.Series:
@@ -397,7 +524,9 @@ def count_text(table: pd.DataFrame, model: str, role: str = "headline", scenario
     part = table[(table.model == model) & (table.role == role)]
     if "scenario" in part and len(part):
         part = part[part.scenario == (part.scenario.iloc[0] if scenario is None else scenario)]
-    return ", ".join(f"{int((part.verdict == v).sum())} {COUNT_WORDS[v]}" for v in VERDICTS if (part.verdict == v).any())
+    return ", ".join(
+        f"{int((part.verdict == v).sum())} {COUNT_WORDS[v]}" for v in VERDICTS if (part.verdict == v).any()
+    )
 
 
 def lead_word(rows: pd.DataFrame) -> str:
@@ -406,7 +535,14 @@ def lead_word(rows: pd.DataFrame) -> str:
     verdicts = set(rows.verdict)
     if verdicts <= {"matches", "matches as printed"}:
         return "Yes."
-    if not verdicts & {"matches", "matches as printed", "depends on assumptions", "undetermined (numerics)", "deviates as printed", "not reconciled"}:
+    if not verdicts & {
+        "matches",
+        "matches as printed",
+        "depends on assumptions",
+        "undetermined (numerics)",
+        "deviates as printed",
+        "not reconciled",
+    }:
         return "No."
     return "Partly."
 

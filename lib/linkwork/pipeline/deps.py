@@ -3,12 +3,12 @@
 Snakemake does not see what a script imports, so each rule declares the lib files in the import
 closure of its script (and of the study module it runs) as inputs; editing a module then reruns
 exactly the rules that can execute it.  Imports are read statically, nothing is imported: every
-``import`` / ``from ... import`` statement at the start of a line, at any indentation (lazy
-imports inside functions count), absolute ``linkwork...`` ones, relative ones inside the package,
-and sibling modules of the entry file (a report's ``_common``).  A module's parent packages count
-too (their ``__init__`` runs on import); a package whose names import every subpackage it finds says so (``_DISCOVERS``).  The scan is a line match, not a parse, because it runs on
-every Snakemake invocation: a docstring line that reads like an import statement can only add a
-dependency, never hide one.  Standard library only.
+``import`` / ``from ... import`` statement at the start of a line, at any indentation (lazy imports inside functions
+count), absolute ``linkwork...`` ones, relative ones inside the package, and sibling modules of the entry file (a
+report's ``_common``).  A module's parent packages count too (their ``__init__`` runs on import); a package whose names
+import every subpackage it finds says so (``_DISCOVERS``).  The scan is a line match, not a parse, because it runs on
+every Snakemake invocation: a docstring line that reads like an import statement can only add a dependency, never hide
+one.  Standard library only.
 """
 
 from __future__ import annotations
@@ -17,7 +17,9 @@ import re
 from functools import lru_cache
 from pathlib import Path
 
-_IMPORT = re.compile(r"^[ \t]*(?:from[ \t]+(\.*[\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]+)|import[ \t]+([^\n#]+))", re.M)
+_IMPORT = re.compile(
+    r"^[ \t]*(?:from[ \t]+(\.*[\w.]*)[ \t]+import[ \t]+(\([^)]*\)|[^\n#]+)|import[ \t]+([^\n#]+))", re.M
+)
 
 PACKAGE = "linkwork"
 #: A package's __init__ that holds ``linkwork-deps: NAME ... import every subpackage`` imports every subpackage it finds

@@ -21,7 +21,8 @@ from ..engines.multibody.simulate import Run
 
 
 def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
-    """Rule study: one linkage scene of ``linkages``: its ideal dynamics and its forward dynamics with its joints' effects."""
+    """Rule study: one linkage scene of ``linkages``: its ideal dynamics and its forward dynamics with its joints'
+    effects."""
     key = f"linkages.{name}.linkage"
     linkage = describe.from_config(cfg["linkage"], key)
     settings = describe.assembly_settings(f"{key}.assembly", cfg["linkage"].get("assembly"))
@@ -31,8 +32,11 @@ def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
     ideal = assembly.inverse_dynamics(linkage, t, cfg["gravity"], settings, turn)
     run = Run(linkage, cfg["gravity"], cfg["integrator"], y0=assembly.start_state(linkage, settings=settings))
     states, diags = run.advance(t)
-    print(f"linkage {name}: {len(linkage.bodies)} bodies, {len(linkage.joints)} joints ({len(linkage.clearance_joints)} with "
-          f"clearance), {cfg['turns']} turns, {run.steps} steps", flush=True)
+    print(
+        f"linkage {name}: {len(linkage.bodies)} bodies, {len(linkage.joints)} joints ({len(linkage.clearance_joints)}"
+        f" with clearance), {cfg['turns']} turns, {run.steps} steps",
+        flush=True,
+    )
     return _dataset(linkage, cfg, t, ideal, diags, run)
 
 
@@ -41,23 +45,68 @@ def _dataset(linkage, cfg, t, ideal, diags, run) -> xr.Dataset:
     clearance = [j.name for j in linkage.clearance_joints]
     per = np.array([diags[:, 4 + 6 * k : 10 + 6 * k] for k in range(len(clearance))]).reshape(len(clearance), t.size, 6)
     data = {
-        "driver_angle": ("time", np.degrees(linkage.driver.angle(t)[0]), {"units": "deg", "long_name": "driver angle (unwrapped)"}),
-        "ideal_output_acceleration": ("time", ideal["output_acceleration"], {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, every joint ideal"}),
-        "ideal_driver_torque": ("time", ideal["driver_torque"], {"units": "N m", "long_name": "driver torque, every joint ideal"}),
-        "ideal_joint_force": (("joint", "time"), np.array([ideal[f"force_{j}"] for j in ideal_joints]), {"units": "N", "long_name": "joint reaction force magnitude, every joint ideal"}),
-        "output_acceleration": ("time", diags[:, 0], {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, with the joints' effects"}),
-        "driver_torque": ("time", diags[:, 1], {"units": "N m", "long_name": "driver torque, with the joints' effects"}),
+        "driver_angle": (
+            "time",
+            np.degrees(linkage.driver.angle(t)[0]),
+            {"units": "deg", "long_name": "driver angle (unwrapped)"},
+        ),
+        "ideal_output_acceleration": (
+            "time",
+            ideal["output_acceleration"],
+            {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, every joint ideal"},
+        ),
+        "ideal_driver_torque": (
+            "time",
+            ideal["driver_torque"],
+            {"units": "N m", "long_name": "driver torque, every joint ideal"},
+        ),
+        "ideal_joint_force": (
+            ("joint", "time"),
+            np.array([ideal[f"force_{j}"] for j in ideal_joints]),
+            {"units": "N", "long_name": "joint reaction force magnitude, every joint ideal"},
+        ),
+        "output_acceleration": (
+            "time",
+            diags[:, 0],
+            {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, with the joints' effects"},
+        ),
+        "driver_torque": (
+            "time",
+            diags[:, 1],
+            {"units": "N m", "long_name": "driver torque, with the joints' effects"},
+        ),
         "energy": ("time", diags[:, 2], {"units": "J", "long_name": "kinetic + gravity + contact potential energy"}),
-        "constraint_drift": ("time", diags[:, 3], {"units": "m", "long_name": "norm of the constraint violation (Baumgarte-stabilised)"}),
-        "eccentricity": (("clearance_joint", "time"), per[:, :, 0], {"units": "m", "long_name": "journal centre to bearing centre"}),
-        "penetration": (("clearance_joint", "time"), per[:, :, 1], {"units": "m", "long_name": "eccentricity minus the radial clearance (> 0: in contact)"}),
-        "contact_force": (("clearance_joint", "time"), per[:, :, 3], {"units": "N", "long_name": "dry normal contact force"}),
+        "constraint_drift": (
+            "time",
+            diags[:, 3],
+            {"units": "m", "long_name": "norm of the constraint violation (Baumgarte-stabilised)"},
+        ),
+        "eccentricity": (
+            ("clearance_joint", "time"),
+            per[:, :, 0],
+            {"units": "m", "long_name": "journal centre to bearing centre"},
+        ),
+        "penetration": (
+            ("clearance_joint", "time"),
+            per[:, :, 1],
+            {"units": "m", "long_name": "eccentricity minus the radial clearance (> 0: in contact)"},
+        ),
+        "contact_force": (
+            ("clearance_joint", "time"),
+            per[:, :, 3],
+            {"units": "N", "long_name": "dry normal contact force"},
+        ),
         "film_force": (("clearance_joint", "time"), per[:, :, 4], {"units": "N", "long_name": "film radial force"}),
     }
-    attrs = {"integrator": json.dumps(dict(cfg["integrator"]), sort_keys=True), "gravity": int(cfg["gravity"]),
-             "steps": run.steps, "rejected_steps": run.rejected, "baumgarte_per_s": linkage.baumgarte,
-             "assembly": json.dumps(cfg["linkage"].get("assembly") or {}, sort_keys=True),
-             "effects": json.dumps({j.name: list(j.clearance.effects) for j in linkage.clearance_joints}, sort_keys=True)}
+    attrs = {
+        "integrator": json.dumps(dict(cfg["integrator"]), sort_keys=True),
+        "gravity": int(cfg["gravity"]),
+        "steps": run.steps,
+        "rejected_steps": run.rejected,
+        "baumgarte_per_s": linkage.baumgarte,
+        "assembly": json.dumps(cfg["linkage"].get("assembly") or {}, sort_keys=True),
+        "effects": json.dumps({j.name: list(j.clearance.effects) for j in linkage.clearance_joints}, sort_keys=True),
+    }
     coords = {"time": ("time", t, {"units": "s", "long_name": "time from the start"}),
               "joint": ("joint", ideal_joints, {"units": "1", "long_name": "joint (its name in the description)"}),
               "clearance_joint": ("clearance_joint", clearance, {"units": "1", "long_name": "joint with a clearance"})}

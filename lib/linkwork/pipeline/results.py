@@ -38,7 +38,11 @@ def git_commit(path: str | os.PathLike[str] = ".") -> str:
             ["git", "rev-parse", "HEAD"], cwd=path, capture_output=True, text=True, check=True
         ).stdout.strip()
         dirty = subprocess.run(
-            ["git", "status", "--porcelain", "--untracked-files=no"], cwd=path, capture_output=True, text=True, check=True
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=path,
+            capture_output=True,
+            text=True,
+            check=True,
         ).stdout.strip()
     except (OSError, subprocess.CalledProcessError):
         return "unknown"
@@ -83,11 +87,16 @@ def check_finite(ds, name: str = "result") -> None:
             continue
         values = np.asarray(var.values)
         if np.isinf(values).any():
-            raise NonFiniteResult(f"{name}: variable {key} holds inf at {int(np.isinf(values).sum())} of {values.size} points; not written")
+            raise NonFiniteResult(
+                f"{name}: variable {key} holds inf at {int(np.isinf(values).sum())} of {values.size} points; not"
+                " written"
+            )
         nans = int(np.isnan(values).sum())
         if nans and not var.attrs.get("nan_meaning"):
-            raise NonFiniteResult(f"{name}: variable {key} ({var.attrs.get('long_name', '')}) is NaN at {nans} of {values.size} points, "
-                                  "which the study does not expect; not written (check the inputs of this job)")
+            raise NonFiniteResult(
+                f"{name}: variable {key} ({var.attrs.get('long_name', '')}) is NaN at {nans} of {values.size} points, "
+                "which the study does not expect; not written (check the inputs of this job)"
+            )
 
 
 @contextlib.contextmanager
@@ -150,7 +159,9 @@ def _sha256(path: Path) -> str:
 def _cannot_write(target: Path, exc: BaseException) -> ResultWriteError:
     """One line for a failed write: the file, the system's reason and the cure."""
     reason = getattr(exc, "strerror", None) or (str(exc).splitlines()[0] if str(exc) else type(exc).__name__)
-    return ResultWriteError(f"cannot write {target} ({reason}): free disk space or make {target.parent} writable, then run snakemake again")
+    return ResultWriteError(
+        f"cannot write {target} ({reason}): free disk space or make {target.parent} writable, then run snakemake again"
+    )
 
 
 def _named(target: Path) -> str:
@@ -224,7 +235,10 @@ def unwritable(folder: str | os.PathLike[str]) -> str | None:
             os.close(handle)
             os.unlink(probe)
         except OSError as exc:
-            return f"{here} cannot be written ({exc.strerror}): make {top} writable again (chmod -R u+w {top}), then run snakemake"
+            return (
+                f"{here} cannot be written ({exc.strerror}): make {top} writable again (chmod -R u+w {top}), then run"
+                " snakemake"
+            )
     return None
 
 
@@ -237,12 +251,18 @@ def verify(path: str | os.PathLike[str]) -> None:
         return
     expected, _, named = sidecar.read_text(encoding="utf-8").strip().partition("  ")
     if _sha256(target) != expected:
-        raise UnreadableResult(f"cannot read {target} (it does not match its checksum {sidecar.name}: truncated, or replaced by "
-                               f"another file); rebuild it with: snakemake --force {target}")
+        raise UnreadableResult(
+            f"cannot read {target} (it does not match its checksum {sidecar.name}: truncated, or replaced by "
+            f"another file); rebuild it with: snakemake --force {target}"
+        )
     absolute = target.resolve().as_posix()
-    if absolute != named and not absolute.endswith("/" + named):  # read from another folder, or the project moved: the same tail
-        raise UnreadableResult(f"cannot read {target} (its checksum is that of {named}: another result copied over it); "
-                               f"rebuild it with: snakemake --force {target}")
+    if absolute != named and not absolute.endswith(
+        "/" + named
+    ):  # read from another folder, or the project moved: the same tail
+        raise UnreadableResult(
+            f"cannot read {target} (its checksum is that of {named}: another result copied over it); "
+            f"rebuild it with: snakemake --force {target}"
+        )
 
 
 class UnreadableResult(RuntimeError):
@@ -295,4 +315,3 @@ def finish_job() -> None:
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(0)
-

@@ -88,7 +88,9 @@ def monotone_corner(oat_low_u: np.ndarray, oat_high_u: np.ndarray, nominal_u: np
     return u
 
 
-def extreme(ev: Evaluator, q: int, sign: float, starts: Sequence[np.ndarray], evaluations: int, xtol: float) -> tuple[float, np.ndarray]:
+def extreme(
+    ev: Evaluator, q: int, sign: float, starts: Sequence[np.ndarray], evaluations: int, xtol: float
+) -> tuple[float, np.ndarray]:
     """The largest (``sign`` = +1) or smallest (-1) value of quantity ``q`` over the box: the best of ``starts``,
     then a bounded Powell search from it.  Returns (value, unit point)."""
     best = {"f": -np.inf, "u": None}
@@ -168,7 +170,10 @@ def consistent_set(ev: Evaluator, rows: Sequence[int], lower: np.ndarray, upper:
     def score(u: np.ndarray) -> tuple[int, float]:
         viol = violations(ev(u)[rows], lower, upper, scale)
         matched = viol == 0
-        return (int(matched.sum()) + (0 if force is None or matched[force] else -len(rows) - 1), float(np.sum(weight * np.minimum(viol, 1.0))))
+        return (
+            int(matched.sum()) + (0 if force is None or matched[force] else -len(rows) - 1),
+            float(np.sum(weight * np.minimum(viol, 1.0))),
+        )
 
     points, _ = ev.points()
     ranked = sorted(points, key=lambda u: (-score(u)[0], score(u)[1]))[:CONSISTENT_STARTS if force is None else 1]
@@ -198,10 +203,14 @@ def acceptance_regions(published: Mapping[str, Any], keys: Sequence[str]) -> tup
 def _unit_points(ds: Any, inputs: Sequence[Any], rows: Sequence[int]) -> np.ndarray:
     """The unit coordinates of the given samples (rows of ``ds.input_value``)."""
     values = ds.input_value.values[list(rows)]
-    return np.array([[inp.to_unit(x) for inp, x in zip(inputs, row, strict=True)] for row in values]).reshape(len(rows), len(inputs))
+    return np.array([[inp.to_unit(x) for inp, x in zip(inputs, row, strict=True)] for row in values]).reshape(
+        len(rows), len(inputs)
+    )
 
 
-def _end_values(ds: Any, labels: Sequence[str], prefix: str, inputs: Sequence[Any], end: str, fallback: np.ndarray) -> np.ndarray:
+def _end_values(
+    ds: Any, labels: Sequence[str], prefix: str, inputs: Sequence[Any], end: str, fallback: np.ndarray
+) -> np.ndarray:
     """Per continuous input (rows) the values with that input alone at one ``end`` ('low' or 'high') of its range."""
     out = np.tile(fallback, (len(inputs), 1))
     for k, inp in enumerate(inputs):
@@ -230,7 +239,9 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
     lower, upper, tol = acceptance_regions(published, keys)
     models = list(dict.fromkeys(k.split("|", 1)[0] for k in keys))
     held = held or (lambda _: set())
-    tasks = [(ds, n, scen, cfg, published, ranged, results, settings, held(scen), models) for n, scen in enumerate(scens)]
+    tasks = [
+        (ds, n, scen, cfg, published, ranged, results, settings, held(scen), models) for n, scen in enumerate(scens)
+    ]
     found = _map(_search_task, tasks, workers)
     low, high = ds.low.values.copy(), ds.high.values.copy()
     shape_at = (len(scens), len(ranged), len(keys))
@@ -243,9 +254,16 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
         if part is None:
             continue
         low[n], high[n], low_at[n], high_at[n] = part["low"], part["high"], part["low_at"], part["high_at"]
-        matched_best[n], in_set[n], count[n], candidates[n] = part["matched_best"], part["in_set"], part["count"], part["candidates"]
+        matched_best[n], in_set[n], count[n], candidates[n] = (
+            part["matched_best"],
+            part["in_set"],
+            part["count"],
+            part["candidates"],
+        )
         best_at[n], evaluations[n] = part["best_at"], part["evaluations"]
-    return _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings)
+    return _with_search(
+        ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings
+    )
 
 
 #: The tasks of the running ``_map``, inherited by its forked workers (they hold closures, which do not pickle).
@@ -275,9 +293,18 @@ def _search_task(task: tuple) -> dict[str, np.ndarray] | None:
     return _search_scenario(*task)
 
 
-def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], ranged: Sequence[Any],
-                     results: Callable[[Mapping[str, Any]], Sequence[Any]], settings: Mapping[str, Any], held: set[str],
-                     models: Sequence[str]) -> dict[str, np.ndarray] | None:
+def _search_scenario(
+    ds: Any,
+    n: int,
+    scen: Any,
+    cfg: Mapping[str, Any],
+    published: Mapping[str, Any],
+    ranged: Sequence[Any],
+    results: Callable[[Mapping[str, Any]], Sequence[Any]],
+    settings: Mapping[str, Any],
+    held: set[str],
+    models: Sequence[str],
+) -> dict[str, np.ndarray] | None:
     """The searches of one scenario (``refine``): extremes of each headline value and the consistent sets, over the
     inputs not ``held`` (held inputs stay nominal; their entries in the ``*_at`` points are their nominal values)."""
     from .uncertainty import _prefix, apply, evaluate
@@ -309,10 +336,21 @@ def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], publish
     prefix = _prefix(scen, n == 0)
     nominal_u = np.array([inp.to_unit(inp.nominal) for inp in sub])
     nominal_v = ds.nominal.values[n]
-    ends = (_end_values(ds, labels, prefix, sub, "low", nominal_v), _end_values(ds, labels, prefix, sub, "high", nominal_v))
-    out = {"low": ds.low.values[n].copy(), "high": ds.high.values[n].copy(), "low_at": np.full((len(ranged), len(keys)), np.nan),
-           "high_at": np.full((len(ranged), len(keys)), np.nan), "matched_best": np.full(len(keys), np.nan), "in_set": np.full(len(keys), np.nan),
-           "count": np.zeros(len(models)), "candidates": np.zeros(len(models)), "best_at": np.full((len(models), len(ranged)), np.nan)}
+    ends = (
+        _end_values(ds, labels, prefix, sub, "low", nominal_v),
+        _end_values(ds, labels, prefix, sub, "high", nominal_v),
+    )
+    out = {
+        "low": ds.low.values[n].copy(),
+        "high": ds.high.values[n].copy(),
+        "low_at": np.full((len(ranged), len(keys)), np.nan),
+        "high_at": np.full((len(ranged), len(keys)), np.nan),
+        "matched_best": np.full(len(keys), np.nan),
+        "in_set": np.full(len(keys), np.nan),
+        "count": np.zeros(len(models)),
+        "candidates": np.zeros(len(models)),
+        "best_at": np.full((len(models), len(ranged)), np.nan),
+    }
     points, values = ev.points()
     flat = float(settings["flat_rtol"])
     for q in headline:
@@ -347,34 +385,100 @@ def _search_scenario(ds: Any, n: int, scen: Any, cfg: Mapping[str, Any], publish
     return out
 
 
-def _with_search(ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings):
+def _with_search(
+    ds, low, high, low_at, high_at, matched_best, in_set, count, candidates, best_at, evaluations, models, settings
+):
     """The study Dataset with the searches' results (see ``refine``)."""
     out = ds.copy()
-    out["low"] = (("scenario", "quantity"), low, {**ds.low.attrs, "long_name": "smallest value over the assumed inputs' box (bounded search from the samples)"})
-    out["high"] = (("scenario", "quantity"), high, {**ds.high.attrs, "long_name": "largest value over the assumed inputs' box (bounded search from the samples)"})
-    out["low_at"] = (("scenario", "input", "quantity"), low_at, {"units": "SI of the input", "long_name": "the inputs where the smallest value was found",
-                                                                "nan_meaning": "not searched (a table cell, or no continuous input)"})
-    out["high_at"] = (("scenario", "input", "quantity"), high_at, {"units": "SI of the input", "long_name": "the inputs where the largest value was found",
-                                                                  "nan_meaning": "not searched (a table cell, or no continuous input)"})
+    out["low"] = (
+        ("scenario", "quantity"),
+        low,
+        {**ds.low.attrs, "long_name": "smallest value over the assumed inputs' box (bounded search from the samples)"},
+    )
+    out["high"] = (
+        ("scenario", "quantity"),
+        high,
+        {**ds.high.attrs, "long_name": "largest value over the assumed inputs' box (bounded search from the samples)"},
+    )
+    out["low_at"] = (
+        ("scenario", "input", "quantity"),
+        low_at,
+        {
+            "units": "SI of the input",
+            "long_name": "the inputs where the smallest value was found",
+            "nan_meaning": "not searched (a table cell, or no continuous input)",
+        },
+    )
+    out["high_at"] = (
+        ("scenario", "input", "quantity"),
+        high_at,
+        {
+            "units": "SI of the input",
+            "long_name": "the inputs where the largest value was found",
+            "nan_meaning": "not searched (a table cell, or no continuous input)",
+        },
+    )
     nan = {"nan_meaning": "not a candidate (a table cell, not reproducible, or a robust deviation)"}
-    out["matched_in_best_set"] = (("scenario", "quantity"), matched_best, {"units": "1", "long_name": "1 if the row matches under the scenario's best consistent assumption set", **nan})
-    out["in_consistent_set"] = (("scenario", "quantity"), in_set, {"units": "1", "long_name": "1 if the row matches in some consistent set of as many rows as the best", **nan})
-    out["consistent_count"] = (("scenario", "row_model"), count, {"units": "1", "long_name": "rows matched at once under the best consistent assumption set"})
-    out["consistent_candidates"] = (("scenario", "row_model"), candidates, {"units": "1", "long_name": "headline rows that are not robust deviations"})
-    out["consistent_at"] = (("scenario", "row_model", "input"), best_at, {"units": "SI of the input", "long_name": "the best consistent assumption set"})
-    out["evaluations"] = (("scenario",), evaluations, {"units": "1", "long_name": "distinct model evaluations per scenario (samples and searches)"})
-    out = out.assign_coords(row_model=("row_model", np.array(models, dtype=object), {"units": "1", "long_name": "model variant of the compared rows"}))
-    out.attrs["interval_method"] = (f"headline values: minimum and maximum over the box by bounded Powell searches (at most {int(settings['evaluations'])} "
-                                    "evaluations each) started from the samples' extremes and the monotone corner; table cells: the samples (corners included)")
+    out["matched_in_best_set"] = (
+        ("scenario", "quantity"),
+        matched_best,
+        {"units": "1", "long_name": "1 if the row matches under the scenario's best consistent assumption set", **nan},
+    )
+    out["in_consistent_set"] = (
+        ("scenario", "quantity"),
+        in_set,
+        {"units": "1", "long_name": "1 if the row matches in some consistent set of as many rows as the best", **nan},
+    )
+    out["consistent_count"] = (
+        ("scenario", "row_model"),
+        count,
+        {"units": "1", "long_name": "rows matched at once under the best consistent assumption set"},
+    )
+    out["consistent_candidates"] = (
+        ("scenario", "row_model"),
+        candidates,
+        {"units": "1", "long_name": "headline rows that are not robust deviations"},
+    )
+    out["consistent_at"] = (
+        ("scenario", "row_model", "input"),
+        best_at,
+        {"units": "SI of the input", "long_name": "the best consistent assumption set"},
+    )
+    out["evaluations"] = (
+        ("scenario",),
+        evaluations,
+        {"units": "1", "long_name": "distinct model evaluations per scenario (samples and searches)"},
+    )
+    out = out.assign_coords(
+        row_model=(
+            "row_model",
+            np.array(models, dtype=object),
+            {"units": "1", "long_name": "model variant of the compared rows"},
+        )
+    )
+    out.attrs["interval_method"] = (
+        "headline values: minimum and maximum over the box by bounded Powell searches (at most"
+        f" {int(settings['evaluations'])} evaluations each) started from the samples' extremes and the monotone corner;"
+        " table cells: the samples (corners included)"
+    )
     out.attrs["search_evaluations"] = int(settings["evaluations"])
     out.attrs["search_xtol"] = float(settings["xtol"])
-    out.attrs["consistent_set_rule"] = ("a row matches at a point when its value lies in its acceptance region; the best set maximises the rows "
-                                        "matched at once (capped violations, bounded Powell from the best points evaluated)")
+    out.attrs["consistent_set_rule"] = (
+        "a row matches at a point when its value lies in its acceptance region; the best set maximises the rows "
+        "matched at once (capped violations, bounded Powell from the best points evaluated)"
+    )
     return out
 
 
-def searcher(cfg: Mapping[str, Any], published: Mapping[str, Any], inputs: Sequence[Any],
-             results: Callable[[Mapping[str, Any]], Sequence[Any]], held: Callable[[Any], set[str]] | None = None) -> Callable[..., Any]:
+def searcher(
+    cfg: Mapping[str, Any],
+    published: Mapping[str, Any],
+    inputs: Sequence[Any],
+    results: Callable[[Mapping[str, Any]], Sequence[Any]],
+    held: Callable[[Any], set[str]] | None = None,
+) -> Callable[..., Any]:
     """The search step of a paper's gather (``linkwork.pipeline.uncertainty.gathered``'s ``search``, called with the
     Dataset and the number of worker processes); ``held``: see ``refine``."""
-    return lambda ds, workers=1: refine(ds, cfg, published, inputs, results, cfg["uncertainty"]["search"], held, workers)
+    return lambda ds, workers=1: refine(
+        ds, cfg, published, inputs, results, cfg["uncertainty"]["search"], held, workers
+    )

@@ -57,14 +57,24 @@ def point_dataset(point: Mapping[str, float], values: Mapping[str, float], outpu
     return xr.Dataset(data)
 
 
-def points_dataset(points: Sequence[Mapping[str, float]], values: Sequence[Mapping[str, float]], outputs: Mapping[str, tuple[str, ...]]):
+def points_dataset(
+    points: Sequence[Mapping[str, float]], values: Sequence[Mapping[str, float]], outputs: Mapping[str, tuple[str, ...]]
+):
     """The points of one job along a ``point`` dimension: coordinates and outputs with units (an output's optional
     third field says what its NaN means)."""
     import xarray as xr
 
-    data = {k: ("point", [v[k] for v in values], {"units": spec[0], "long_name": spec[1], **({"nan_meaning": spec[2]} if len(spec) > 2 else {})})
-            for k, spec in outputs.items()}
-    data.update({a: ("point", [p[a] for p in points], {"units": AXES[a][0], "long_name": AXES[a][1]}) for a in points[0]})
+    data = {
+        k: (
+            "point",
+            [v[k] for v in values],
+            {"units": spec[0], "long_name": spec[1], **({"nan_meaning": spec[2]} if len(spec) > 2 else {})},
+        )
+        for k, spec in outputs.items()
+    }
+    data.update(
+        {a: ("point", [p[a] for p in points], {"units": AXES[a][0], "long_name": AXES[a][1]}) for a in points[0]}
+    )
     return xr.Dataset(data)
 
 
@@ -94,7 +104,10 @@ def gather(axes: Mapping[str, Sequence[float]], points: Sequence[Any]):
         raise ValueError(f"sweep points do not fill the {a} x {b} grid once each (counts {filled.tolist()})")
     return xr.Dataset(
         {k: ((a, b), v, points[0][k].attrs) for k, v in out.items()},
-        coords={a: (a, av, {"units": AXES[a][0], "long_name": AXES[a][1]}), b: (b, bv, {"units": AXES[b][0], "long_name": AXES[b][1]})},
+        coords={
+            a: (a, av, {"units": AXES[a][0], "long_name": AXES[a][1]}),
+            b: (b, bv, {"units": AXES[b][0], "long_name": AXES[b][1]}),
+        },
     )
 
 
@@ -127,7 +140,11 @@ def trend(values: np.ndarray) -> dict[str, float]:
     change = values[-1] / values[0] - 1.0
     steps = np.diff(values, axis=0)
     monotone = np.all(steps * np.sign(values[-1] - values[0]) >= 0, axis=0)
-    return {"change_low": float(change.min()), "change_high": float(change.max()), "monotone_fraction": float(monotone.mean())}
+    return {
+        "change_low": float(change.min()),
+        "change_high": float(change.max()),
+        "monotone_fraction": float(monotone.mean()),
+    }
 
 
 def resolved_trend(values: np.ndarray, spread: np.ndarray) -> dict[str, float]:
@@ -140,14 +157,20 @@ def resolved_trend(values: np.ndarray, spread: np.ndarray) -> dict[str, float]:
     change = values[-1] - values[0]
     resolved = np.abs(change) > spread[-1] + spread[0]
     steps = np.abs(np.diff(values, axis=0)) > spread[1:] + spread[:-1]
-    return {"resolved_up": float(np.mean(resolved & (change > 0))), "resolved_down": float(np.mean(resolved & (change < 0))),
-            "resolved_steps": float(np.mean(steps))}
+    return {
+        "resolved_up": float(np.mean(resolved & (change > 0))),
+        "resolved_down": float(np.mean(resolved & (change < 0))),
+        "resolved_steps": float(np.mean(steps)),
+    }
 
 
 #: What the lines of a grid say about an output's change along an axis, given its cycle-to-cycle spread.
-TREND_CLASSES = {"grows": "grows beyond the cycle scatter on every line", "falls": "falls beyond the cycle scatter on every line",
-                 "partly": "changes beyond the cycle scatter on some lines only (no trend over the whole grid)",
-                 "none": "changes beyond the cycle scatter on no line (no trend)"}
+TREND_CLASSES = {
+    "grows": "grows beyond the cycle scatter on every line",
+    "falls": "falls beyond the cycle scatter on every line",
+    "partly": "changes beyond the cycle scatter on some lines only (no trend over the whole grid)",
+    "none": "changes beyond the cycle scatter on no line (no trend)",
+}
 
 
 def trend_class(resolved_up: float, resolved_down: float) -> str:
@@ -159,7 +182,12 @@ def trend_class(resolved_up: float, resolved_down: float) -> str:
     return "none" if resolved_up == 0.0 and resolved_down == 0.0 else "partly"
 
 
-def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mapping[str, Any]], scatter: Mapping[str, str] | None = None):
+def interpret(
+    ds,
+    reference: Mapping[str, float],
+    thresholds: Mapping[str, Mapping[str, Any]],
+    scatter: Mapping[str, str] | None = None,
+):
     """The facts a sweep's paragraph states, added to the gathered Dataset ``ds`` (two axes, nonzero outputs):
 
     * per output and axis: the relative change from the first to the last value of the axis (smallest and
@@ -191,13 +219,21 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
         v = ds[name].transpose(a, b).values
         for k, axis in enumerate((a, b)):
             t = trend(v if axis == a else v.T)
-            change_low[o, k], change_high[o, k], monotone[o, k] = t["change_low"], t["change_high"], t["monotone_fraction"]
+            change_low[o, k], change_high[o, k], monotone[o, k] = (
+                t["change_low"],
+                t["change_high"],
+                t["monotone_fraction"],
+            )
         ref_value[o] = v[ia, ib]
         if name in scatter:
             sv = ds[scatter[name]].transpose(a, b).values
             for k, axis in enumerate((a, b)):
                 r = resolved_trend(v, sv) if axis == a else resolved_trend(v.T, sv.T)
-                res_up[o, k], res_down[o, k], res_steps[o, k] = r["resolved_up"], r["resolved_down"], r["resolved_steps"]
+                res_up[o, k], res_down[o, k], res_steps[o, k] = (
+                    r["resolved_up"],
+                    r["resolved_down"],
+                    r["resolved_steps"],
+                )
                 classes[o, k] = TREND_CLASSES[trend_class(r["resolved_up"], r["resolved_down"])]
             rel = sv / np.abs(v)
             rel_ref[o], rel_low[o], rel_high[o] = rel[ia, ib], rel.min(), rel.max()
@@ -214,42 +250,160 @@ def interpret(ds, reference: Mapping[str, float], thresholds: Mapping[str, Mappi
             t_value[o] = float(spec["value"])
             t_holds[o] = float(np.mean(w >= spec["value"]))
             cross = [crossings(ds[along].values, w[i], spec["value"]) for i in range(w.shape[0])]
-            new[f"{name}_threshold_crossing"] = (other, cross, {"units": ds[along].attrs["units"], "long_name":
-                                                 f"{ds[along].attrs['long_name']} at which {name} crosses its threshold ({spec['label']})",
-                                                 "nan_meaning": NO_CROSSING, "threshold": float(spec["value"]), "along": along})
+            new[f"{name}_threshold_crossing"] = (
+                other,
+                cross,
+                {
+                    "units": ds[along].attrs["units"],
+                    "long_name": (
+                        f"{ds[along].attrs['long_name']} at which {name} crosses its threshold ({spec['label']})"
+                    ),
+                    "nan_meaning": NO_CROSSING,
+                    "threshold": float(spec["value"]),
+                    "along": along,
+                },
+            )
             side = np.where((w >= spec["value"]).all(axis=1), 1, np.where((w < spec["value"]).all(axis=1), -1, 0))
-            new[f"{name}_threshold_side"] = (other, side, {"units": "1", "long_name": f"{name} along {along}: 1 at or above its threshold "
-                                             "on the whole line, -1 below it on the whole line, 0 on both sides"})
+            new[f"{name}_threshold_side"] = (
+                other,
+                side,
+                {
+                    "units": "1",
+                    "long_name": (
+                        f"{name} along {along}: 1 at or above its threshold "
+                        "on the whole line, -1 below it on the whole line, 0 on both sides"
+                    ),
+                },
+            )
     no_log = {"nan_meaning": "the output is not positive everywhere: no log colour range"}
     thresh_nan = {"nan_meaning": "the output has no claim threshold"}
     scatter_nan = {"nan_meaning": "the output has no cycle-to-cycle spread"}
-    new.update({
-        "trend_change_low": (("output", "axis"), change_low, {"units": "1", "long_name": "smallest relative change (last / first - 1) along the axis, over the other axis"}),
-        "trend_change_high": (("output", "axis"), change_high, {"units": "1", "long_name": "largest relative change (last / first - 1) along the axis, over the other axis"}),
-        "trend_monotone_fraction": (("output", "axis"), monotone, {"units": "1", "long_name": "fraction of grid lines along the axis on which the output is monotone"}),
-        "reference_value": ("output", ref_value, {"units": "SI of the output", "long_name": "output at the reference point"}),
-        "relative_span": ("output", span, {"units": "1", "long_name": "(max - min) over the grid / value at the reference point"}),
-        "colour_low": ("output", c_low, {"units": "SI of the output", "long_name": "lower end of the colour range (log scale)", **no_log}),
-        "colour_high": ("output", c_high, {"units": "SI of the output", "long_name": "upper end of the colour range (log scale)", **no_log}),
-        "threshold_value": ("output", t_value, {"units": "SI of the output", "long_name": "claim threshold of the output", **thresh_nan}),
-        "threshold_holds_fraction": ("output", t_holds, {"units": "1", "long_name": "fraction of grid cells at or above the threshold", **thresh_nan}),
-        "trend_resolved_up_fraction": (("output", "axis"), res_up, {"units": "1", "long_name": "fraction of grid lines along the axis on which "
-                                       "the output grows from first to last by more than the sum of the two cells' cycle spreads", **scatter_nan}),
-        "trend_resolved_down_fraction": (("output", "axis"), res_down, {"units": "1", "long_name": "fraction of grid lines along the axis on "
-                                         "which the output falls from first to last by more than the sum of the two cells' cycle spreads", **scatter_nan}),
-        "trend_resolved_step_fraction": (("output", "axis"), res_steps, {"units": "1", "long_name": "fraction of neighbouring grid steps along "
-                                         "the axis whose change exceeds the sum of the two cells' cycle spreads", **scatter_nan}),
-        "trend_resolved_class": (("output", "axis"), classes, {"units": "1", "long_name": "what the grid lines say about the change along "
-                                 "the axis, given the cycle spread ('' for an output without one)"}),
-        "relative_scatter_reference": ("output", rel_ref, {"units": "1", "long_name": "cycle spread / output at the reference point", **scatter_nan}),
-        "relative_scatter_low": ("output", rel_low, {"units": "1", "long_name": "smallest cycle spread / output over the grid", **scatter_nan}),
-        "relative_scatter_high": ("output", rel_high, {"units": "1", "long_name": "largest cycle spread / output over the grid", **scatter_nan}),
-    })
+    new.update(
+        {
+            "trend_change_low": (
+                ("output", "axis"),
+                change_low,
+                {
+                    "units": "1",
+                    "long_name": "smallest relative change (last / first - 1) along the axis, over the other axis",
+                },
+            ),
+            "trend_change_high": (
+                ("output", "axis"),
+                change_high,
+                {
+                    "units": "1",
+                    "long_name": "largest relative change (last / first - 1) along the axis, over the other axis",
+                },
+            ),
+            "trend_monotone_fraction": (
+                ("output", "axis"),
+                monotone,
+                {"units": "1", "long_name": "fraction of grid lines along the axis on which the output is monotone"},
+            ),
+            "reference_value": (
+                "output",
+                ref_value,
+                {"units": "SI of the output", "long_name": "output at the reference point"},
+            ),
+            "relative_span": (
+                "output",
+                span,
+                {"units": "1", "long_name": "(max - min) over the grid / value at the reference point"},
+            ),
+            "colour_low": (
+                "output",
+                c_low,
+                {"units": "SI of the output", "long_name": "lower end of the colour range (log scale)", **no_log},
+            ),
+            "colour_high": (
+                "output",
+                c_high,
+                {"units": "SI of the output", "long_name": "upper end of the colour range (log scale)", **no_log},
+            ),
+            "threshold_value": (
+                "output",
+                t_value,
+                {"units": "SI of the output", "long_name": "claim threshold of the output", **thresh_nan},
+            ),
+            "threshold_holds_fraction": (
+                "output",
+                t_holds,
+                {"units": "1", "long_name": "fraction of grid cells at or above the threshold", **thresh_nan},
+            ),
+            "trend_resolved_up_fraction": (
+                ("output", "axis"),
+                res_up,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "fraction of grid lines along the axis on which "
+                        "the output grows from first to last by more than the sum of the two cells' cycle spreads"
+                    ),
+                    **scatter_nan,
+                },
+            ),
+            "trend_resolved_down_fraction": (
+                ("output", "axis"),
+                res_down,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "fraction of grid lines along the axis on "
+                        "which the output falls from first to last by more than the sum of the two cells' cycle spreads"
+                    ),
+                    **scatter_nan,
+                },
+            ),
+            "trend_resolved_step_fraction": (
+                ("output", "axis"),
+                res_steps,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "fraction of neighbouring grid steps along "
+                        "the axis whose change exceeds the sum of the two cells' cycle spreads"
+                    ),
+                    **scatter_nan,
+                },
+            ),
+            "trend_resolved_class": (
+                ("output", "axis"),
+                classes,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "what the grid lines say about the change along "
+                        "the axis, given the cycle spread ('' for an output without one)"
+                    ),
+                },
+            ),
+            "relative_scatter_reference": (
+                "output",
+                rel_ref,
+                {"units": "1", "long_name": "cycle spread / output at the reference point", **scatter_nan},
+            ),
+            "relative_scatter_low": (
+                "output",
+                rel_low,
+                {"units": "1", "long_name": "smallest cycle spread / output over the grid", **scatter_nan},
+            ),
+            "relative_scatter_high": (
+                "output",
+                rel_high,
+                {"units": "1", "long_name": "largest cycle spread / output over the grid", **scatter_nan},
+            ),
+        }
+    )
     labels = [thresholds[n]["label"] if n in thresholds else "" for n in outputs]
     out = ds.assign(**{k: xr.Variable(*spec) for k, spec in new.items()}).assign_coords(
         output=("output", np.array(outputs, dtype=object), {"units": "1", "long_name": "sweep output"}),
         axis=("axis", np.array([a, b], dtype=object), {"units": "1", "long_name": "sweep axis"}),
-        threshold_label=("output", np.array(labels, dtype=object), {"units": "1", "long_name": "what the threshold is ('' for none)"}),
+        threshold_label=(
+            "output",
+            np.array(labels, dtype=object),
+            {"units": "1", "long_name": "what the threshold is ('' for none)"},
+        ),
     )
     out.attrs.update({f"reference_{a}": float(ds[a].values[ia]), f"reference_{b}": float(ds[b].values[ib]),
                       "colour_floor_factor": COLOUR_FLOOR_FACTOR})

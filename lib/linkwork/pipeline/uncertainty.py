@@ -90,11 +90,20 @@ def labelled_inputs(section: Mapping[str, Any], prefix: str = "") -> Iterator[In
     for key, value in section.items():
         path = f"{prefix}{key}"
         if isinstance(value, Mapping):
-            if "value" in value and ("range" in value or "choices" in value):  # a rule passes values and design fields only
+            if "value" in value and (
+                "range" in value or "choices" in value
+            ):  # a rule passes values and design fields only
                 reason = str(value.get("range_reason", value.get("reason", "")))
                 if "choices" in value:
-                    yield Input(path + ".value", value["value"], float("nan"), float("nan"), reason, tuple(value["choices"]),
-                                labels=tuple(value.get("choice_labels", ())))
+                    yield Input(
+                        path + ".value",
+                        value["value"],
+                        float("nan"),
+                        float("nan"),
+                        reason,
+                        tuple(value["choices"]),
+                        labels=tuple(value.get("choice_labels", ())),
+                    )
                 else:
                     low, high = (float(x) for x in value["range"])
                     yield Input(path + ".value", float(value["value"]), low, high, reason)
@@ -154,7 +163,9 @@ def samples(inputs: Sequence[Input], lhs_points: int, seed: int, corner_limit: i
         from scipy.stats import qmc
 
         unit = qmc.LatinHypercube(d=len(ranged), seed=seed).random(lhs_points)
-    corners = list(itertools.product((0.0, 1.0), repeat=len(ranged))) if ranged and 2 ** len(ranged) <= corner_limit else []
+    corners = (
+        list(itertools.product((0.0, 1.0), repeat=len(ranged))) if ranged and 2 ** len(ranged) <= corner_limit else []
+    )
     out = []
     for n, scen in enumerate(scenarios(inputs)):
         pre, fixed = _prefix(scen, n == 0), dict(scen.values)
@@ -206,14 +217,21 @@ def evaluate(published: Mapping[str, Any], datasets: Sequence[Any]) -> dict[tupl
     return out
 
 
-def batch_dataset(cfg: Mapping[str, Any], inputs: Sequence[Input], chosen: Sequence[Sample], published: Mapping[str, Any],
-                  results: Callable[[Mapping[str, Any]], Sequence[Any]]):
+def batch_dataset(
+    cfg: Mapping[str, Any],
+    inputs: Sequence[Input],
+    chosen: Sequence[Sample],
+    published: Mapping[str, Any],
+    results: Callable[[Mapping[str, Any]], Sequence[Any]],
+):
     """Every published quantity at each sample of a batch (dims sample x quantity)."""
     rows = [evaluate(published, results(apply(cfg, s.values))) for s in chosen]
     return evaluated_dataset(rows, inputs, chosen)
 
 
-def evaluated_dataset(rows: Sequence[Mapping[tuple[str, str], float]], inputs: Sequence[Input], chosen: Sequence[Sample]):
+def evaluated_dataset(
+    rows: Sequence[Mapping[tuple[str, str], float]], inputs: Sequence[Input], chosen: Sequence[Sample]
+):
     """The published quantities already evaluated at each sample (``evaluate``'s rows) as a batch Dataset."""
     import numpy as np
     import xarray as xr
@@ -221,18 +239,48 @@ def evaluated_dataset(rows: Sequence[Mapping[tuple[str, str], float]], inputs: S
     keys = list(rows[0])
     values = np.array([[row.get(k, np.nan) for k in keys] for row in rows])
     ranged = continuous(inputs)
-    inputs_at = np.array([[float(s.values.get(i.path, i.nominal)) for i in ranged] for s in chosen]).reshape(len(chosen), len(ranged))
+    inputs_at = np.array([[float(s.values.get(i.path, i.nominal)) for i in ranged] for s in chosen]).reshape(
+        len(chosen), len(ranged)
+    )
     return xr.Dataset(
         {
-            "value": (("sample", "quantity"), values, {"units": "unit of the published quantity", "long_name": "our value at the sample", **NOT_REPRODUCIBLE}),
-            "input_value": (("sample", "input"), inputs_at, {"units": "SI of the input", "long_name": "value of each uncertain continuous input at the sample"}),
+            "value": (
+                ("sample", "quantity"),
+                values,
+                {"units": "unit of the published quantity", "long_name": "our value at the sample", **NOT_REPRODUCIBLE},
+            ),
+            "input_value": (
+                ("sample", "input"),
+                inputs_at,
+                {"units": "SI of the input", "long_name": "value of each uncertain continuous input at the sample"},
+            ),
         },
         coords={
-            "sample": ("sample", np.array([s.label for s in chosen], dtype=object), {"units": "1", "long_name": "sample"}),
-            "moved": ("sample", np.array([s.moved for s in chosen], dtype=object), {"units": "1", "long_name": "input moved alone ('' if several)"}),
-            "sample_scenario": ("sample", np.array([s.scenario for s in chosen], dtype=object), {"units": "1", "long_name": "scenario of the sample"}),
-            "quantity": ("quantity", np.array([f"{m}|{q}" for m, q in keys], dtype=object), {"units": "1", "long_name": "model|published quantity id"}),
-            "input": ("input", np.array([i.path for i in ranged], dtype=object), {"units": "1", "long_name": "uncertain input (key path)"}),
+            "sample": (
+                "sample",
+                np.array([s.label for s in chosen], dtype=object),
+                {"units": "1", "long_name": "sample"},
+            ),
+            "moved": (
+                "sample",
+                np.array([s.moved for s in chosen], dtype=object),
+                {"units": "1", "long_name": "input moved alone ('' if several)"},
+            ),
+            "sample_scenario": (
+                "sample",
+                np.array([s.scenario for s in chosen], dtype=object),
+                {"units": "1", "long_name": "scenario of the sample"},
+            ),
+            "quantity": (
+                "quantity",
+                np.array([f"{m}|{q}" for m, q in keys], dtype=object),
+                {"units": "1", "long_name": "model|published quantity id"},
+            ),
+            "input": (
+                "input",
+                np.array([i.path for i in ranged], dtype=object),
+                {"units": "1", "long_name": "uncertain input (key path)"},
+            ),
         },
     )
 
@@ -243,7 +291,15 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
     import numpy as np
     import xarray as xr
 
-    ds = xr.concat(batches_, dim="sample", data_vars="all", coords="different", compat="equals", join="exact", combine_attrs="override")
+    ds = xr.concat(
+        batches_,
+        dim="sample",
+        data_vars="all",
+        coords="different",
+        compat="equals",
+        join="exact",
+        combine_attrs="override",
+    )
     if "sample_scenario" not in ds:
         ds["sample_scenario"] = ("sample", np.full(ds.sizes["sample"], "", dtype=object))
     values, moved, labels = ds.value.values, list(ds.moved.values), [str(x) for x in ds.sample.values]
@@ -268,29 +324,106 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
     unit = "unit of the published quantity"
     out = xr.Dataset(
         {
-            "nominal": (("scenario", "quantity"), nominal, {"units": unit, "long_name": "our value at the nominal inputs of the scenario", **NOT_REPRODUCIBLE}),
-            "low": (("scenario", "quantity"), low, {"units": unit, "long_name": "smallest value over the assumed inputs' box", **NOT_REPRODUCIBLE}),
-            "high": (("scenario", "quantity"), high, {"units": unit, "long_name": "largest value over the assumed inputs' box", **NOT_REPRODUCIBLE}),
-            "oat_low": (("scenario", "input", "quantity"), oat_low, {"units": unit, "long_name": "smallest value moving this input alone", **NOT_REPRODUCIBLE}),
-            "oat_high": (("scenario", "input", "quantity"), oat_high, {"units": unit, "long_name": "largest value moving this input alone", **NOT_REPRODUCIBLE}),
-            "input_low": ("input", [i.low for i in ranged], {"units": "SI of the input", "long_name": "lower end of the input's range"}),
-            "input_high": ("input", [i.high for i in ranged], {"units": "SI of the input", "long_name": "upper end of the input's range"}),
-            "input_nominal": ("input", np.array([str(i.nominal) for i in ranged], dtype=object), {"units": "SI of the input", "long_name": "nominal value"}),
-            "input_range": ("input", np.array([i.describe() for i in ranged], dtype=object), {"units": "SI of the input", "long_name": "range"}),
-            "input_reason": ("input", np.array([i.reason for i in ranged], dtype=object), {"units": "1", "long_name": "why this range"}),
-            "input_kind": ("input", np.array([i.kind for i in ranged], dtype=object),
-                           {"units": "1", "long_name": "assumed (a plausible range) or rounding (the last printed digit)"}),
-            "scenario_choice": (("scenario", "choice"), np.array([[s.values[a.path] for a in axes] for s in scens], dtype=object).astype(str).reshape(len(scens), len(axes)).astype(object),
-                                {"units": "1", "long_name": "the value each choice takes in the scenario"}),
-            "choice_reason": ("choice", np.array([a.reason for a in axes], dtype=object), {"units": "1", "long_name": "why the choice is open"}),
-            "samples": ((), ds.sizes["sample"], {"units": "1", "long_name": "samples evaluated (nominal, one at a time, corners, Latin hypercube; every scenario)"}),
+            "nominal": (
+                ("scenario", "quantity"),
+                nominal,
+                {"units": unit, "long_name": "our value at the nominal inputs of the scenario", **NOT_REPRODUCIBLE},
+            ),
+            "low": (
+                ("scenario", "quantity"),
+                low,
+                {"units": unit, "long_name": "smallest value over the assumed inputs' box", **NOT_REPRODUCIBLE},
+            ),
+            "high": (
+                ("scenario", "quantity"),
+                high,
+                {"units": unit, "long_name": "largest value over the assumed inputs' box", **NOT_REPRODUCIBLE},
+            ),
+            "oat_low": (
+                ("scenario", "input", "quantity"),
+                oat_low,
+                {"units": unit, "long_name": "smallest value moving this input alone", **NOT_REPRODUCIBLE},
+            ),
+            "oat_high": (
+                ("scenario", "input", "quantity"),
+                oat_high,
+                {"units": unit, "long_name": "largest value moving this input alone", **NOT_REPRODUCIBLE},
+            ),
+            "input_low": (
+                "input",
+                [i.low for i in ranged],
+                {"units": "SI of the input", "long_name": "lower end of the input's range"},
+            ),
+            "input_high": (
+                "input",
+                [i.high for i in ranged],
+                {"units": "SI of the input", "long_name": "upper end of the input's range"},
+            ),
+            "input_nominal": (
+                "input",
+                np.array([str(i.nominal) for i in ranged], dtype=object),
+                {"units": "SI of the input", "long_name": "nominal value"},
+            ),
+            "input_range": (
+                "input",
+                np.array([i.describe() for i in ranged], dtype=object),
+                {"units": "SI of the input", "long_name": "range"},
+            ),
+            "input_reason": (
+                "input",
+                np.array([i.reason for i in ranged], dtype=object),
+                {"units": "1", "long_name": "why this range"},
+            ),
+            "input_kind": (
+                "input",
+                np.array([i.kind for i in ranged], dtype=object),
+                {"units": "1", "long_name": "assumed (a plausible range) or rounding (the last printed digit)"},
+            ),
+            "scenario_choice": (
+                ("scenario", "choice"),
+                np.array([[s.values[a.path] for a in axes] for s in scens], dtype=object)
+                .astype(str)
+                .reshape(len(scens), len(axes))
+                .astype(object),
+                {"units": "1", "long_name": "the value each choice takes in the scenario"},
+            ),
+            "choice_reason": (
+                "choice",
+                np.array([a.reason for a in axes], dtype=object),
+                {"units": "1", "long_name": "why the choice is open"},
+            ),
+            "samples": (
+                (),
+                ds.sizes["sample"],
+                {
+                    "units": "1",
+                    "long_name": "samples evaluated (nominal, one at a time, corners, Latin hypercube; every scenario)",
+                },
+            ),
             "value": ds.value,
             "input_value": ds.input_value,
         },
-        coords={"quantity": ds.quantity, "input": ("input", np.array([i.path for i in ranged], dtype=object), {"units": "1", "long_name": "uncertain input (key path)"}),
-                "scenario": ("scenario", np.array([s.label for s in scens], dtype=object), {"units": "1", "long_name": "named scenario (discrete choices), nominal first"}),
-                "choice": ("choice", np.array([a.path for a in axes], dtype=object), {"units": "1", "long_name": "discrete choice (key path)"}),
-                "sample": ds.sample, "moved": ds.moved, "sample_scenario": ds.sample_scenario},
+        coords={
+            "quantity": ds.quantity,
+            "input": (
+                "input",
+                np.array([i.path for i in ranged], dtype=object),
+                {"units": "1", "long_name": "uncertain input (key path)"},
+            ),
+            "scenario": (
+                "scenario",
+                np.array([s.label for s in scens], dtype=object),
+                {"units": "1", "long_name": "named scenario (discrete choices), nominal first"},
+            ),
+            "choice": (
+                "choice",
+                np.array([a.path for a in axes], dtype=object),
+                {"units": "1", "long_name": "discrete choice (key path)"},
+            ),
+            "sample": ds.sample,
+            "moved": ds.moved,
+            "sample_scenario": ds.sample_scenario,
+        },
     )
     out.attrs["interval_method"] = "samples only (nominal, one at a time, corners, Latin hypercube)"
     return out
@@ -308,7 +441,8 @@ def _nan_extremes(values):
 
 
 def sample_count(inputs: Sequence[Input], lhs_points: int, corner_limit: int = 0) -> int:
-    """How many samples ``samples`` makes: per scenario nominal, two per continuous input, the corners, the Latin hypercube."""
+    """How many samples ``samples`` makes: per scenario nominal, two per continuous input, the corners, the Latin
+    hypercube."""
     ranged = continuous(inputs)
     corners = 2 ** len(ranged) if ranged and 2 ** len(ranged) <= corner_limit else 0
     per_scenario = 1 + 2 * len(ranged) + corners + (lhs_points if ranged else 0)
@@ -332,8 +466,13 @@ def run_batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int, 
     return ds
 
 
-def gathered(inputs: Sequence[Input], batch_datasets: Sequence[Any], title: str, search: Callable[..., Any] | None = None,
-             workers: int = 1):
+def gathered(
+    inputs: Sequence[Input],
+    batch_datasets: Sequence[Any],
+    title: str,
+    search: Callable[..., Any] | None = None,
+    workers: int = 1,
+):
     """Every batch of a paper's study in one Dataset, with the ranges; ``search`` (a Dataset -> Dataset step of
     ``linkwork.pipeline.search``, run in ``workers`` processes) replaces the samples' ranges by the box's extremes and
     adds the consistent sets."""

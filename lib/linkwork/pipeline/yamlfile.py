@@ -28,9 +28,14 @@ def _construct_mapping(loader, node, deep=False):
         mark = key_node.start_mark
         if not isinstance(key_node, yaml.ScalarNode):
             kind = "list" if isinstance(key_node, yaml.SequenceNode) else "mapping"
-            raise ConfigError(f"{mark.name}, line {mark.line + 1}, column {mark.column + 1}: a config key is a {kind}, not a name")
+            raise ConfigError(
+                f"{mark.name}, line {mark.line + 1}, column {mark.column + 1}: a config key is a {kind}, not a name"
+            )
         if key in seen:
-            raise ConfigError(f"{mark.name}, line {mark.line + 1}: config key {key!r} is given twice in the same section (first at line {seen[key] + 1})")
+            raise ConfigError(
+                f"{mark.name}, line {mark.line + 1}: config key {key!r} is given twice in the same section (first at"
+                f" line {seen[key] + 1})"
+            )
         seen[key] = key_node.start_mark.line
     return loader.construct_mapping(node, deep=deep)
 
@@ -66,9 +71,14 @@ def _yaml11_surprise(node, path: tuple = (), seen: set | None = None) -> tuple[t
         return None
     seen.add(id(node))
     if isinstance(node, yaml.ScalarNode):
-        return (path, node) if node.tag in _NUMBER_TAGS and not node.style and _YAML11_NUMBER.match(node.value) else None
-    children = [(k.value if isinstance(k, yaml.ScalarNode) else "?", v) for k, v in node.value] if isinstance(node, yaml.MappingNode) \
+        return (
+            (path, node) if node.tag in _NUMBER_TAGS and not node.style and _YAML11_NUMBER.match(node.value) else None
+        )
+    children = (
+        [(k.value if isinstance(k, yaml.ScalarNode) else "?", v) for k, v in node.value]
+        if isinstance(node, yaml.MappingNode)
         else list(enumerate(node.value)) if isinstance(node, yaml.SequenceNode) else []
+    )
     for name, child in children:
         found = _yaml11_surprise(child, (*path, name), seen)
         if found:
@@ -90,14 +100,20 @@ def load_yaml(path: str | Path) -> Any:
                     return None
                 size = _expanded_size(node, {})
                 if size > YAML_ENTRIES_LIMIT:
-                    raise ConfigError(f"{path}: expands to {size:.3g} entries (aliases expanded), more than the size guard {YAML_ENTRIES_LIMIT} "
-                                      "(raise YAML_ENTRIES_LIMIT in lib/linkwork/pipeline/yamlfile.py for a larger file)")
+                    raise ConfigError(
+                        f"{path}: expands to {size:.3g} entries (aliases expanded), more than the size guard"
+                        f" {YAML_ENTRIES_LIMIT} (raise YAML_ENTRIES_LIMIT in lib/linkwork/pipeline/yamlfile.py for a"
+                        " larger file)"
+                    )
                 surprise = _yaml11_surprise(node)
                 if surprise:
                     where, scalar = surprise
                     read = loader.construct_object(scalar)
-                    raise ConfigError(f"{path}, line {scalar.start_mark.line + 1}: config key {key_path(where)}: value {scalar.value} would be read as {read!r} "
-                                      "(YAML 1.1: a leading zero is octal, a colon base 60, 0b binary); write the number plainly, or quote it for text")
+                    raise ConfigError(
+                        f"{path}, line {scalar.start_mark.line + 1}: config key {key_path(where)}: value {scalar.value}"
+                        f" would be read as {read!r} (YAML 1.1: a leading zero is octal, a colon base 60, 0b binary);"
+                        " write the number plainly, or quote it for text"
+                    )
                 return loader.construct_document(node)
             finally:
                 loader.dispose()
@@ -106,7 +122,9 @@ def load_yaml(path: str | Path) -> Any:
         where = f"{path}, line {mark.line + 1}, column {mark.column + 1}" if mark else str(path)
         raise ConfigError(f"{where}: not valid YAML ({exc.problem or exc.context})") from None
     except UnicodeDecodeError as exc:
-        raise ConfigError(f"{path}: not UTF-8 text (byte {exc.object[exc.start]:#04x} at offset {exc.start}); save the file as UTF-8") from None
+        raise ConfigError(
+            f"{path}: not UTF-8 text (byte {exc.object[exc.start]:#04x} at offset {exc.start}); save the file as UTF-8"
+        ) from None
     except OSError as exc:
         raise ConfigError(f"{path}: cannot be read ({exc.strerror})") from None
 

@@ -29,14 +29,21 @@ def schema_problems(data: Any, schema: Mapping[str, Any], path: Path) -> list[st
 
     from ..pipeline.yamlfile import short as _short
 
-    errors = sorted(jsonschema.Draft202012Validator(schema).iter_errors(data), key=lambda e: [str(p) for p in e.absolute_path])
+    errors = sorted(
+        jsonschema.Draft202012Validator(schema).iter_errors(data), key=lambda e: [str(p) for p in e.absolute_path]
+    )
     out = []
     for e in errors:
         while e.validator == "oneOf" and e.context:  # the measure or column alternatives: the closest one's reason
-            e = max(e.context, key=lambda c: (len(c.absolute_path), c.validator != "type"))  # deepest, not "not of type null"
+            e = max(
+                e.context, key=lambda c: (len(c.absolute_path), c.validator != "type")
+            )  # deepest, not "not of type null"
         if e.validator == "additionalProperties" and isinstance(e.instance, Mapping):
             extra = sorted(set(e.instance) - set(e.schema.get("properties", {})))
-            out.append(f"{_where(path, [*e.absolute_path, extra[0] if extra else '?'])}: unknown key (allowed here: {', '.join(sorted(e.schema.get('properties', {})))})")
+            out.append(
+                f"{_where(path, [*e.absolute_path, extra[0] if extra else '?'])}: unknown key (allowed here:"
+                f" {', '.join(sorted(e.schema.get('properties', {})))})"
+            )
         elif e.validator == "required" and isinstance(e.instance, Mapping):
             missing = [r for r in e.validator_value if r not in e.instance]
             out.append(f"{_where(path, [*e.absolute_path, missing[0] if missing else '?'])}: missing")
@@ -68,7 +75,10 @@ def rule_problems(paper: str, data: Mapping[str, Any], path: Path, variables: fr
     if data["paper"] != paper:
         out.append(f"{_where(path, ['paper'])}: value {data['paper']!r} is not the file's paper {paper!r}")
     seen: dict[str, str] = {}
-    named = [(f"quantities.{i}", e["id"], e["measure"] and e["measure"]["variable"]) for i, e in enumerate(data["quantities"])]
+    named = [
+        (f"quantities.{i}", e["id"], e["measure"] and e["measure"]["variable"])
+        for i, e in enumerate(data["quantities"])
+    ]
     for t, table in enumerate(data.get("tables", [])):
         where = f"tables.{t}"
         missing = [c for c in table["column_names"] if c not in table["columns"]]
@@ -77,21 +87,34 @@ def rule_problems(paper: str, data: Mapping[str, Any], path: Path, variables: fr
             continue
         for r, row in enumerate(table["rows"]):
             if len(row) != len(table["column_names"]) + 1:
-                out.append(f"{_where(path, [where, 'rows', r])}: {len(row)} values; a row holds the key and one per column "
-                           f"({len(table['column_names']) + 1})")
+                out.append(
+                    f"{_where(path, [where, 'rows', r])}: {len(row)} values; a row holds the key and one per column "
+                    f"({len(table['column_names']) + 1})"
+                )
                 continue
             for name in table["column_names"]:
                 column = table["columns"][name]
-                named.append((f"{where}.rows.{r}", f"{table['id']}.{name}@{row[0]:g}", column if isinstance(column, str) else column["variable"]))
+                named.append(
+                    (
+                        f"{where}.rows.{r}",
+                        f"{table['id']}.{name}@{row[0]:g}",
+                        column if isinstance(column, str) else column["variable"],
+                    )
+                )
                 if "tolerance" not in table and (isinstance(column, str) or "tolerance" not in column):
-                    out.append(f"{_where(path, [where, 'columns', name])}: no tolerance (give the table's or the column's)")
+                    out.append(
+                        f"{_where(path, [where, 'columns', name])}: no tolerance (give the table's or the column's)"
+                    )
     for where, id_, variable in named:
         if id_ in seen:
             out.append(f"{path}, {where}: id {id_!r} is given twice (first at {seen[id_]})")
         seen.setdefault(id_, where)
         if variable is not None and variable not in variables:
-            out.append(f"{path}, {where} ({id_}): measure variable {variable!r} is not one the {paper} comparison reads (known: "
-                       f"{', '.join(sorted(variables))}; a variable its study writes is added in RESULT_VARIABLES of linkwork.papers.{paper}.checks)")
+            out.append(
+                f"{path}, {where} ({id_}): measure variable {variable!r} is not one the {paper} comparison reads"
+                f" (known: {', '.join(sorted(variables))}; a variable its study writes is added in RESULT_VARIABLES of"
+                f" linkwork.papers.{paper}.checks)"
+            )
     return list(dict.fromkeys(out))
 
 

@@ -36,13 +36,21 @@ def _schema_message(error) -> str:
         names = ", ".join(f"{key}.{m}" if key != "<root>" else m for m in missing)
         return f"config key {names}: missing (required in section {key})"
     if error.validator == "type" and isinstance(value, str) and _NUMBERLIKE.match(value):
-        return f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed exponent, e.g. 1.0e-6)"
+        return (
+            f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed"
+            " exponent, e.g. 1.0e-6)"
+        )
     guard = error.schema.get("x-size-guard") if isinstance(error.schema, Mapping) else None
     if guard and error.validator in ("maximum", "minimum"):
         side = "above the largest" if error.validator == "maximum" else "below the smallest"
-        return (f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({guard}); a size guard "
-                "for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one")
-    return f"config key {key}: value {_short(value)}: {error.message if len(error.message) < 200 else error.message[:200] + ' ...'}"
+        return (
+            f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({guard}); a"
+            " size guard for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one"
+        )
+    return (
+        f"config key {key}: value {_short(value)}:"
+        f" {error.message if len(error.message) < 200 else error.message[:200] + ' ...'}"
+    )
 
 
 def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
@@ -55,7 +63,8 @@ def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
         raise ConfigError("invalid config:\n  " + "\n  ".join(dict.fromkeys(_schema_message(e) for e in errors)))
 
 
-#: At most this many sweep points in one grid (each job computes points_per_job of them; bounds the work a grid asks for).
+#: At most this many sweep points in one grid (each job computes points_per_job of them; bounds the work a grid asks
+#: for).
 SWEEP_POINTS_LIMIT = 2000
 
 
@@ -63,20 +72,28 @@ def check_sweeps(section: Mapping[str, Any], config: Mapping[str, Any], key: str
     """The swept clearance scene and variant exist, a swept clearance fits in the bearing, and no grid is too big."""
     spec = section["clearance"]
     if spec["scene"] not in config["clearance"]["scenes"]:
-        raise ConfigError(f"config key {key}.clearance.scene: value {spec['scene']!r} is not a scene of clearance.scenes")
+        raise ConfigError(
+            f"config key {key}.clearance.scene: value {spec['scene']!r} is not a scene of clearance.scenes"
+        )
     if spec["variant"] not in config["clearance"]["variants"]:
-        raise ConfigError(f"config key {key}.clearance.variant: value {spec['variant']!r} is not a variant of clearance.variants")
+        raise ConfigError(
+            f"config key {key}.clearance.variant: value {spec['variant']!r} is not a variant of clearance.variants"
+        )
     bearing = config["clearance"]["joints"]["bearing_radius_m"]
     for grid in ("small", "large"):
         too_wide = [c for c in spec[grid]["clearance_m"] if c >= bearing]
         if too_wide:
-            raise ConfigError(f"config key {key}.clearance.{grid}.clearance_m: value {too_wide[0]!r} is not smaller than "
-                              f"clearance.joints.bearing_radius_m = {bearing!r} (the journal radius would be <= 0)")
+            raise ConfigError(
+                f"config key {key}.clearance.{grid}.clearance_m: value {too_wide[0]!r} is not smaller than "
+                f"clearance.joints.bearing_radius_m = {bearing!r} (the journal radius would be <= 0)"
+            )
         for sweep in ("clearance", "heald"):
             points = math.prod(len(v) for v in section[sweep][grid].values())
             if points > SWEEP_POINTS_LIMIT:
-                raise ConfigError(f"config key {key}.{sweep}.{grid}: {points} grid points exceed the size guard {SWEEP_POINTS_LIMIT} "
-                                  "(each is a job; raise SWEEP_POINTS_LIMIT in lib/linkwork/project/validate.py for a cluster)")
+                raise ConfigError(
+                    f"config key {key}.{sweep}.{grid}: {points} grid points exceed the size guard {SWEEP_POINTS_LIMIT} "
+                    "(each is a job; raise SWEEP_POINTS_LIMIT in lib/linkwork/project/validate.py for a cluster)"
+                )
 
 
 def check_finite(node: Any, path: tuple = ()) -> None:
@@ -105,7 +122,9 @@ def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str,
     return node
 
 
-def check_names(config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] | None = None, path: tuple = ()) -> None:
+def check_names(
+    config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] | None = None, path: tuple = ()
+) -> None:
     """Every key the schema leaves to the user (``additionalProperties`` with a schema) is a safe name."""
     node = _resolve(schema, schema if node is None else node)
     if not isinstance(node, Mapping):
@@ -118,8 +137,10 @@ def check_names(config: Any, schema: Mapping[str, Any], node: Mapping[str, Any] 
                 check_names(value, schema, named[key], (*path, key))
             elif isinstance(extra, Mapping):
                 if not isinstance(key, str) or not SAFE_NAME.fullmatch(key):
-                    raise ConfigError(f"config key {_key((*path, key))}: name {key!r} is not allowed (names become file paths and "
-                                      "wildcards: a letter, then letters, digits or _, at most 40 characters)")
+                    raise ConfigError(
+                        f"config key {_key((*path, key))}: name {key!r} is not allowed (names become file paths and "
+                        "wildcards: a letter, then letters, digits or _, at most 40 characters)"
+                    )
                 check_names(value, schema, extra, (*path, key))
     elif isinstance(config, list) and isinstance(node.get("items"), Mapping):
         for i, value in enumerate(config):
@@ -136,7 +157,9 @@ def check_integers(node: Any, schema: Mapping[str, Any], path: tuple = ()) -> No
         for i, value in enumerate(node):
             check_integers(value, schema, (*path, i))
     elif isinstance(node, float) and _types(_schema_at(schema, path)) == {"integer"}:
-        raise ConfigError(f"config key {_key(path)}: value {node!r} is not an integer (a count: write it without the decimal point)")
+        raise ConfigError(
+            f"config key {_key(path)}: value {node!r} is not an integer (a count: write it without the decimal point)"
+        )
 
 
 def check_states(node: Any, path: tuple = ()) -> None:
@@ -148,10 +171,16 @@ def check_states(node: Any, path: tuple = ()) -> None:
             cap = node["max_cycles"]
             for name in ("chunk_cycles", "min_cycles"):
                 if node[name] > cap:
-                    raise ConfigError(f"config key {_key((*path, name))}: value {node[name]!r} is above {_key((*path, 'max_cycles'))} = {cap!r}")
+                    raise ConfigError(
+                        f"config key {_key((*path, name))}: value {node[name]!r} is above {_key((*path, 'max_cycles'))}"
+                        f" = {cap!r}"
+                    )
             if "max_period" in node and "periods" in node and node["max_period"] * node["periods"] > cap:
-                raise ConfigError(f"config key {_key((*path, 'periods'))}: {node['periods']!r} whole periods of up to {_key((*path, 'max_period'))} = "
-                                  f"{node['max_period']!r} cycles do not fit in {_key((*path, 'max_cycles'))} = {cap!r}")
+                raise ConfigError(
+                    f"config key {_key((*path, 'periods'))}: {node['periods']!r} whole periods of up to"
+                    f" {_key((*path, 'max_period'))} = {node['max_period']!r} cycles do not fit in"
+                    f" {_key((*path, 'max_cycles'))} = {cap!r}"
+                )
         for key, value in node.items():
             check_states(value, (*path, key))
     elif isinstance(node, list):
@@ -168,15 +197,23 @@ def check_labelled(node: Any, path: tuple = ()) -> None:
         where = f"config key {_key(path)}"
         if "choices" in node:
             if node["value"] not in node["choices"]:
-                raise ConfigError(f"{where}.value: {_short(node['value'])} is not one of its choices {_short(node['choices'])}")
+                raise ConfigError(
+                    f"{where}.value: {_short(node['value'])} is not one of its choices {_short(node['choices'])}"
+                )
             if "choice_labels" in node and len(node["choice_labels"]) != len(node["choices"]):
-                raise ConfigError(f"{where}.choice_labels: {len(node['choice_labels'])} names for {len(node['choices'])} choices")
+                raise ConfigError(
+                    f"{where}.choice_labels: {len(node['choice_labels'])} names for {len(node['choices'])} choices"
+                )
         if "range" in node and isinstance(node["value"], (int, float)):
             low, high = node["range"]
             if not low < high:
-                raise ConfigError(f"{where}.range: {_short(node['range'])} is not a range (the low end must be below the high end)")
+                raise ConfigError(
+                    f"{where}.range: {_short(node['range'])} is not a range (the low end must be below the high end)"
+                )
             if not low <= node["value"] <= high:
-                raise ConfigError(f"{where}.value: {_short(node['value'])} lies outside its own range {_short(node['range'])}")
+                raise ConfigError(
+                    f"{where}.value: {_short(node['value'])} lies outside its own range {_short(node['range'])}"
+                )
         return
     for key, value in node.items():
         check_labelled(value, (*path, key))
@@ -204,7 +241,9 @@ def check_linkages(linkages: Mapping[str, Any]) -> None:
     problem, naming its key)."""
     from ..engines.multibody.describe import errors
 
-    problems = [line for name, scene in linkages.items() for line in errors(scene["linkage"], f"linkages.{name}.linkage")]
+    problems = [
+        line for name, scene in linkages.items() for line in errors(scene["linkage"], f"linkages.{name}.linkage")
+    ]
     if problems:
         raise ConfigError("invalid config:\n  " + "\n  ".join(problems))
 
@@ -318,7 +357,9 @@ def published_schema(published: Path) -> Path:
     return Path(published).parent / "published.schema.yaml"
 
 
-def validate_once(config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path, published: Path | None = None) -> None:
+def validate_once(
+    config: Mapping[str, Any], schema_path: Path, lib: Path, stamp: Path, published: Path | None = None
+) -> None:
     """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key);
     ``published``: the folder of the papers' published-numbers files, validated too (``linkwork.project.published``).
 

@@ -178,7 +178,9 @@ def _world(linkage: Linkage, q: np.ndarray, ref: tuple[str, str]) -> tuple[float
     return q[3 * b] + c * sx - s * sy, q[3 * b + 1] + s * sx + c * sy
 
 
-def assemble(linkage: Linkage, t: float = 0.0, settings: AssemblySettings = AssemblySettings(), guess=None) -> np.ndarray:
+def assemble(
+    linkage: Linkage, t: float = 0.0, settings: AssemblySettings = AssemblySettings(), guess=None
+) -> np.ndarray:
     """The configuration q (3 nb,) at time t (s) on the branch nearest the guessed body angles, every clearance
     journal centred in its bearing.  LinkageError (key ``driver``) if Newton's method does not converge."""
     closed = linkage.clearance_joints
@@ -188,21 +190,32 @@ def assemble(linkage: Linkage, t: float = 0.0, settings: AssemblySettings = Asse
     if not ok[0]:  # far from the guess: least squares (Levenberg-Marquardt) first, then Newton's method from there
         from scipy.optimize import least_squares
 
-        fit = least_squares(lambda x: constraints(linkage, x[None], tt, closed)[0][0], q0, method="lm",
-                            jac=lambda x: constraints(linkage, x[None], tt, closed)[1][0], xtol=1e-15, ftol=1e-15, gtol=1e-15)
+        fit = least_squares(
+            lambda x: constraints(linkage, x[None], tt, closed)[0][0],
+            q0,
+            method="lm",
+            jac=lambda x: constraints(linkage, x[None], tt, closed)[1][0],
+            xtol=1e-15,
+            ftol=1e-15,
+            gtol=1e-15,
+        )
         q, ok = _newton(linkage, fit.x[None], tt, closed, None, settings)
-    if not ok[0] or np.max(np.abs(constraints(linkage, q, tt, closed)[0])) > 1e3 * settings.tolerance * max(1.0, np.max(np.abs(q))):
+    if not ok[0] or np.max(np.abs(constraints(linkage, q, tt, closed)[0])) > 1e3 * settings.tolerance * max(
+        1.0, np.max(np.abs(q))
+    ):
         theta = np.degrees(linkage.driver.angle(tt)[0][0])
-        raise LinkageError(linkage.names.get("driver", "driver"),
-                           f"the linkage does not assemble at the driver angle {theta:.6g} deg from the guessed body angles "
-                           f"(no configuration closes every joint near them: check the dimensions and the angle guesses)")
+        raise LinkageError(
+            linkage.names.get("driver", "driver"),
+            f"the linkage does not assemble at the driver angle {theta:.6g} deg from the guessed body angles "
+            "(no configuration closes every joint near them: check the dimensions and the angle guesses)",
+        )
     return q[0]
 
 
 @dataclass(frozen=True)
 class Turn:
-    """The ideal linkage over one driven turn: times (s), configurations (n, 3 nb), their rates (n, 3 nb) and each
-    body angle's gain over the turn (rad, a multiple of 2 pi: 2 pi for a body that turns round, 0 for one that rocks)."""
+    """The ideal linkage over one driven turn: times (s), configurations (n, 3 nb), their rates (n, 3 nb) and each body
+    angle's gain over the turn (rad, a multiple of 2 pi: 2 pi for a body that turns round, 0 for one that rocks)."""
 
     t: np.ndarray
     q: np.ndarray
@@ -252,8 +265,11 @@ def follow_turn(linkage: Linkage, settings: AssemblySettings = AssemblySettings(
 
 def _no_closure(linkage: Linkage, key: str, good: float, bad: float):
     a, b = np.degrees(linkage.driver.angle(np.array([good, bad]))[0])
-    raise LinkageError(key, f"locks up between the driver angles {a:.6g} and {b:.6g} deg (no configuration near the last "
-                            "one closes every joint: a dyad cannot reach, the driven body cannot turn through)")
+    raise LinkageError(
+        key,
+        f"locks up between the driver angles {a:.6g} and {b:.6g} deg (no configuration near the last "
+        "one closes every joint: a dyad cannot reach, the driven body cannot turn through)",
+    )
 
 
 def _lock_up(linkage: Linkage, key: str, t: float, i: int, n: int, cond: float, settings: AssemblySettings):
@@ -278,7 +294,9 @@ def _check_turn(linkage: Linkage, key: str, t: np.ndarray, qs: np.ndarray, setti
                                 "Jacobian's determinant changes sign: the linkage changes branch)")
 
 
-def positions(linkage: Linkage, t: np.ndarray, turn: Turn, settings: AssemblySettings = AssemblySettings()) -> np.ndarray:
+def positions(
+    linkage: Linkage, t: np.ndarray, turn: Turn, settings: AssemblySettings = AssemblySettings()
+) -> np.ndarray:
     """Configurations q (n, 3 nb) at the times t (s): the turn's configuration at the same phase (linear
     interpolation, plus the turns' angle gains), polished by Newton's method, all at once."""
     t = np.asarray(t, dtype=float)
@@ -299,7 +317,9 @@ def positions(linkage: Linkage, t: np.ndarray, turn: Turn, settings: AssemblySet
     return q
 
 
-def kinematics(linkage: Linkage, t: np.ndarray, settings: AssemblySettings = AssemblySettings(), turn: Turn | None = None):
+def kinematics(
+    linkage: Linkage, t: np.ndarray, settings: AssemblySettings = AssemblySettings(), turn: Turn | None = None
+):
     """Positions, velocities and accelerations (n, 3 nb) each of the ideal linkage (every joint closed) at t (s)."""
     turn = follow_turn(linkage, settings) if turn is None else turn
     t = np.asarray(t, dtype=float)
@@ -317,7 +337,9 @@ def mass_vector(linkage: Linkage) -> np.ndarray:
     return np.array([v for b in linkage.bodies for v in (b.mass, b.mass, b.inertia)], dtype=float)
 
 
-def applied_forces(linkage: Linkage, q: np.ndarray, gravity: bool, qd: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+def applied_forces(
+    linkage: Linkage, q: np.ndarray, gravity: bool, qd: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
     """Generalised applied forces g (n, 3 nb) and their potential energy (n,), J: gravity along -y at every centre
     of mass, if it acts, and the springs (their dampers read the velocities ``qd``, zero if None)."""
     g, potential = np.zeros_like(q), np.zeros(q.shape[0])
@@ -351,8 +373,13 @@ def inverse_dynamics(linkage: Linkage, t: np.ndarray, gravity: bool, settings: A
     g, potential = applied_forces(linkage, q, gravity, qd)
     lam = _solve(np.swapaxes(jac, 1, 2), g - mass * qdd)
     energy = 0.5 * np.sum(mass * qd**2, axis=-1) + potential
-    out = {"output_acceleration": qdd[:, 3 * linkage.body_index(linkage.output) + 2], "energy": energy, "q": q, "qd": qd,
-           "qdd": qdd}
+    out = {
+        "output_acceleration": qdd[:, 3 * linkage.body_index(linkage.output) + 2],
+        "energy": energy,
+        "q": q,
+        "qd": qd,
+        "qdd": qdd,
+    }
     row = 0
     for kind, item in _rows(linkage, closed):
         if kind == "driver":
@@ -375,7 +402,9 @@ def start_state(linkage: Linkage, offsets=None, rates=None, settings: AssemblySe
     tt = np.array([t])
     q, ok = _newton(linkage, q0[None], tt, closed, offsets, settings)
     if not ok[0]:
-        raise LinkageError(linkage.names.get("linkage", "linkage"), "does not assemble with its journals at the given eccentricities")
+        raise LinkageError(
+            linkage.names.get("linkage", "linkage"), "does not assemble with its journals at the given eccentricities"
+        )
     _, jac, nu = constraints(linkage, q, tt, closed, offsets)
     row = 0
     for kind, item in _rows(linkage, closed):

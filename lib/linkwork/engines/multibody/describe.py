@@ -9,9 +9,10 @@ The config form (degrees for angles, SI otherwise, units in the key names)::
     joints:
       O2: {journal: crank.O, bearing: ground.O2}
       A: {journal: crank.A, bearing: coupler.A, clearance: {...}}   # a clearance joint names its effects
-    driver: {body: crank, speed_rad_s: 10.0, start_angle_deg: 60, cos_deg: [], sin_deg: []}   # a negative speed turns the other way
-    # or a rocking lever: {body: lever, speed_rad_s: 10.0, start_angle_deg: 90, cos_deg: [...], sin_deg: [...], rocking: true}
-    springs:                   # optional: a body point pulled towards a fixed rest point, per axis
+    driver: {body: crank, speed_rad_s: 10.0, start_angle_deg: 60, cos_deg: [], sin_deg: []}   # a negative speed turns
+    the other way
+    # or a rocking lever: {body: lever, speed_rad_s: 10.0, start_angle_deg: 90, cos_deg: [...], sin_deg: [...], rocking:
+    true} springs:                   # optional: a body point pulled towards a fixed rest point, per axis
       warp: {point: frame.C, rest_m: [0.8, 0.6], stiffness_N_m: [0.0, 2.0e+4], damping_N_s_m: [0.0, 20.0]}
     output: rocker
     gravity_m_s2: 9.81         # optional (default: standard gravity)
@@ -21,9 +22,10 @@ The config form (degrees for angles, SI otherwise, units in the key names)::
 A point of a body is given in the body's frame, whose origin is the centre of mass.  A clearance joint's block::
 
     clearance: {journal_radius_m, bearing_radius_m, effects: [contact, friction, lubrication],
-                youngs_modulus_Pa, poisson, restitution, contact_law, elastic_law, impact_velocity_floor_m_s,   # contact
-                friction, v0_m_s, v1_m_s,                                                                   # friction
-                viscosity_Pa_s, length_m, e0_m}                                                             # lubrication
+                youngs_modulus_Pa, poisson, restitution, contact_law, elastic_law, impact_velocity_floor_m_s,   #
+                contact friction, v0_m_s, v1_m_s,                                                                   #
+                friction viscosity_Pa_s, length_m, e0_m}                                                             #
+                lubrication
 
 Each effect reads exactly its keys; a key of an effect not named is refused (it would be silently unused).
 ``check`` assembles the linkage and follows it through the driven turn, so that a linkage that cannot assemble or
@@ -40,12 +42,31 @@ import numpy as np
 
 from .assembly import AssemblySettings, follow_turn
 from ...units import STANDARD_GRAVITY
-from .linkage import CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError, Spring
+from .linkage import (
+    CONTACT_LAWS,
+    ELASTIC_LAWS,
+    GROUND,
+    JOINT_EFFECTS,
+    Body,
+    Clearance,
+    Driver,
+    Joint,
+    Linkage,
+    LinkageError,
+    Spring,
+)
 
 #: Clearance keys every clearance joint reads, and those each effect adds.
 CLEARANCE_KEYS = ("journal_radius_m", "bearing_radius_m", "effects")
 EFFECT_KEYS = {
-    "contact": ("youngs_modulus_Pa", "poisson", "restitution", "contact_law", "elastic_law", "impact_velocity_floor_m_s"),
+    "contact": (
+        "youngs_modulus_Pa",
+        "poisson",
+        "restitution",
+        "contact_law",
+        "elastic_law",
+        "impact_velocity_floor_m_s",
+    ),
     "friction": ("friction", "v0_m_s", "v1_m_s"),
     "lubrication": ("viscosity_Pa_s", "length_m", "e0_m"),
 }
@@ -91,7 +112,12 @@ def _bodies(key: str, spec: Mapping[str, Any]) -> tuple[Body, ...]:
         k = f"{key}.{name}"
         if name == GROUND:
             raise LinkageError(k, f"'{GROUND}' is the fixed frame, not a body")
-        _only(k, _mapping(k, b), ("mass_kg", "inertia_kg_m2", "points", "angle_guess_deg"), ("mass_kg", "inertia_kg_m2", "points"))
+        _only(
+            k,
+            _mapping(k, b),
+            ("mass_kg", "inertia_kg_m2", "points", "angle_guess_deg"),
+            ("mass_kg", "inertia_kg_m2", "points"),
+        )
         points = {str(p): _xy(f"{k}.points.{p}", xy) for p, xy in _mapping(f"{k}.points", b["points"]).items()}
         out.append(Body(str(name), _number(f"{k}.mass_kg", b["mass_kg"], positive=True),
                         _number(f"{k}.inertia_kg_m2", b["inertia_kg_m2"], positive=True), points,
@@ -112,7 +138,9 @@ def _ref(key: str, value: Any, bodies: tuple[Body, ...], ground: Mapping[str, tu
     if body not in names:
         raise LinkageError(key, f"unknown body {body!r}; bodies: {', '.join(names)}")
     if point not in names[body].points:
-        raise LinkageError(key, f"unknown point {point!r} of body {body!r}; its points: {', '.join(names[body].points)}")
+        raise LinkageError(
+            key, f"unknown point {point!r} of body {body!r}; its points: {', '.join(names[body].points)}"
+        )
     return body, point
 
 
@@ -120,7 +148,9 @@ def _clearance(key: str, spec: Mapping[str, Any]) -> Clearance:
     spec = _mapping(key, spec)
     effects = spec.get("effects")
     if not isinstance(effects, list) or len(set(map(str, effects))) != len(effects):
-        raise LinkageError(f"{key}.effects", f"must be a list of distinct effects among {', '.join(JOINT_EFFECTS)}, got {effects!r}")
+        raise LinkageError(
+            f"{key}.effects", f"must be a list of distinct effects among {', '.join(JOINT_EFFECTS)}, got {effects!r}"
+        )
     unknown = [e for e in effects if e not in JOINT_EFFECTS]
     if unknown:
         raise LinkageError(f"{key}.effects", f"unknown effect {unknown[0]!r}; known: {', '.join(JOINT_EFFECTS)}")
@@ -128,22 +158,32 @@ def _clearance(key: str, spec: Mapping[str, Any]) -> Clearance:
         raise LinkageError(f"{key}.effects", "friction needs contact (it acts with the normal contact force)")
     allowed = (*CLEARANCE_KEYS, *(k for e in effects for k in EFFECT_KEYS[e]))
     _only(key, spec, allowed, allowed)
-    rj, rb = _number(f"{key}.journal_radius_m", spec["journal_radius_m"], positive=True), _number(f"{key}.bearing_radius_m", spec["bearing_radius_m"], positive=True)
+    rj, rb = _number(f"{key}.journal_radius_m", spec["journal_radius_m"], positive=True), _number(
+        f"{key}.bearing_radius_m", spec["bearing_radius_m"], positive=True
+    )
     if rb <= rj:
         raise LinkageError(f"{key}.bearing_radius_m", f"must exceed the journal radius ({rj:g} m), got {rb:g} m")
     values: dict[str, Any] = {}
     if "contact" in effects:
         values.update(_contact(key, spec))
     if "friction" in effects:
-        values.update(friction=_number(f"{key}.friction", spec["friction"], nonnegative=True),
-                      v0=_number(f"{key}.v0_m_s", spec["v0_m_s"], nonnegative=True), v1=_number(f"{key}.v1_m_s", spec["v1_m_s"], positive=True))
+        values.update(
+            friction=_number(f"{key}.friction", spec["friction"], nonnegative=True),
+            v0=_number(f"{key}.v0_m_s", spec["v0_m_s"], nonnegative=True),
+            v1=_number(f"{key}.v1_m_s", spec["v1_m_s"], positive=True),
+        )
         if values["v1"] <= values["v0"]:
             raise LinkageError(f"{key}.v1_m_s", f"must exceed v0_m_s ({values['v0']:g}), got {values['v1']:g}")
     if "lubrication" in effects:
-        values.update(viscosity=_number(f"{key}.viscosity_Pa_s", spec["viscosity_Pa_s"], positive=True),
-                      length=_number(f"{key}.length_m", spec["length_m"], positive=True), e0=_number(f"{key}.e0_m", spec["e0_m"], positive=True))
+        values.update(
+            viscosity=_number(f"{key}.viscosity_Pa_s", spec["viscosity_Pa_s"], positive=True),
+            length=_number(f"{key}.length_m", spec["length_m"], positive=True),
+            e0=_number(f"{key}.e0_m", spec["e0_m"], positive=True),
+        )
         if values["e0"] >= rb - rj:
-            raise LinkageError(f"{key}.e0_m", f"must be below the radial clearance ({rb - rj:g} m), got {values['e0']:g} m")
+            raise LinkageError(
+                f"{key}.e0_m", f"must be below the radial clearance ({rb - rj:g} m), got {values['e0']:g} m"
+            )
     return Clearance(rj, rb, tuple(effects), **values)
 
 
@@ -169,9 +209,16 @@ def _contact(key: str, spec: Mapping[str, Any]) -> dict[str, Any]:
     restitution = _number(f"{key}.restitution", spec["restitution"], positive=True)
     if restitution > 1.0:
         raise LinkageError(f"{key}.restitution", f"must lie in (0, 1], got {restitution!r}")
-    return {"youngs_modulus": _pair(f"{key}.youngs_modulus_Pa", spec["youngs_modulus_Pa"], positive=True), "poisson": poisson,
-            "restitution": restitution, "contact_law": law, "elastic_law": elastic,
-            "impact_velocity_floor": _number(f"{key}.impact_velocity_floor_m_s", spec["impact_velocity_floor_m_s"], positive=True)}
+    return {
+        "youngs_modulus": _pair(f"{key}.youngs_modulus_Pa", spec["youngs_modulus_Pa"], positive=True),
+        "poisson": poisson,
+        "restitution": restitution,
+        "contact_law": law,
+        "elastic_law": elastic,
+        "impact_velocity_floor": _number(
+            f"{key}.impact_velocity_floor_m_s", spec["impact_velocity_floor_m_s"], positive=True
+        ),
+    }
 
 
 def _joints(key: str, spec: Mapping[str, Any], bodies, ground) -> tuple[Joint, ...]:
@@ -179,26 +226,40 @@ def _joints(key: str, spec: Mapping[str, Any], bodies, ground) -> tuple[Joint, .
     for name, j in _mapping(key, spec).items():
         k = f"{key}.{name}"
         _only(k, _mapping(k, j), ("journal", "bearing", "clearance"), ("journal", "bearing"))
-        journal, bearing = _ref(f"{k}.journal", j["journal"], bodies, ground), _ref(f"{k}.bearing", j["bearing"], bodies, ground)
+        journal, bearing = _ref(f"{k}.journal", j["journal"], bodies, ground), _ref(
+            f"{k}.bearing", j["bearing"], bodies, ground
+        )
         if journal[0] == bearing[0]:
             raise LinkageError(k, f"joins body {journal[0]!r} to itself")
         clearance = _clearance(f"{k}.clearance", j["clearance"]) if j.get("clearance") is not None else None
         if clearance is not None and GROUND in (journal[0], bearing[0]):
-            raise LinkageError(f"{k}.clearance", "a clearance joint with the ground is not supported yet (journal and bearing must be bodies)")
+            raise LinkageError(
+                f"{k}.clearance",
+                "a clearance joint with the ground is not supported yet (journal and bearing must be bodies)",
+            )
         out.append(Joint(str(name), journal, bearing, clearance))
     return tuple(out)
 
 
 def _driver(key: str, spec: Mapping[str, Any], bodies, joints) -> Driver:
-    _only(key, _mapping(key, spec), ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg", "rocking"), ("body", "speed_rad_s", "start_angle_deg"))
+    _only(
+        key,
+        _mapping(key, spec),
+        ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg", "rocking"),
+        ("body", "speed_rad_s", "start_angle_deg"),
+    )
     body = spec["body"]
     if body not in [b.name for b in bodies]:
         raise LinkageError(f"{key}.body", f"unknown body {body!r}; bodies: {', '.join(b.name for b in bodies)}")
     if not any(j.clearance is None and {j.journal[0], j.bearing[0]} == {body, GROUND} for j in joints):
-        raise LinkageError(f"{key}.body", f"{body!r} is not pinned to the ground by an ideal joint: a driver turns a grounded body")
+        raise LinkageError(
+            f"{key}.body", f"{body!r} is not pinned to the ground by an ideal joint: a driver turns a grounded body"
+        )
     cos, sin = spec.get("cos_deg", []), spec.get("sin_deg", [])
     if not isinstance(cos, list) or not isinstance(sin, list) or len(cos) != len(sin):
-        raise LinkageError(f"{key}.cos_deg", f"cos_deg and sin_deg must be lists of equal length, got {cos!r} and {sin!r}")
+        raise LinkageError(
+            f"{key}.cos_deg", f"cos_deg and sin_deg must be lists of equal length, got {cos!r} and {sin!r}"
+        )
     speed = _number(f"{key}.speed_rad_s", spec["speed_rad_s"])
     if speed == 0.0:
         raise LinkageError(f"{key}.speed_rad_s", "must not be zero (its sign is the sense of turning)")
@@ -220,7 +281,12 @@ def _springs(key: str, spec: Mapping[str, Any] | None, bodies, ground) -> tuple[
     out = []
     for name, sp in _mapping(key, spec).items():
         k = f"{key}.{name}"
-        _only(k, _mapping(k, sp), ("point", "rest_m", "stiffness_N_m", "damping_N_s_m"), ("point", "rest_m", "stiffness_N_m"))
+        _only(
+            k,
+            _mapping(k, sp),
+            ("point", "rest_m", "stiffness_N_m", "damping_N_s_m"),
+            ("point", "rest_m", "stiffness_N_m"),
+        )
         point = _ref(f"{k}.point", sp["point"], bodies, ground)
         if point[0] == GROUND:
             raise LinkageError(f"{k}.point", "must be a point of a body, not of the ground")
@@ -251,13 +317,17 @@ def _connected(key: str, bodies: tuple[Body, ...], joints: tuple[Joint, ...]) ->
 
 
 def _mobility(key: str, bodies, joints) -> None:
-    """Grübler's count with every joint closed: a driven linkage has none left (3 per body = 2 per joint + the driver)."""
+    """Grübler's count with every joint closed: a driven linkage has none left (3 per body = 2 per joint + the
+    driver)."""
     dof = 3 * len(bodies) - 2 * len(joints) - 1
     if dof != 0:
         plural = "s" if abs(dof) != 1 else ""
         what = f"free motion{plural} besides the driver" if dof > 0 else f"redundant constraint{plural}"
-        raise LinkageError(f"{key}.joints", f"the linkage has {abs(dof)} {what} (Grübler: 3 x {len(bodies)} bodies - 2 x "
-                                            f"{len(joints)} joints - 1 driver = {dof}); a driven linkage needs 0")
+        raise LinkageError(
+            f"{key}.joints",
+            f"the linkage has {abs(dof)} {what} (Grübler: 3 x {len(bodies)} bodies - 2 x "
+            f"{len(joints)} joints - 1 driver = {dof}); a driven linkage needs 0",
+        )
 
 
 def assembly_settings(key: str, spec: Mapping[str, Any] | None) -> AssemblySettings:
@@ -276,7 +346,9 @@ def assembly_settings(key: str, spec: Mapping[str, Any] | None) -> AssemblySetti
             values[name] = v
     settings = AssemblySettings(**{**defaults.__dict__, **values})
     if not 16 <= settings.steps_per_turn <= 100_000:
-        raise LinkageError(f"{key}.steps_per_turn", f"must lie in 16..100000 (a size guard), got {settings.steps_per_turn}")
+        raise LinkageError(
+            f"{key}.steps_per_turn", f"must lie in 16..100000 (a size guard), got {settings.steps_per_turn}"
+        )
     return settings
 
 
@@ -292,7 +364,9 @@ def from_config(spec: Mapping[str, Any], key: str = "linkage") -> Linkage:
     _mobility(key, bodies, joints)
     driver = _driver(f"{key}.driver", spec["driver"], bodies, joints)
     if spec["output"] not in [b.name for b in bodies]:
-        raise LinkageError(f"{key}.output", f"unknown body {spec['output']!r}; bodies: {', '.join(b.name for b in bodies)}")
+        raise LinkageError(
+            f"{key}.output", f"unknown body {spec['output']!r}; bodies: {', '.join(b.name for b in bodies)}"
+        )
     names = {"linkage": key, "driver": f"{key}.driver"}
     return Linkage(bodies, ground, joints, driver, str(spec["output"]),
                    _number(f"{key}.gravity_m_s2", spec.get("gravity_m_s2", STANDARD_GRAVITY), nonnegative=True),
@@ -314,6 +388,9 @@ def errors(spec: Mapping[str, Any], key: str) -> list[str]:
         check(spec, key)
     except LinkageError as exc:
         return [str(exc)]
-    except (np.linalg.LinAlgError, FloatingPointError) as exc:  # pragma: no cover - a guard; check names the cases it knows
+    except (
+        np.linalg.LinAlgError,
+        FloatingPointError,
+    ) as exc:  # pragma: no cover - a guard; check names the cases it knows
         return [f"{key}: {exc}"]
     return []

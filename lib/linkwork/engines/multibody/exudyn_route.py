@@ -15,10 +15,10 @@ floored at the joint's floor, as ours.  Friction is Exudyn's regularised Coulomb
 Ambrosio's law as we use it is zero below v0 and linear from v0 to v1, so the two differ at slips below v1 (and
 Exudyn takes the slip at the contact point, r - delta/2 from each centre, where we take it at the radii).
 
-Solver: Newmark (trapezoidal) with the constraints at velocity level (index 2; the driver then reads its
-time derivative omega), modified Newton iterated to ``newton_tolerance``.  The default index-3 generalized-alpha returns accelerations and multipliers that
-do not converge with the step for the decoded inertias (relative differences 0.25-0.65 at 1e-4 to 1e-5 s,
-positions exact to 1e-15): its algorithmic acceleration is not the mechanism's.
+Solver: Newmark (trapezoidal) with the constraints at velocity level (index 2; the driver then reads its time derivative
+omega), modified Newton iterated to ``newton_tolerance``.  The default index-3 generalized-alpha returns accelerations
+and multipliers that do not converge with the step for the decoded inertias (relative differences 0.25-0.65 at 1e-4 to
+1e-5 s, positions exact to 1e-15): its algorithmic acceleration is not the mechanism's.
 """
 
 from __future__ import annotations
@@ -75,28 +75,51 @@ def _build(linkage: Linkage, gravity: bool):
     def marker(ref):
         b = linkage.body_index(ref[0])
         x, y = linkage.point(ref)
-        return mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground if b < 0 else bodies[b], localPosition=[x, y, 0.0]))
+        return mbs.AddMarker(
+            ii.MarkerBodyPosition(bodyNumber=ground if b < 0 else bodies[b], localPosition=[x, y, 0.0])
+        )
 
     for joint in linkage.joints:
         if joint.clearance is None:
             mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[marker(joint.bearing), marker(joint.journal)]))
         else:
             bj, bb = linkage.body_index(joint.journal[0]), linkage.body_index(joint.bearing[0])
-            _dry_joint(mbs, joint.clearance, bodies[bj], bodies[bb], linkage.point(joint.journal), linkage.point(joint.bearing))
+            _dry_joint(
+                mbs, joint.clearance, bodies[bj], bodies[bb], linkage.point(joint.journal), linkage.point(joint.bearing)
+            )
 
     for spring in linkage.springs:  # a spring pulls its body point towards its rest point, per axis
         rest = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground, localPosition=[*spring.rest, 0.0]))
-        mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(markerNumbers=[rest, marker(spring.point)],
-                                                              stiffness=[*spring.stiffness, 0.0], damping=[*spring.damping, 0.0]))
+        mbs.AddObject(
+            ii.ObjectConnectorCartesianSpringDamper(
+                markerNumbers=[rest, marker(spring.point)],
+                stiffness=[*spring.stiffness, 0.0],
+                damping=[*spring.damping, 0.0],
+            )
+        )
 
     # the driver acts on the driven body's rotation coordinate, which excludes its reference value theta(0)
-    fixed = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0])), coordinate=0))
-    driven = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nodes[linkage.body_index(linkage.driver.body)], coordinate=2))
+    fixed = mbs.AddMarker(
+        ii.MarkerNodeCoordinate(
+            nodeNumber=mbs.AddNode(ii.NodePointGround(referenceCoordinates=[0.0, 0.0, 0.0])), coordinate=0
+        )
+    )
+    driven = mbs.AddMarker(
+        ii.MarkerNodeCoordinate(nodeNumber=nodes[linkage.body_index(linkage.driver.body)], coordinate=2)
+    )
     offset, rate = _driver_offset(linkage.driver)
-    driver = mbs.AddObject(ii.ObjectConnectorCoordinate(markerNumbers=[fixed, driven], offsetUserFunction=offset, offsetUserFunction_t=rate))
+    driver = mbs.AddObject(
+        ii.ObjectConnectorCoordinate(
+            markerNumbers=[fixed, driven], offsetUserFunction=offset, offsetUserFunction_t=rate
+        )
+    )
     out = nodes[linkage.body_index(linkage.output)]
-    acc = mbs.AddSensor(ii.SensorNode(nodeNumber=out, outputVariableType=exu.OutputVariableType.Coordinates_tt, storeInternal=True))
-    torque = mbs.AddSensor(ii.SensorObject(objectNumber=driver, outputVariableType=exu.OutputVariableType.Force, storeInternal=True))
+    acc = mbs.AddSensor(
+        ii.SensorNode(nodeNumber=out, outputVariableType=exu.OutputVariableType.Coordinates_tt, storeInternal=True)
+    )
+    torque = mbs.AddSensor(
+        ii.SensorObject(objectNumber=driver, outputVariableType=exu.OutputVariableType.Force, storeInternal=True)
+    )
     mbs.Assemble()
     return sc, mbs, acc, torque
 
@@ -120,13 +143,23 @@ def native_contact(c: Clearance) -> dict[str, object]:
     chi = HYSTERESIS[c.contact_law](c.restitution)
     restitution = 1.0 - 2.0 * chi / 3.0
     if not restitution > 0.0:
-        raise ValueError(f"contact law {c.contact_law!r} at restitution {c.restitution:g} has chi = {chi:g}: Exudyn's Hunt-Crossley "
-                         "model needs chi < 1.5")
+        raise ValueError(
+            f"contact law {c.contact_law!r} at restitution {c.restitution:g} has chi = {chi:g}: Exudyn's Hunt-Crossley "
+            "model needs chi < 1.5"
+        )
     friction = "friction" in c.effects
-    return {"spheresRadii": [c.journal_radius, c.bearing_radius], "isHollowSphere1": True, "contactStiffness": c.elastic_stiffness,
-            "contactStiffnessExponent": c.elastic_exponent, "contactDamping": 0.0, "impactModel": 1,
-            "restitutionCoefficient": restitution, "minimumImpactVelocity": c.impact_velocity_floor,
-            "dynamicFriction": c.friction if friction else 0.0, "frictionProportionalZone": c.v1 if friction else 1e-3}
+    return {
+        "spheresRadii": [c.journal_radius, c.bearing_radius],
+        "isHollowSphere1": True,
+        "contactStiffness": c.elastic_stiffness,
+        "contactStiffnessExponent": c.elastic_exponent,
+        "contactDamping": 0.0,
+        "impactModel": 1,
+        "restitutionCoefficient": restitution,
+        "minimumImpactVelocity": c.impact_velocity_floor,
+        "dynamicFriction": c.friction if friction else 0.0,
+        "frictionProportionalZone": c.v1 if friction else 1e-3,
+    }
 
 
 def _dry_joint(mbs, c: Clearance, journal_body, bearing_body, journal_local, bearing_local) -> None:
@@ -135,11 +168,15 @@ def _dry_joint(mbs, c: Clearance, journal_body, bearing_body, journal_local, bea
 
     markers = [mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=body, localPosition=[x, y, 0.0]))
                for body, (x, y) in ((journal_body, journal_local), (bearing_body, bearing_local))]
-    data = mbs.AddNode(ii.NodeGenericData(initialCoordinates=[0.1 * c.clearance, 0.0, 0.0, 0.0], numberOfDataCoordinates=4))
+    data = mbs.AddNode(
+        ii.NodeGenericData(initialCoordinates=[0.1 * c.clearance, 0.0, 0.0, 0.0], numberOfDataCoordinates=4)
+    )
     mbs.AddObject(ii.ObjectContactSphereSphere(markerNumbers=markers, nodeNumber=data, **native_contact(c)))
 
 
-def ideal_run(linkage: Linkage, end_time: float, step: float, newton_tolerance: float, gravity: bool = True) -> dict[str, np.ndarray | float]:
+def ideal_run(
+    linkage: Linkage, end_time: float, step: float, newton_tolerance: float, gravity: bool = True
+) -> dict[str, np.ndarray | float]:
     """Forward dynamics of the linkage with every joint ideal in Exudyn from its start for ``end_time`` (s) with the
     fixed step ``step`` (s).  Returns the output times t (s, every step), the output body's angular acceleration
     (rad/s^2), the driver torque (N m, linkwork's sign), the solver's wall time (s) and Exudyn's version."""
@@ -148,7 +185,8 @@ def ideal_run(linkage: Linkage, end_time: float, step: float, newton_tolerance: 
 
 
 def _pre_step(end_time: float, progress_s: float):
-    """Exudyn's pre-step function: a progress line every ``progress_s`` seconds of wall time (simulated time, share done)."""
+    """Exudyn's pre-step function: a progress line every ``progress_s`` seconds of wall time (simulated time, share
+    done)."""
     start = last = time.perf_counter()
 
     def pre_step(mbs, t) -> bool:
@@ -156,7 +194,10 @@ def _pre_step(end_time: float, progress_s: float):
         now = time.perf_counter()
         if now - last >= progress_s:
             last = now
-            print(f"  Exudyn: t = {t:.4f} s of {end_time:.4f} s ({100 * t / end_time:.0f} %), {now - start:.0f} s", flush=True)
+            print(
+                f"  Exudyn: t = {t:.4f} s of {end_time:.4f} s ({100 * t / end_time:.0f} %), {now - start:.0f} s",
+                flush=True,
+            )
         return True
 
     return pre_step
@@ -198,5 +239,11 @@ def run(linkage: Linkage, end_time: float, step: float, newton_tolerance: float,
     torque = mbs.GetSensorStoredData(torque_sensor)
     if not settings.timeIntegration.generalizedAlpha.computeInitialAccelerations:
         acc, torque = acc[1:], torque[1:]  # the start's multipliers are not computed then (stored as zero)
-    return {"t": acc[:, 0], "output_acceleration": acc[:, 3], "driver_torque": -torque[:, 1], "wall_s": wall, "cpu_s": cpu,
-            "version": exu.__version__}
+    return {
+        "t": acc[:, 0],
+        "output_acceleration": acc[:, 3],
+        "driver_torque": -torque[:, 1],
+        "wall_s": wall,
+        "cpu_s": cpu,
+        "version": exu.__version__,
+    }

@@ -257,7 +257,8 @@ def gauss_solve_into(a, b, x):
 @njit(cache=True)
 def solve_stack(a, b):
     """x[i] with a[i] x[i] = b[i] for a stack of small systems (a: (n, m, m), b: (n, m); neither is changed), each by
-    ``gauss_solve_into``: for the engine's small constraint Jacobians this is faster than numpy's batched LAPACK call."""
+    ``gauss_solve_into``: for the engine's small constraint Jacobians this is faster than numpy's batched LAPACK
+    call."""
     n, m = b.shape
     x = np.empty((n, m))
     aa = np.empty((m, m))

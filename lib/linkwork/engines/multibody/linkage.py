@@ -19,7 +19,6 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
 
 import numpy as np
 
@@ -66,7 +65,8 @@ def pereira_exponent(clearance: float) -> float:
     """Pereira's exponent n = Y dR^-0.005 (-) of the radial clearance ``clearance`` (m; dR in mm in the fit).
 
     Y = 1.51 [ln(1000 dR)]^-0.151 up to the break clearance (the logarithm of dR in micrometres), Y = 0.0151 dR + 1.151
-    above it.  Outside the fitted range the nearer branch is extrapolated (the clearance paper states each law's range); below
+    above it.  Outside the fitted range the nearer branch is extrapolated (the clearance paper states each law's range);
+    below
     1 um the logarithm is not positive and the law is undefined (ValueError).
     """
     dr = clearance * _MM_PER_M
@@ -274,8 +274,17 @@ class Linkage:
     def with_clearance(self, updates: Mapping[str, Clearance | None]) -> Linkage:
         """The same linkage with the named joints' clearances replaced (None: the joint made ideal)."""
         joints = tuple(Joint(j.name, j.journal, j.bearing, updates.get(j.name, j.clearance)) for j in self.joints)
-        return Linkage(self.bodies, self.ground, joints, self.driver, self.output, self.gravity, self.baumgarte, self.names,
-                       self.springs)
+        return Linkage(
+            self.bodies,
+            self.ground,
+            joints,
+            self.driver,
+            self.output,
+            self.gravity,
+            self.baumgarte,
+            self.names,
+            self.springs,
+        )
 
 
 def oriented(joint: Joint) -> tuple[tuple[str, str], tuple[str, str]]:

@@ -43,8 +43,25 @@ EFFECTS = (*JOINT_EFFECTS, "gravity")
 DIAG_FIXED = 4  # output body's angular acceleration, driver torque, energy, constraint drift
 DIAG_PER_JOINT = 6  # e, delta, delta', dry normal force, film radial force, film tangential force
 #: A clearance joint's packed values, in order (``pack``): its journal and bearing points, then its properties.
-CLEARANCE_VALUES = ("jx", "jy", "bx", "by", "clearance", "r_journal", "r_bearing", "restitution", "friction", "v0", "v1",
-                    "film", "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent")
+CLEARANCE_VALUES = (
+    "jx",
+    "jy",
+    "bx",
+    "by",
+    "clearance",
+    "r_journal",
+    "r_bearing",
+    "restitution",
+    "friction",
+    "v0",
+    "v1",
+    "film",
+    "eps_limit",
+    "floor",
+    "elastic_law",
+    "elastic_stiffness",
+    "elastic_exponent",
+)
 
 
 def n_state(linkage: Linkage) -> int:
@@ -56,9 +73,14 @@ def check_effects(name: str, effects) -> None:
     """A clearance joint's effects: known ones, friction only with contact (it acts with the normal force)."""
     unknown = set(effects) - set(JOINT_EFFECTS)
     if unknown:
-        raise LinkageError(f"joints.{name}.clearance.effects", f"unknown effect(s) {sorted(unknown)}; known: {JOINT_EFFECTS}")
+        raise LinkageError(
+            f"joints.{name}.clearance.effects", f"unknown effect(s) {sorted(unknown)}; known: {JOINT_EFFECTS}"
+        )
     if "friction" in effects and "contact" not in effects:
-        raise LinkageError(f"joints.{name}.clearance.effects", "friction needs the contact effect (it acts with the normal contact force)")
+        raise LinkageError(
+            f"joints.{name}.clearance.effects",
+            "friction needs the contact effect (it acts with the normal contact force)",
+        )
 
 
 def _clearance_values(linkage: Linkage, joint) -> list[float]:
@@ -70,8 +92,13 @@ def _clearance_values(linkage: Linkage, joint) -> list[float]:
     (v["jx"], v["jy"]), (v["bx"], v["by"]) = linkage.point(joint.journal), linkage.point(joint.bearing)
     v.update(clearance=c.clearance, r_journal=c.journal_radius, r_bearing=c.bearing_radius)
     if "contact" in fx:
-        v.update(restitution=c.restitution, floor=c.impact_velocity_floor, elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
-                 elastic_stiffness=c.elastic_stiffness, elastic_exponent=c.elastic_exponent)
+        v.update(
+            restitution=c.restitution,
+            floor=c.impact_velocity_floor,
+            elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
+            elastic_stiffness=c.elastic_stiffness,
+            elastic_exponent=c.elastic_exponent,
+        )
     if "friction" in fx:
         v.update(friction=c.friction, v0=c.v0, v1=c.v1)
     if "lubrication" in fx:
@@ -120,7 +147,9 @@ def _constraint_lines(linkage: Linkage, idx) -> tuple[list[str], list[list[int]]
                 lines.append(f"    {kernel}(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], p[{s}:{s + n}], "
                              f"p[{s + n}:{s + 2 * n}], {row}, phi, phiq, gamma, phidot)")
             else:
-                lines.append(f"    driver(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], {row}, phi, phiq, gamma, phidot)")
+                lines.append(
+                    f"    driver(q, qd, t, {b}, p[{idx['phi0']}], p[{idx['omega']}], {row}, phi, phiq, gamma, phidot)"
+                )
             pattern.append([3 * b + 2])
             driver_row = row
             row += 1
@@ -128,7 +157,10 @@ def _constraint_lines(linkage: Linkage, idx) -> tuple[list[str], list[list[int]]
         first, second = oriented(item)
         bi, bj = linkage.body_index(first[0]), linkage.body_index(second[0])
         six, siy, sjx, sjy, gx, gy = (f"p[{idx[f'joint{k}'] + m}]" for m in range(6))
-        lines.append(f"    revolute(q, qd, cs, {bi}, {six}, {siy}, {bj}, {sjx}, {sjy}, {gx}, {gy}, {row}, phi, phiq, gamma, phidot)")
+        lines.append(
+            f"    revolute(q, qd, cs, {bi}, {six}, {siy}, {bj}, {sjx}, {sjy}, {gx}, {gy}, {row}, phi, phiq, gamma,"
+            " phidot)"
+        )
         pattern += revolute_pattern(bi, bj)
         row += 2
     return lines, pattern, driver_row
@@ -146,8 +178,10 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
         jx, jy, bx, by = P["jx"], P["jy"], P["bx"], P["by"]
         d = DIAG_FIXED + DIAG_PER_JOINT * k
         a(f"    # clearance joint {joint.name}")
-        a(f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx}, {by}, "
-          f"{P['clearance']}, {P['r_journal']}, {P['r_bearing']})")
+        a(
+            f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx},"
+            f" {by}, {P['clearance']}, {P['r_journal']}, {P['r_bearing']})"
+        )
         a("    fn = 0.0")
         a("    ft = 0.0")
         a("    fr_film = 0.0")
@@ -156,7 +190,10 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
             a("    if delta > 0.0:")
             a("        counts[0] += 1")
             a(f"        vimp = latched[{k}] if latched[{k}] > {P['floor']} else {P['floor']}")
-            a(f"        fe, ue = elastic_contact(int({P['elastic_law']}), {P['elastic_stiffness']}, {P['elastic_exponent']}, delta)")
+            a(
+                f"        fe, ue = elastic_contact(int({P['elastic_law']}), {P['elastic_stiffness']},"
+                f" {P['elastic_exponent']}, delta)"
+            )
             a(f"        fn = fe * hertz_damping_factor({CONTACT_LAWS[c.contact_law]}, {P['restitution']}, ddot, vimp)")
             a("        potential += ue")
             if "friction" in c.effects:
@@ -164,8 +201,10 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
                 a(f"        ft = friction_coefficient(vt, {P['friction']}, {P['v0']}, {P['v1']}) * fn")
         if "lubrication" in c.effects:
             a("    counts[2] += 1")
-            a(f"    fr_film, ft_film = film_forces(e / {P['clearance']}, ddot / {P['clearance']}, wj + wb, gd, {P['film']}, "
-              f"{P['eps_limit']})")
+            a(
+                f"    fr_film, ft_film = film_forces(e / {P['clearance']}, ddot / {P['clearance']}, wj + wb, gd,"
+                f" {P['film']}, {P['eps_limit']})"
+            )
         a("    tx, ty = -ny, nx")
         a("    fx = (-fn + fr_film) * nx + (ft + ft_film) * tx")
         a("    fy = (-fn + fr_film) * ny + (ft + ft_film) * ty")
@@ -185,7 +224,10 @@ def _spring_lines(linkage: Linkage, idx) -> list[str]:
     for k, spring in enumerate(linkage.springs):
         o = idx[f"spring{k}"]
         args = ", ".join(f"p[{o + m}]" for m in range(8))
-        lines.append(f"    potential += ground_spring(q, qd, cs, g, {linkage.body_index(spring.point[0])}, {args})  # spring {spring.name}")
+        lines.append(
+            f"    potential += ground_spring(q, qd, cs, g, {linkage.body_index(spring.point[0])}, {args})  # spring"
+            f" {spring.name}"
+        )
     return lines
 
 
@@ -196,7 +238,10 @@ def _check_topology(linkage: Linkage) -> None:
             raise LinkageError(f"joints.{joint.name}.clearance.contact_law",
                                f"unknown contact law {joint.clearance.contact_law!r}; known: {sorted(CONTACT_LAWS)}")
         if "ground" in (joint.journal[0], joint.bearing[0]):
-            raise LinkageError(f"joints.{joint.name}", "a clearance joint with the ground is not supported yet (journal and bearing must be bodies)")
+            raise LinkageError(
+                f"joints.{joint.name}",
+                "a clearance joint with the ground is not supported yet (journal and bearing must be bodies)",
+            )
 
 
 def generate_source(linkage: Linkage, gravity: bool) -> str:
@@ -224,7 +269,9 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     a(f"NC = {nc}")
     a(f"N_DIAG = {DIAG_FIXED + DIAG_PER_JOINT * len(joints)}")
     a(f"JOINTS = {tuple(j.name for j in joints)}")
-    scene_effects = [e for e in EFFECTS if any(e in j.clearance.effects for j in joints) or (e == "gravity" and gravity)]
+    scene_effects = [
+        e for e in EFFECTS if any(e in j.clearance.effects for j in joints) or (e == "gravity" and gravity)
+    ]
     a(f"EFFECTS = {tuple(scene_effects)}")
     a("")
     a(f"N_WORK = {5 * nb + nc * (6 + nq + nc)}")
@@ -239,7 +286,7 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     a("@njit(cache=True)")
     a("def rhs_into(t, y, p, latched, counts, diag, w, out):")
     a("    \"\"\"dy/dt at (t, y) into ``out`` (NY), the diagnostics into ``diag``; ``w``: a work array of N_WORK,")
-    a("    cleared here and cut into the pieces below (the integrators pass one, so that a call allocates nothing).\"\"\"")
+    a('    cleared here and cut into the pieces below (the integrators pass one, so that a call allocates nothing)."""')
     a("    q = y[0:NQ]")
     a("    qd = y[NQ : 2 * NQ]")
     a("    w[:] = 0.0")
@@ -290,7 +337,10 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
 def revolute_pattern(bi: int, bj: int) -> list[list[int]]:
     """The columns of Phi_q a revolute between bodies bi and bj (bj < 0: the ground) fills, in its x and y rows."""
     bodies = [b for b in (bi, bj) if b >= 0]
-    return [sorted(c for b in bodies for c in (3 * b, 3 * b + 2)), sorted(c for b in bodies for c in (3 * b + 1, 3 * b + 2))]
+    return [
+        sorted(c for b in bodies for c in (3 * b, 3 * b + 2)),
+        sorted(c for b in bodies for c in (3 * b + 1, 3 * b + 2)),
+    ]
 
 
 def schur_source(pattern: list[list[int]], nq: int) -> list[str]:
@@ -422,7 +472,8 @@ def dopri5(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
             k3 = rhs(t + c3 * hh, y + hh * (a31 * k1 + a32 * k2), p, latched, counts, scratch)
             k4 = rhs(t + c4 * hh, y + hh * (a41 * k1 + a42 * k2 + a43 * k3), p, latched, counts, scratch)
             k5 = rhs(t + c5 * hh, y + hh * (a51 * k1 + a52 * k2 + a53 * k3 + a54 * k4), p, latched, counts, scratch)
-            k6 = rhs(t + hh, y + hh * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5), p, latched, counts, scratch)
+            y6 = y + hh * (a61 * k1 + a62 * k2 + a63 * k3 + a64 * k4 + a65 * k5)
+            k6 = rhs(t + hh, y6, p, latched, counts, scratch)
             y_new = y + hh * (b1 * k1 + b3 * k3 + b4 * k4 + b5 * k5 + b6 * k6)
             k7 = rhs(t + hh, y_new, p, latched, counts, scratch)
             err_vec = hh * (e1 * k1 + e3 * k3 + e4 * k4 + e5 * k5 + e6 * k6 + e7 * k7)

@@ -31,7 +31,9 @@ class Run:
     ``memory()`` is the run's whole state as one vector (t, y, latched, in contact): a run restarted from it
     (``Run(..., memory=...)``) continues the same motion; a Poincaré section point that holds it can be restarted."""
 
-    def __init__(self, linkage: Linkage, gravity: bool, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None):
+    def __init__(
+        self, linkage: Linkage, gravity: bool, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None
+    ):
         self.module = compile_scene(linkage, gravity)
         self.integrator = dict(integrator)
         self.params, _ = pack(linkage)
@@ -60,21 +62,58 @@ class Run:
             raise ValueError(f"a run at t = {self.t} s cannot sample from t = {t_out[0]} s")
         integ, method = self.integrator, self.integrator["method"]
         if method == "rk4":
-            ys, diags, steps, rejected, _ = self.module.rk4(self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was)
+            ys, diags, steps, rejected, _ = self.module.rk4(
+                self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was
+            )
         elif method in ("dopri5", "dop853"):
             ys, diags, steps, rejected, self.h = getattr(self.module, method)(
-                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
+                self.y,
+                self.t,
+                t_out,
+                self.params,
+                self.latched,
+                self.counts,
+                integ["rtol"],
+                integ["atol"],
+                self.h,
+                integ["max_step_s"],
+                self.was,
+            )
         elif method == "ndf":
             saved = self.latched.copy(), self.was.copy(), self.counts.copy()
             try:
                 ys, diags, steps, rejected, self.h = self.module.ndf(
-                    self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h, integ["max_step_s"], self.was)
-            except RuntimeError:  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
+                    self.y,
+                    self.t,
+                    t_out,
+                    self.params,
+                    self.latched,
+                    self.counts,
+                    integ["rtol"],
+                    integ["atol"],
+                    self.h,
+                    integ["max_step_s"],
+                    self.was,
+                )
+            except (
+                RuntimeError
+            ):  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
                 self.latched[:], self.was[:], self.counts[:] = saved
-                ys, diags, steps, rejected = _scipy(self.module, self.y, t_out, self.params, self.latched, self.counts, {**integ, "method": "bdf"}, self.was)
+                ys, diags, steps, rejected = _scipy(
+                    self.module,
+                    self.y,
+                    t_out,
+                    self.params,
+                    self.latched,
+                    self.counts,
+                    {**integ, "method": "bdf"},
+                    self.was,
+                )
                 self.fallbacks += 1
         elif method in SCIPY:
-            ys, diags, steps, rejected = _scipy(self.module, self.y, t_out, self.params, self.latched, self.counts, integ, self.was)
+            ys, diags, steps, rejected = _scipy(
+                self.module, self.y, t_out, self.params, self.latched, self.counts, integ, self.was
+            )
         else:
             raise ValueError(f"unknown integrator {method!r}; known: {', '.join(METHODS)}")
         self.y, self.t = ys[-1].copy(), float(t_out[-1])
@@ -101,7 +140,9 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
 
     diag = np.zeros(module.N_DIAG)
     scratch = np.zeros(module.N_DIAG)
-    solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "scipy-dop853": si.DOP853}[integrator["method"]]
+    solver_cls = {"bdf": si.BDF, "radau": si.Radau, "lsoda": si.LSODA, "rk45": si.RK45, "scipy-dop853": si.DOP853}[
+        integrator["method"]
+    ]
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
     jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
     ys = np.empty((t_out.size, y0.size))
@@ -112,8 +153,17 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
     i = 1
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
         implicit = {"jac": jac} if integrator["method"] in ("bdf", "radau", "lsoda") else {}
-        solver = solver_cls(fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"], max_step=integrator["max_step_s"],
-                             first_step=integrator.get("first_step_s"), **implicit)
+        solver = solver_cls(
+            fun,
+            t_out[0],
+            y0,
+            t_out[-1],
+            rtol=integrator["rtol"],
+            atol=integrator["atol"],
+            max_step=integrator["max_step_s"],
+            first_step=integrator.get("first_step_s"),
+            **implicit,
+        )
         steps = 0
         while solver.status == "running":
             solver.step()

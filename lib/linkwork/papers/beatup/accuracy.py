@@ -42,16 +42,42 @@ def accuracy(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     settings = [f"central differences h={s:g} deg" for s in np.degrees(steps)] + ["analytic"]
     ds = xr.Dataset(
         {
-            "error": xr.DataArray(errors, dims=("derivative", "fd_step"), attrs={"units": "rad rad-1 (rate), rad rad-2 (accel)", "long_name": "max |central difference - analytic| over the grid"}),
-            "best_error": xr.DataArray(errors.min(axis=1), dims="derivative", attrs={"units": "rad rad-1 (rate), rad rad-2 (accel)", "long_name": "smallest error over the step sweep"}),
+            "error": xr.DataArray(
+                errors,
+                dims=("derivative", "fd_step"),
+                attrs={
+                    "units": "rad rad-1 (rate), rad rad-2 (accel)",
+                    "long_name": "max |central difference - analytic| over the grid",
+                },
+            ),
+            "best_error": xr.DataArray(
+                errors.min(axis=1),
+                dims="derivative",
+                attrs={
+                    "units": "rad rad-1 (rate), rad rad-2 (accel)",
+                    "long_name": "smallest error over the step sweep",
+                },
+            ),
             **summary_variables("kinematics derivatives", settings, [*(errors[1] / scale), ROUNDING], "analytic"),
         },
         coords={
-            "derivative": ("derivative", np.array(["theta6_rate", "theta6_accel"], dtype=object), {"units": "1", "long_name": "which derivative"}),
-            "fd_step": ("fd_step", np.degrees(steps), {"units": "deg", "long_name": "finite-difference step in crank angle"}),
+            "derivative": (
+                "derivative",
+                np.array(["theta6_rate", "theta6_accel"], dtype=object),
+                {"units": "1", "long_name": "which derivative"},
+            ),
+            "fd_step": (
+                "fd_step",
+                np.degrees(steps),
+                {"units": "deg", "long_name": "finite-difference step in crank angle"},
+            ),
         },
     )
-    ds.attrs.update(title="Analytic vs finite-difference derivatives (beat-up six-bar)", grid_step_deg=acc["grid_step_deg"], repeats=acc["repeats"])
+    ds.attrs.update(
+        title="Analytic vs finite-difference derivatives (beat-up six-bar)",
+        grid_step_deg=acc["grid_step_deg"],
+        repeats=acc["repeats"],
+    )
     timings = {
         "method": f"median of {acc['repeats']} runs after a warm-up, time.perf_counter",
         "points": int(theta1.size),

@@ -29,16 +29,25 @@ def four_bar_beatup(fourbar: Mapping[str, Any], arm_to_crank: float | None = Non
     """FourBarBeatup from a ``fourbar`` section of labelled entries; optionally another L/R."""
     ratio = labelled(fourbar["arm_to_crank"]) if arm_to_crank is None else float(arm_to_crank)
     crank = labelled(fourbar["crank_m"])
-    return FourBarBeatup(crank=crank, arm=ratio * crank, sword_radius=labelled(fourbar["sword_radius_m"]), offset=labelled(fourbar["offset_m"]))
+    return FourBarBeatup(
+        crank=crank,
+        arm=ratio * crank,
+        sword_radius=labelled(fourbar["sword_radius_m"]),
+        offset=labelled(fourbar["offset_m"]),
+    )
 
 
 def rounding_half_units(printed_rounding: Mapping[str, float]) -> dict[str, float]:
     """Half a unit of each printed parameter's last digit in SI (m or rad), keyed by SixBar field."""
-    return {key.rsplit("_", 1)[0]: (float(np.radians(v)) if key.endswith("_deg") else float(v)) for key, v in printed_rounding.items()}
+    return {
+        key.rsplit("_", 1)[0]: float(np.radians(v)) if key.endswith("_deg") else float(v)
+        for key, v in printed_rounding.items()
+    }
 
 
 def crank_sense(sixbar: Mapping[str, Any]) -> str:
-    """The crank sense of the scenario (``sixbar.crank_sense``, a labelled choice): 'decreasing' or 'increasing' theta1."""
+    """The crank sense of the scenario (``sixbar.crank_sense``, a labelled choice): 'decreasing' or 'increasing'
+    theta1."""
     from .model import CRANK_SENSES
 
     value = str(sixbar["crank_sense"]["value"])

@@ -219,7 +219,15 @@ def dead_centres(mechanism: SixBar, scan_points: int = 3601, xtol: float = 1.0e-
     angles = sley_motion(mechanism, np.array(roots)).theta6
     front, back = (roots[int(np.argmax(angles))], roots[int(np.argmin(angles))])
     forward = float(np.mod(back - front, TWO_PI))
-    return DeadCentres(front, back, float(angles.max()), float(angles.min()), float(angles.max() - angles.min()), forward, TWO_PI - forward)
+    return DeadCentres(
+        front,
+        back,
+        float(angles.max()),
+        float(angles.min()),
+        float(angles.max() - angles.min()),
+        forward,
+        TWO_PI - forward,
+    )
 
 
 def from_front(theta1: ArrayLike, front: float, sense: int = 1) -> FloatArray:
@@ -265,7 +273,9 @@ class SenseReading:
     accel_peak: float
 
 
-def sense_reading(centres: DeadCentres, extremes: tuple[float, float], accel_peak_theta1: float, sense: int) -> SenseReading:
+def sense_reading(
+    centres: DeadCentres, extremes: tuple[float, float], accel_peak_theta1: float, sense: int
+) -> SenseReading:
     """Read the dead centres (``dead_centres``), the rate extremes (``rate_extremes``: theta1 of the largest
     and smallest theta6') and the theta1 of the largest |theta6''| (rad) for a crank turning in ``sense``.
 
@@ -439,9 +449,13 @@ def fit_table_angles(
 
     limit = np.array([np.inf if (not bounded or n in unbounded) else 1.0 for n in names])
     bounds = (-limit, limit)
-    sol = least_squares(residual, np.zeros(len(names)), jac="3-point", bounds=bounds, method="trf", ftol=tol, xtol=tol, gtol=tol)
+    sol = least_squares(
+        residual, np.zeros(len(names)), jac="3-point", bounds=bounds, method="trf", ftol=tol, xtol=tol, gtol=tol
+    )
     s = np.linalg.svd(sol.jac, compute_uv=False)
-    return ParameterFit(names, start, half, start + sol.x * half, sol.x, sol.fun * scale, float(s[0] / s[-1]), int(sol.nfev), bounded)
+    return ParameterFit(
+        names, start, half, start + sol.x * half, sol.x, sol.fun * scale, float(s[0] / s[-1]), int(sol.nfev), bounded
+    )
 
 
 def coarse_central_difference(values: ArrayLike, step: float, angles: bool) -> FloatArray:

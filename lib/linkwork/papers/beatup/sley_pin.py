@@ -32,8 +32,13 @@ from .adapter import crank_sense, four_bar_beatup, six_bar
 from .model import CRANK_SENSES, dead_centres
 
 #: The bodies of the six-bar: (name, its two named points, the chain's point names, the chain link giving its angle).
-BODIES = (("crank", ("A", "B"), "A-B"), ("coupler", ("B", "C"), "B-C"), ("rocker", ("D", "C"), "D-C"), ("link", ("C", "E"), "C-E"),
-          ("sley", ("F", "E"), "F-E"))
+BODIES = (
+    ("crank", ("A", "B"), "A-B"),
+    ("coupler", ("B", "C"), "B-C"),
+    ("rocker", ("D", "C"), "D-C"),
+    ("link", ("C", "E"), "C-E"),
+    ("sley", ("F", "E"), "F-E"),
+)
 
 
 def _linkage(mech, sp: Mapping[str, Any], omega: float, front: float, pin: Clearance | None) -> Linkage:
@@ -64,19 +69,33 @@ def _pin(sp: Mapping[str, Any]) -> Clearance:
     """The sley pin's clearance (contact and friction), from ``sley_pin.pin``."""
     p = sp["pin"]
     r = labelled(p["journal_radius_m"])
-    return Clearance(r, r + labelled(p["radial_clearance_m"]), ("contact", "friction"), (p["youngs_modulus_Pa"],) * 2, (p["poisson"],) * 2,
-                     labelled(p["restitution"]), "lankarani-nikravesh", "hertz-sphere", labelled(p["friction"]), p["v0_m_s"], p["v1_m_s"],
-                     impact_velocity_floor=p["impact_velocity_floor_m_s"])
+    return Clearance(
+        r,
+        r + labelled(p["radial_clearance_m"]),
+        ("contact", "friction"),
+        (p["youngs_modulus_Pa"],) * 2,
+        (p["poisson"],) * 2,
+        labelled(p["restitution"]),
+        "lankarani-nikravesh",
+        "hertz-sphere",
+        labelled(p["friction"]),
+        p["v0_m_s"],
+        p["v1_m_s"],
+        impact_velocity_floor=p["impact_velocity_floor_m_s"],
+    )
 
 
 def _turn_measures(acc: np.ndarray, ideal: np.ndarray, windows: list[np.ndarray]) -> np.ndarray:
     """Per turn: the largest |sley acceleration| within each window about the front dead centre, over the whole turn,
     and the RMS deviation from the ideal's (rad/s^2)."""
-    return np.array([*(np.abs(acc[w]).max() for w in windows), np.abs(acc).max(), np.sqrt(np.mean((acc[:-1] - ideal[:-1]) ** 2))])
+    return np.array(
+        [*(np.abs(acc[w]).max() for w in windows), np.abs(acc).max(), np.sqrt(np.mean((acc[:-1] - ideal[:-1]) ** 2))]
+    )
 
 
 class _Turns:
-    """Runs the dry scene turn by turn for ``engines.states.settle``; keeps each turn's run state and sley acceleration."""
+    """Runs the dry scene turn by turn for ``engines.states.settle``; keeps each turn's run state and sley
+    acceleration."""
 
     def __init__(self, linkage, gravity, integrator, ideal, windows, per, y0=None, memory=None):
         self.linkage, self.ideal, self.windows, self.per = linkage, ideal, windows, per
@@ -113,8 +132,16 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     ideal = assembly.inverse_dynamics(ideal_lk, t, sp["gravity"])["output_acceleration"]
     st = sp["states"]
     runner = _Turns(pin_lk, sp["gravity"], sp["integrator"], ideal, windows, per, y0=assembly.start_state(pin_lk))
-    found = settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
-                   st["min_cycles"], 0.95)
+    found = settle(
+        runner.step,
+        st["chunk_cycles"],
+        st["max_cycles"],
+        st["max_period"],
+        st["section_tolerance"],
+        st["periods"],
+        st["min_cycles"],
+        0.95,
+    )
     first, stop = found["window"]
     judged = np.array(runner.turns[max(first, stop - sp["kept_turns"]):stop])
     measures = found["measures"][first:stop]
@@ -137,7 +164,22 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     halves = [(judged_all[:, ~after].max(), from_front[~after][np.argmax(judged_all[:, ~after].max(axis=0))]),
               (judged_all[:, after].max(), from_front[after][np.argmax(judged_all[:, after].max(axis=0))])]
     turn_peak_at["halves"] = halves
-    return _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check, swings)
+    return _dataset(
+        sp,
+        from_front,
+        ideal,
+        judged,
+        fb_acc,
+        fixed,
+        turn_peak_at,
+        found,
+        measures,
+        numerical,
+        runner,
+        omega,
+        n_check,
+        swings,
+    )
 
 
 def _four_bar_front(fb) -> float:
@@ -151,7 +193,22 @@ def _signed(angle_deg: float) -> float:
     return float(angle_deg - 360.0 if angle_deg > 180.0 else angle_deg)
 
 
-def _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check, swings) -> xr.Dataset:
+def _dataset(
+    sp,
+    from_front,
+    ideal,
+    judged,
+    fb_acc,
+    fixed,
+    turn_peak_at,
+    found,
+    measures,
+    numerical,
+    runner,
+    omega,
+    n_check,
+    swings,
+) -> xr.Dataset:
     pen, force = np.array(runner.contact).T
     first, stop = found["window"]
     nw = len(sp["windows_deg"])
@@ -164,41 +221,224 @@ def _dataset(sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, 
     turn_peaks = np.array([fixed["ideal"][nw], measures[:, nw].max(), fixed["fourbar"][nw]])
     mech = ("mechanism", "window")
     data = {
-        "sley_acceleration_ideal": ("crank_angle", ideal, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with an ideal pin"}),
-        "sley_acceleration_pin": (("judged_turn", "crank_angle"), judged, {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with the clearance at the sley pin (the last judged turns)"}),
-        "sley_acceleration_fourbar": ("crank_angle", fb_acc, {"units": "rad/s^2", "long_name": "sword angular acceleration of the four-bar (ideal, the same loom speed, from its own front dead centre)"}),
-        "peak_in_window": (mech, window_peaks, {"units": "rad/s^2", "long_name": "largest |sley angular acceleration| within the window of crank angle about the front dead centre (clearance: mean over the judged turns)"}),
-        "pin_peak_in_window_low": ("window", measures[:, :nw].min(axis=0), {"units": "rad/s^2", "long_name": "clearance scene: the smallest of the judged turns' peaks in the window"}),
-        "pin_peak_in_window_high": ("window", measures[:, :nw].max(axis=0), {"units": "rad/s^2", "long_name": "clearance scene: the largest of the judged turns' peaks in the window"}),
-        "pin_peak_in_window_spread": ("window", measures[:, :nw].std(axis=0, ddof=1), {"units": "rad/s^2", "long_name": "clearance scene: standard deviation of the judged turns' peaks in the window"}),
-        "pin_peak_in_window_numerical_error": ("window", numerical[:nw], {"units": "rad/s^2", "long_name": "change of the clearance scene's mean peak over the first judged turns when they are rerun from their section point at the check integrator"}),
-        "pin_over_ideal_in_window": ("window", window_peaks[1] / window_peaks[0], {"units": "1", "long_name": "the clearance scene's mean peak in the window over the ideal six-bar's"}),
-        "turn_peak": ("mechanism", turn_peaks, {"units": "rad/s^2", "long_name": "largest |sley angular acceleration| over the whole turn (clearance: the largest over the judged turns)"}),
-        "turn_peak_at": ("mechanism", np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]), {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"}),
-        "pin_half_turn_peak": ("half_turn", np.array([h[0] for h in turn_peak_at["halves"]]), {"units": "rad/s^2", "long_name": "clearance scene: the largest |sley angular acceleration| in the half turn before and after the front dead centre, over the judged turns"}),
-        "pin_half_turn_peak_at": ("half_turn", np.array([_signed(h[1]) for h in turn_peak_at["halves"]]), {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"}),
-        "pin_peak_by_turn": (("turn_judged", "window"), measures[:, :nw], {"units": "rad/s^2", "long_name": "clearance scene: each judged turn's largest |sley angular acceleration| in the window"}),
-        "pin_turn_peak_by_turn": ("turn_judged", measures[:, nw], {"units": "rad/s^2", "long_name": "clearance scene: each judged turn's largest |sley angular acceleration| over the whole turn"}),
-        "swing": ("linkage", np.degrees(swings), {"units": "deg", "long_name": "sley (sword) swing between its dead centres"}),
-        "ideal_turn_peak_per_swing": ("linkage", np.array([turn_peaks[0], turn_peaks[2]]) / np.degrees(swings), {"units": "rad/s^2 per deg", "long_name": "largest |sley angular acceleration| of the ideal linkage over a turn, per degree of its swing"}),
-        "rms_deviation": ((), pin_mean[nw + 1], {"units": "rad/s^2", "long_name": "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged turns)"}),
-        "rms_numerical_error": ((), numerical[nw + 1], {"units": "rad/s^2", "long_name": "change of that RMS deviation at the check integrator (the first judged turns)"}),
-        "judged_turns": ((), int(measures.shape[0]), {"units": "1", "long_name": "turns the clearance scene is judged on"}),
-        "max_penetration": ((), float(pen[first:stop].max()), {"units": "m", "long_name": "largest penetration at the sley pin over the judged turns"}),
-        "max_contact_force": ((), float(force[first:stop].max()), {"units": "N", "long_name": "largest dry contact force at the sley pin over the judged turns"}),
-        "state_period": ((), int(found["period"]), {"units": "1", "long_name": "period of the settled state in turns (0: not periodic)"}),
+        "sley_acceleration_ideal": (
+            "crank_angle",
+            ideal,
+            {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with an ideal pin"},
+        ),
+        "sley_acceleration_pin": (
+            ("judged_turn", "crank_angle"),
+            judged,
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "sley angular acceleration, six-bar with the clearance at the sley pin (the last judged turns)"
+                ),
+            },
+        ),
+        "sley_acceleration_fourbar": (
+            "crank_angle",
+            fb_acc,
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "sword angular acceleration of the four-bar (ideal, the same loom speed, from its own front dead"
+                    " centre)"
+                ),
+            },
+        ),
+        "peak_in_window": (
+            mech,
+            window_peaks,
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "largest |sley angular acceleration| within the window of crank angle about the front dead centre"
+                    " (clearance: mean over the judged turns)"
+                ),
+            },
+        ),
+        "pin_peak_in_window_low": (
+            "window",
+            measures[:, :nw].min(axis=0),
+            {"units": "rad/s^2", "long_name": "clearance scene: the smallest of the judged turns' peaks in the window"},
+        ),
+        "pin_peak_in_window_high": (
+            "window",
+            measures[:, :nw].max(axis=0),
+            {"units": "rad/s^2", "long_name": "clearance scene: the largest of the judged turns' peaks in the window"},
+        ),
+        "pin_peak_in_window_spread": (
+            "window",
+            measures[:, :nw].std(axis=0, ddof=1),
+            {
+                "units": "rad/s^2",
+                "long_name": "clearance scene: standard deviation of the judged turns' peaks in the window",
+            },
+        ),
+        "pin_peak_in_window_numerical_error": (
+            "window",
+            numerical[:nw],
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "change of the clearance scene's mean peak over the first judged turns when they are rerun from"
+                    " their section point at the check integrator"
+                ),
+            },
+        ),
+        "pin_over_ideal_in_window": (
+            "window",
+            window_peaks[1] / window_peaks[0],
+            {"units": "1", "long_name": "the clearance scene's mean peak in the window over the ideal six-bar's"},
+        ),
+        "turn_peak": (
+            "mechanism",
+            turn_peaks,
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "largest |sley angular acceleration| over the whole turn (clearance: the largest over the judged"
+                    " turns)"
+                ),
+            },
+        ),
+        "turn_peak_at": (
+            "mechanism",
+            np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]),
+            {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"},
+        ),
+        "pin_half_turn_peak": (
+            "half_turn",
+            np.array([h[0] for h in turn_peak_at["halves"]]),
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "clearance scene: the largest |sley angular acceleration| in the half turn before and after the"
+                    " front dead centre, over the judged turns"
+                ),
+            },
+        ),
+        "pin_half_turn_peak_at": (
+            "half_turn",
+            np.array([_signed(h[1]) for h in turn_peak_at["halves"]]),
+            {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"},
+        ),
+        "pin_peak_by_turn": (
+            ("turn_judged", "window"),
+            measures[:, :nw],
+            {
+                "units": "rad/s^2",
+                "long_name": "clearance scene: each judged turn's largest |sley angular acceleration| in the window",
+            },
+        ),
+        "pin_turn_peak_by_turn": (
+            "turn_judged",
+            measures[:, nw],
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "clearance scene: each judged turn's largest |sley angular acceleration| over the whole turn"
+                ),
+            },
+        ),
+        "swing": (
+            "linkage",
+            np.degrees(swings),
+            {"units": "deg", "long_name": "sley (sword) swing between its dead centres"},
+        ),
+        "ideal_turn_peak_per_swing": (
+            "linkage",
+            np.array([turn_peaks[0], turn_peaks[2]]) / np.degrees(swings),
+            {
+                "units": "rad/s^2 per deg",
+                "long_name": (
+                    "largest |sley angular acceleration| of the ideal linkage over a turn, per degree of its swing"
+                ),
+            },
+        ),
+        "rms_deviation": (
+            (),
+            pin_mean[nw + 1],
+            {
+                "units": "rad/s^2",
+                "long_name": (
+                    "RMS deviation of the sley acceleration from the ideal six-bar's over a turn (mean over the judged"
+                    " turns)"
+                ),
+            },
+        ),
+        "rms_numerical_error": (
+            (),
+            numerical[nw + 1],
+            {
+                "units": "rad/s^2",
+                "long_name": "change of that RMS deviation at the check integrator (the first judged turns)",
+            },
+        ),
+        "judged_turns": (
+            (),
+            int(measures.shape[0]),
+            {"units": "1", "long_name": "turns the clearance scene is judged on"},
+        ),
+        "max_penetration": (
+            (),
+            float(pen[first:stop].max()),
+            {"units": "m", "long_name": "largest penetration at the sley pin over the judged turns"},
+        ),
+        "max_contact_force": (
+            (),
+            float(force[first:stop].max()),
+            {"units": "N", "long_name": "largest dry contact force at the sley pin over the judged turns"},
+        ),
+        "state_period": (
+            (),
+            int(found["period"]),
+            {"units": "1", "long_name": "period of the settled state in turns (0: not periodic)"},
+        ),
         "state_transient": ((), int(found["transient"]), {"units": "1", "long_name": "turns before the judged window"}),
         "turns_run": ((), len(runner.turns), {"units": "1", "long_name": "turns integrated"}),
         "check_turns": ((), int(n_check), {"units": "1", "long_name": "judged turns rerun at the check integrator"}),
     }
-    coords = {"crank_angle": ("crank_angle", about, {"units": "deg", "long_name": "crank angle from the front dead centre (negative: before it)"}),
-              "judged_turn": ("judged_turn", np.arange(stop - judged.shape[0], stop), {"units": "1", "long_name": "turn from the start (the last judged turns)"}),
-              "mechanism": ("mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"], {"units": "1", "long_name": "mechanism"}),
-              "window": ("window", np.asarray(sp["windows_deg"], dtype=float), {"units": "deg", "long_name": "half-width of the window of crank angle about the front dead centre"}),
-              "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"}),
-              "half_turn": ("half_turn", ["before the front dead centre", "after the front dead centre"], {"units": "1", "long_name": "half of the crank turn"}),
-              "turn_judged": ("turn_judged", np.arange(first, stop), {"units": "1", "long_name": "judged turn, from the start"})}
-    attrs = {"state_status": str(found["status"]), "loom_speed_rad_s": abs(omega), "loom_speed_rev_min": labelled(sp["loom_speed_rev_min"]),
-             "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
-             "integrator": str(sp["integrator"]), "check_integrator": str(sp["check_integrator"])}
+    coords = {
+        "crank_angle": (
+            "crank_angle",
+            about,
+            {"units": "deg", "long_name": "crank angle from the front dead centre (negative: before it)"},
+        ),
+        "judged_turn": (
+            "judged_turn",
+            np.arange(stop - judged.shape[0], stop),
+            {"units": "1", "long_name": "turn from the start (the last judged turns)"},
+        ),
+        "mechanism": (
+            "mechanism",
+            ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"],
+            {"units": "1", "long_name": "mechanism"},
+        ),
+        "window": (
+            "window",
+            np.asarray(sp["windows_deg"], dtype=float),
+            {"units": "deg", "long_name": "half-width of the window of crank angle about the front dead centre"},
+        ),
+        "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"}),
+        "half_turn": (
+            "half_turn",
+            ["before the front dead centre", "after the front dead centre"],
+            {"units": "1", "long_name": "half of the crank turn"},
+        ),
+        "turn_judged": (
+            "turn_judged",
+            np.arange(first, stop),
+            {"units": "1", "long_name": "judged turn, from the start"},
+        ),
+    }
+    attrs = {
+        "state_status": str(found["status"]),
+        "loom_speed_rad_s": abs(omega),
+        "loom_speed_rev_min": labelled(sp["loom_speed_rev_min"]),
+        "radial_clearance_m": labelled(sp["pin"]["radial_clearance_m"]),
+        "integrator": str(sp["integrator"]),
+        "check_integrator": str(sp["check_integrator"]),
+    }
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -38,7 +38,9 @@ def _motion_vars(motion, dim: str, suffix: str = "") -> dict[str, xr.DataArray]:
     out = {}
     for name, (unit, long_name) in MOTION_VARS.items():
         value = getattr(motion, name)
-        out[name + suffix] = xr.DataArray(value * DEG if unit == "deg" else value, dims=dim, attrs={"units": unit, "long_name": long_name})
+        out[name + suffix] = xr.DataArray(
+            value * DEG if unit == "deg" else value, dims=dim, attrs={"units": unit, "long_name": long_name}
+        )
     return out
 
 
@@ -65,8 +67,14 @@ def _grids(section: Mapping[str, Any]):
 #: The sense-dependent features: scenario variable -> (SenseReading field, long name).
 SENSE_FEATURES = {
     "span_front_to_back": ("span_front_to_back", "crank angle turned from the front to the back dead centre"),
-    "rate_peak_1": ("rate_peak_backward", "crank angle from the front dead centre of the largest sley speed towards the back (first peak)"),
-    "rate_peak_2": ("rate_peak_forward", "crank angle from the front dead centre of the largest sley speed towards the front (second peak)"),
+    "rate_peak_1": (
+        "rate_peak_backward",
+        "crank angle from the front dead centre of the largest sley speed towards the back (first peak)",
+    ),
+    "rate_peak_2": (
+        "rate_peak_forward",
+        "crank angle from the front dead centre of the largest sley speed towards the front (second peak)",
+    ),
     "accel_peak": ("accel_peak", "crank-angle distance of the largest |theta6''| from the front dead centre"),
 }
 
@@ -80,8 +88,12 @@ def headline(mech, fine, fine_deg: np.ndarray, numerics: Mapping[str, Any], sens
     data["back_dead_centre"] = _scalar(dc.back * DEG, "deg", "crank angle of the back dead centre (theta6 minimum)")
     data["swing"] = _scalar(dc.swing * DEG, "deg", "total sley swing")
     extremes = rate_extremes(mech, numerics["scan_points"], numerics["root_xtol_rad"])
-    data["rate_max_theta1"] = _scalar(extremes[0] * DEG, "deg", "crank angle theta1 of the largest theta6' (a zero of theta6'')")
-    data["rate_min_theta1"] = _scalar(extremes[1] * DEG, "deg", "crank angle theta1 of the smallest theta6' (a zero of theta6'')")
+    data["rate_max_theta1"] = _scalar(
+        extremes[0] * DEG, "deg", "crank angle theta1 of the largest theta6' (a zero of theta6'')"
+    )
+    data["rate_min_theta1"] = _scalar(
+        extremes[1] * DEG, "deg", "crank angle theta1 of the smallest theta6' (a zero of theta6'')"
+    )
     accel_theta1 = float(np.radians(fine_deg[np.argmax(np.abs(fine.theta6_accel))]))
     readings = [sense_reading(dc, extremes, accel_theta1, CRANK_SENSES[name]) for name in CRANK_SENSES]
     names = list(CRANK_SENSES)
@@ -90,7 +102,9 @@ def headline(mech, fine, fine_deg: np.ndarray, numerics: Mapping[str, Any], sens
         data[f"{var}_by_sense"] = xr.DataArray(values, dims="crank_sense", coords={"crank_sense": names},
                                                attrs={"units": "deg", "long_name": f"{long_name}, in each crank sense"})
         data[var] = _scalar(values[names.index(sense)], "deg", f"{long_name} (crank turning towards {sense} theta1)")
-    data["theta6_accel_abs_max"] = _scalar(np.abs(fine.theta6_accel).max(), "rad rad-2", "largest |theta6''| over a turn")
+    data["theta6_accel_abs_max"] = _scalar(
+        np.abs(fine.theta6_accel).max(), "rad rad-2", "largest |theta6''| over a turn"
+    )
     return data
 
 
@@ -103,13 +117,19 @@ def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
     paper, fine = (sley_motion(mech, np.radians(g)) for g in (paper_deg, fine_deg))
     coords = {
         "crank_angle": ("crank_angle", paper_deg, {"units": "deg", "long_name": "crank angle theta1 (paper grid)"}),
-        "crank_angle_fine": ("crank_angle_fine", fine_deg, {"units": "deg", "long_name": "crank angle theta1 (fine grid)"}),
+        "crank_angle_fine": (
+            "crank_angle_fine",
+            fine_deg,
+            {"units": "deg", "long_name": "crank angle theta1 (fine grid)"},
+        ),
     }
     sense = crank_sense(section["sixbar"])
     data = {**_motion_vars(paper, "crank_angle"), **_motion_vars(fine, "crank_angle_fine", "_fine"),
             **headline(mech, fine, fine_deg, section["numerics"], sense)}
     ds = xr.Dataset(data, coords=coords)
-    ds["crank_sense"].attrs.update(units="1", long_name="sense the crank turns in: towards decreasing or increasing theta1")
+    ds["crank_sense"].attrs.update(
+        units="1", long_name="sense the crank turns in: towards decreasing or increasing theta1"
+    )
     ds.attrs.update(crank_sense=sense)
     return ds, mech, paper
 
@@ -129,23 +149,40 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
             value = getattr(cf, name)
             label = "as printed (eqs. 7, 13)" if printed else "paper's closed forms, corrected"
             data[f"{name}_{tag}"] = xr.DataArray(
-                value * DEG if unit == "deg" else value, dims="crank_angle", attrs={"units": unit, "long_name": f"{long_name}, {label}"}
+                value * DEG if unit == "deg" else value,
+                dims="crank_angle",
+                attrs={"units": unit, "long_name": f"{long_name}, {label}"},
             )
     step = np.radians(section["numerics"]["fd_step_deg"])
-    for name, value in zip(("theta3_rate", "theta3_accel", "theta6_rate", "theta6_accel"), fd_rates(mech, np.radians(paper_deg), step), strict=True):
+    for name, value in zip(
+        ("theta3_rate", "theta3_accel", "theta6_rate", "theta6_accel"),
+        fd_rates(mech, np.radians(paper_deg), step),
+        strict=True,
+    ):
         unit, long_name = MOTION_VARS[name]
-        data[name + "_fd"] = xr.DataArray(value, dims="crank_angle", attrs={"units": unit, "long_name": f"{long_name}, central differences"})
+        data[name + "_fd"] = xr.DataArray(
+            value, dims="crank_angle", attrs={"units": unit, "long_name": f"{long_name}, central differences"}
+        )
 
     # how far the paper's closed forms are from the chain solver (corrected: rounding; printed (7)/(13): their typos)
     for name in MOTION_VARS:
         diff = np.abs(data[f"{name}_eqs"].values - base[name].values)
         unit = MOTION_VARS[name][0]
-        data[f"{name}_eqs_max_difference"] = _scalar(diff.max(), unit, f"max |corrected closed form - chain solver| of {name} on the paper grid")
+        data[f"{name}_eqs_max_difference"] = _scalar(
+            diff.max(), unit, f"max |corrected closed form - chain solver| of {name} on the paper grid"
+        )
     for name in ("theta3_accel", "theta6_accel"):
         diff = np.abs(data[f"{name}_eqs_printed"].values - base[name].values)
-        data[f"{name}_eqs_printed_max_difference"] = _scalar(diff.max(), MOTION_VARS[name][0], f"max |printed eq. (7)/(13) - chain solver| of {name} on the paper grid")
+        data[f"{name}_eqs_printed_max_difference"] = _scalar(
+            diff.max(), MOTION_VARS[name][0], f"max |printed eq. (7)/(13) - chain solver| of {name} on the paper grid"
+        )
     ds = base.assign(data)
-    ds.attrs.update(title="GN721 six-bar beating-up mechanism: sley motion", fd_step_deg=section["numerics"]["fd_step_deg"], scan_points=section["numerics"]["scan_points"], root_xtol_rad=section["numerics"]["root_xtol_rad"])
+    ds.attrs.update(
+        title="GN721 six-bar beating-up mechanism: sley motion",
+        fd_step_deg=section["numerics"]["fd_step_deg"],
+        scan_points=section["numerics"]["scan_points"],
+        root_xtol_rad=section["numerics"]["root_xtol_rad"],
+    )
     return ds
 
 
@@ -174,21 +211,35 @@ def window(section: Mapping[str, Any]) -> xr.Dataset:
     front4 = theta1[np.argmax(four_angle)]
 
     sw = float(fourbar_cfg["weft_clearance_m"]["value"])
-    phi = xr.DataArray(grid_deg, dims="angle_from_front", attrs={"units": "deg", "long_name": "crank angle from the front dead centre"})
+    phi = xr.DataArray(
+        grid_deg, dims="angle_from_front", attrs={"units": "deg", "long_name": "crank angle from the front dead centre"}
+    )
 
     def shifted(s: np.ndarray, front: float) -> np.ndarray:
         return np.roll(s, -int(round(front / (theta1[1] - theta1[0]))))
 
     data = {
-        "reed_sixbar": xr.DataArray(shifted(s6, front6) * 1e3, dims="angle_from_front", attrs={"units": "mm", "long_name": "reed displacement from the front, scaled six-bar"}),
-        "reed_fourbar": xr.DataArray(shifted(s4, front4) * 1e3, dims="angle_from_front", attrs={"units": "mm", "long_name": "reed displacement from the front, four-bar"}),
+        "reed_sixbar": xr.DataArray(
+            shifted(s6, front6) * 1e3,
+            dims="angle_from_front",
+            attrs={"units": "mm", "long_name": "reed displacement from the front, scaled six-bar"},
+        ),
+        "reed_fourbar": xr.DataArray(
+            shifted(s4, front4) * 1e3,
+            dims="angle_from_front",
+            attrs={"units": "mm", "long_name": "reed displacement from the front, four-bar"},
+        ),
         "reed_radius_sixbar": _scalar(r6 * 1e3, "mm", "cloth-fell radius on the six-bar sword giving the stroke"),
         "reed_radius_fourbar": _scalar(r4 * 1e3, "mm", "cloth-fell radius on the four-bar sword giving the stroke"),
-        "swing_sixbar_scaled": _scalar((six_angle.max() - six_angle.min()) * DEG, "deg", "sley swing of the scaled six-bar"),
+        "swing_sixbar_scaled": _scalar(
+            (six_angle.max() - six_angle.min()) * DEG, "deg", "sley swing of the scaled six-bar"
+        ),
         "window_sixbar": _scalar(window_span(theta1, s6, sw) * DEG, "deg", "crank angle with S > S_w, scaled six-bar"),
         "window_fourbar": _scalar(window_span(theta1, s4, sw) * DEG, "deg", "crank angle with S > S_w, four-bar"),
     }
-    data["window_difference"] = _scalar(float(data["window_sixbar"] - data["window_fourbar"]), "deg", "six-bar window minus four-bar window")
+    data["window_difference"] = _scalar(
+        float(data["window_sixbar"] - data["window_fourbar"]), "deg", "six-bar window minus four-bar window"
+    )
 
     sweep = section["sweep"]
     ratios = np.asarray(sweep["arm_to_crank"], dtype=float)
@@ -203,8 +254,18 @@ def window(section: Mapping[str, Any]) -> xr.Dataset:
     coords = {
         "angle_from_front": phi,
         "arm_to_crank": ("arm_to_crank", ratios, {"units": "1", "long_name": "four-bar connecting arm / crank L/R"}),
-        "weft_clearance": ("weft_clearance", sw_grid * 1e3, {"units": "mm", "long_name": "S_w, reed distance from the front that lets the weft carrier pass"}),
+        "weft_clearance": (
+            "weft_clearance",
+            sw_grid * 1e3,
+            {"units": "mm", "long_name": "S_w, reed distance from the front that lets the weft carrier pass"},
+        ),
     }
-    data["window_sixbar_sweep"] = xr.DataArray(six_windows * DEG, dims="weft_clearance", attrs={"units": "deg", "long_name": "six-bar window vs S_w"})
-    data["window_fourbar_sweep"] = xr.DataArray(four_windows * DEG, dims=("arm_to_crank", "weft_clearance"), attrs={"units": "deg", "long_name": "four-bar window vs L/R and S_w"})
+    data["window_sixbar_sweep"] = xr.DataArray(
+        six_windows * DEG, dims="weft_clearance", attrs={"units": "deg", "long_name": "six-bar window vs S_w"}
+    )
+    data["window_fourbar_sweep"] = xr.DataArray(
+        four_windows * DEG,
+        dims=("arm_to_crank", "weft_clearance"),
+        attrs={"units": "deg", "long_name": "four-bar window vs L/R and S_w"},
+    )
     return xr.Dataset(data, coords=coords, attrs={"title": "Six-bar vs four-bar weft window"})

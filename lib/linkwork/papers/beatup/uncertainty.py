@@ -17,8 +17,14 @@ from ...pipeline.uncertainty import Input, gathered, run_batch
 def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     """Each printed parameter within half a unit of its last printed digit."""
     return [
-        Input(f"sixbar.{key}", float(cfg["sixbar"][key]), float(cfg["sixbar"][key]) - half, float(cfg["sixbar"][key]) + half,
-              "printed to the last digit given; half a unit either side", kind="rounding")
+        Input(
+            f"sixbar.{key}",
+            float(cfg["sixbar"][key]),
+            float(cfg["sixbar"][key]) - half,
+            float(cfg["sixbar"][key]) + half,
+            "printed to the last digit given; half a unit either side",
+            kind="rounding",
+        )
         for key, half in cfg["printed_rounding"].items()
     ]
 
@@ -38,4 +44,10 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
 def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], workers: int = 1):
     """Rule study: every batch, with each headline value's extremes over the rounding box (bounded searches)."""
     ins = inputs(cfg)
-    return gathered(ins, batches, "Beat-up: rounding of the printed parameters, propagated", searcher(cfg, published, ins, results), workers)
+    return gathered(
+        ins,
+        batches,
+        "Beat-up: rounding of the printed parameters, propagated",
+        searcher(cfg, published, ins, results),
+        workers,
+    )

@@ -34,7 +34,13 @@ ELASTIC_LAW_KEYS: dict[str, tuple[str, ...]] = {"hertz-sphere": (), "pereira": (
 LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BODIES for k in ("length_m", "mass_kg")))
 WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
 #: What a scene with clearance joints reads to find its states and judge the claims' measures on them.
-SETTLE_KEYS = ("states", "statistics.batch_cycles", "statistics.confidence", "claims.ripple_cutoff_hz", "claims.ripple_cutoff_sensitivity_hz")
+SETTLE_KEYS = (
+    "states",
+    "statistics.batch_cycles",
+    "statistics.confidence",
+    "claims.ripple_cutoff_hz",
+    "claims.ripple_cutoff_sensitivity_hz",
+)
 #: What a scene with clearance joints reads besides its effects.
 DYNAMIC_KEYS = ("joints.journal_radius_m", "joints.bearing_radius_m", "numerics.baumgarte")
 
@@ -100,9 +106,14 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
                       baumgarte_alpha=n["baumgarte"], baumgarte_beta=n["baumgarte"])
     if "contact" in effects:
         j = cfg["joints"]
-        values.update(youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
-                      impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"],
-                      elastic_law=j["elastic_law"])
+        values.update(
+            youngs_modulus=(j["youngs_modulus_Pa"],) * 2,
+            poisson=(j["poisson"],) * 2,
+            restitution=j["restitution"],
+            impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"],
+            contact_law=j["contact_law"],
+            elastic_law=j["elastic_law"],
+        )
         if "assumed.joint_length_m" in ELASTIC_LAW_KEYS[j["elastic_law"]]:
             values.update(joint_length=cfg["assumed"]["joint_length_m"]["value"])
     if "friction" in effects:
@@ -110,7 +121,9 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
         values.update(friction=cfg["joints"]["friction"], v0=a["v0_m_s"]["value"], v1=a["v1_m_s"]["value"])
     if "lubrication" in effects:
         a = cfg["assumed"]
-        values.update(viscosity=cfg["joints"]["viscosity_Pa_s"], joint_length=a["joint_length_m"]["value"], e0=a["e0_m"]["value"])
+        values.update(
+            viscosity=cfg["joints"]["viscosity_Pa_s"], joint_length=a["joint_length_m"]["value"], e0=a["e0_m"]["value"]
+        )
     return FourBarParameters(ground=cfg["ground_m"], lengths=lengths, masses=masses, inertias=inertias,
                              crank_speed=cfg["crank_speed_rad_s"], **values)
 

@@ -59,9 +59,23 @@ class FourBarParameters:
 
     def joint(self, effects=("contact", "friction", "lubrication")) -> Clearance:
         """The clearance of either joint with the given effects (the paper gives one set for both)."""
-        return Clearance(self.journal_radius, self.bearing_radius, tuple(e for e in effects if e != "gravity"),
-                         self.youngs_modulus, self.poisson, self.restitution, self.contact_law, self.elastic_law, self.friction,
-                         self.v0, self.v1, self.viscosity, self.joint_length, self.e0, self.impact_velocity_floor)
+        return Clearance(
+            self.journal_radius,
+            self.bearing_radius,
+            tuple(e for e in effects if e != "gravity"),
+            self.youngs_modulus,
+            self.poisson,
+            self.restitution,
+            self.contact_law,
+            self.elastic_law,
+            self.friction,
+            self.v0,
+            self.v1,
+            self.viscosity,
+            self.joint_length,
+            self.e0,
+            self.impact_velocity_floor,
+        )
 
     @property
     def clearance(self) -> float:
@@ -115,8 +129,15 @@ def linkage(p: FourBarParameters, joints=(), effects=()) -> Linkage:
     order = [*joints, *[j for j in (1, 2) if j not in joints]]
     moving = tuple(Joint(JOINT_NAMES[j], *pins[j], p.joint(effects) if j in joints else None) for j in order)
     ground = (Joint("O2", ("crank", "O"), ("ground", "O2")), Joint("O4", ("rocker", "O"), ("ground", "O4")))
-    return Linkage(bodies, {"O2": (0.0, 0.0), "O4": (p.ground, 0.0)}, (*ground, *moving),
-                   Driver("crank", p.crank_speed, phi0), output="rocker", gravity=p.gravity, baumgarte=p.baumgarte_alpha)
+    return Linkage(
+        bodies,
+        {"O2": (0.0, 0.0), "O4": (p.ground, 0.0)},
+        (*ground, *moving),
+        Driver("crank", p.crank_speed, phi0),
+        output="rocker",
+        gravity=p.gravity,
+        baumgarte=p.baumgarte_alpha,
+    )
 
 
 def _ideal(p: FourBarParameters) -> Linkage:
@@ -161,8 +182,12 @@ def kinematic_state(p: FourBarParameters, crank_angle: np.ndarray):
     for b in range(3):
         e = np.stack([np.cos(ang[..., b]), np.sin(ang[..., b])], axis=-1)
         perp = np.stack([-e[..., 1], e[..., 0]], axis=-1)
-        start_vel = np.zeros_like(e) if b != 1 else l2 * w * np.stack([-np.sin(ang[..., 0]), np.cos(ang[..., 0])], axis=-1)
-        start_acc = np.zeros_like(e) if b != 1 else -l2 * w**2 * np.stack([np.cos(ang[..., 0]), np.sin(ang[..., 0])], axis=-1)
+        start_vel = (
+            np.zeros_like(e) if b != 1 else l2 * w * np.stack([-np.sin(ang[..., 0]), np.cos(ang[..., 0])], axis=-1)
+        )
+        start_acc = (
+            np.zeros_like(e) if b != 1 else -l2 * w**2 * np.stack([np.cos(ang[..., 0]), np.sin(ang[..., 0])], axis=-1)
+        )
         q[..., 3 * b : 3 * b + 2] = starts[b] + half[b] * e
         q[..., 3 * b + 2] = ang[..., b]
         qd[..., 3 * b : 3 * b + 2] = start_vel + half[b] * rate[..., b, None] * perp
@@ -214,7 +239,9 @@ def _point(q: np.ndarray, body: int, local) -> np.ndarray:
     """World position (m) of a body's local point (m), q of shape (..., 9) (real or complex)."""
     phi = q[..., 3 * body + 2]
     c, s = np.cos(phi), np.sin(phi)
-    return np.stack([q[..., 3 * body] + c * local[0] - s * local[1], q[..., 3 * body + 1] + s * local[0] + c * local[1]], axis=-1)
+    return np.stack(
+        [q[..., 3 * body] + c * local[0] - s * local[1], q[..., 3 * body + 1] + s * local[0] + c * local[1]], axis=-1
+    )
 
 
 def _position_residual(p: FourBarParameters, q: np.ndarray, phi0: float, joints, eccentricity) -> np.ndarray:
@@ -250,8 +277,11 @@ def scene(p: FourBarParameters, joints, effects) -> tuple[Linkage, bool]:
     return linkage(p, joints, effects if joints else ()), "gravity" in effects
 
 
-def run(p: FourBarParameters, joints, effects, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None) -> simulate.Run:
-    """A continuable run of a scene (``simulate.Run``) from its centred start at the dead point, or ``y0``/``memory``."""
+def run(
+    p: FourBarParameters, joints, effects, integrator: Mapping[str, Any], y0=None, t0: float = 0.0, memory=None
+) -> simulate.Run:
+    """A continuable run of a scene (``simulate.Run``) from its centred start at the dead point, or
+    ``y0``/``memory``."""
     lk, gravity = scene(p, joints, effects)
     y0 = initial_state(p, joints) if y0 is None and memory is None else y0
     return simulate.Run(lk, gravity, integrator, y0=y0, t0=t0, memory=memory)
@@ -271,7 +301,12 @@ def joint_points(p: FourBarParameters) -> dict[int, tuple[int, tuple[float, floa
     out = {}
     for j, name in JOINT_NAMES.items():
         joint = next(x for x in lk.joints if x.name == name)
-        out[j] = (lk.body_index(joint.journal[0]), lk.point(joint.journal), lk.body_index(joint.bearing[0]), lk.point(joint.bearing))
+        out[j] = (
+            lk.body_index(joint.journal[0]),
+            lk.point(joint.journal),
+            lk.body_index(joint.bearing[0]),
+            lk.point(joint.bearing),
+        )
     return out
 
 
@@ -282,16 +317,27 @@ def _paper_names(run: dict) -> dict:
     return out
 
 
-def exudyn_ideal(p: FourBarParameters, end_time: float, step: float, newton_tolerance: float, gravity: bool = True) -> dict:
-    """The ideal scene in Exudyn (``exudyn_route.ideal_run``) from the dead point: t, rocker acceleration, crank torque."""
+def exudyn_ideal(
+    p: FourBarParameters, end_time: float, step: float, newton_tolerance: float, gravity: bool = True
+) -> dict:
+    """The ideal scene in Exudyn (``exudyn_route.ideal_run``) from the dead point: t, rocker acceleration, crank
+    torque."""
     from ...engines.multibody.exudyn_route import ideal_run
 
     return _paper_names(ideal_run(linkage(p), end_time, step, newton_tolerance, gravity))
 
 
-def exudyn_dry(p: FourBarParameters, joints, end_time: float, step: float, newton_tolerance: float, output_period: float,
-               progress_s: float = 5.0) -> dict:
-    """A dry scene (contact and friction at ``joints``, gravity) in Exudyn (``exudyn_route.run``) from the dead point."""
+def exudyn_dry(
+    p: FourBarParameters,
+    joints,
+    end_time: float,
+    step: float,
+    newton_tolerance: float,
+    output_period: float,
+    progress_s: float = 5.0,
+) -> dict:
+    """A dry scene (contact and friction at ``joints``, gravity) in Exudyn (``exudyn_route.run``) from the dead
+    point."""
     from ...engines.multibody.exudyn_route import run as exudyn_run
 
     lk = linkage(p, joints, ("contact", "friction"))

@@ -5,9 +5,9 @@ the Lankarani-Nikravesh damping.
   other law (``clearance.sensitivity.elastic_law``, the conformal law of Pereira et al.) and settled and judged as an
   input-uncertainty sample is (``uncertainty.batch`` with the law as the moved value).
 * **The contact memory.** The hysteresis damping divides by the impact velocity latched at a journal's first contact.
-  A journal that stays pressed into its bushing keeps that value until a new impact, so two runs can differ in nothing but the
-  latched value, and settle into different states.  Each dry scene's state from the second start is continued with
-  the first start's latched velocities (and the reverse): if the measure follows the latched value, the starts'
+  A journal that stays pressed into its bushing keeps that value until a new impact, so two runs can differ in nothing
+  but the latched value, and settle into different states.  Each dry scene's state from the second start is continued
+  with the first start's latched velocities (and the reverse): if the measure follows the latched value, the starts'
   states differ by that memory alone.
 """
 
@@ -45,7 +45,13 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
 
     runs = {str(r.attrs["scene"]): r for r in nominal}
     starts = [str(x) for x in next(iter(runs.values())).start.values]
-    ds = batch(cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal, all_starts=True)
+    ds = batch(
+        cfg,
+        [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}],
+        variant,
+        nominal=nominal,
+        all_starts=True,
+    )
     names = [n for n in SWAPPED if n in runs]
     swap = np.full((len(names), 2, len(MEASURES), len(QUANTITIES)), np.nan)
     latched = np.full((len(names), 2, 2), np.nan)  # scene, start, joint
@@ -56,17 +62,43 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
             memories = base.window_memory.values
             latched[k, :, :nj] = memories[:2, latched_slice(nj)]
             for direction, (to, donor) in enumerate(((1, 0), (0, 1))):  # start 2 with start 1's memory, and the reverse
-                run = scene(cfg, variant, name, first_start_only=True, check=False, memory=swapped_memory(memories[to], memories[donor], nj))
+                run = scene(
+                    cfg,
+                    variant,
+                    name,
+                    first_start_only=True,
+                    check=False,
+                    memory=swapped_memory(memories[to], memories[donor], nj),
+                )
                 swap[k, direction] = run.judged_mean.values[0]
-    ds["swap_mean"] = (("swapped_scene", "direction", "measure", "quantity"), swap,
-                       {"units": "SI of the quantity", "long_name": "the claims' measure on the state continued with the other start's latched impact velocities",
-                        "nan_meaning": "one start only: nothing to swap"})
-    ds["latched_velocity"] = (("swapped_scene", "start_index", "joint_index"), latched,
-                              {"units": "m s-1", "long_name": "impact velocity latched at the start of the judged window",
-                               "nan_meaning": "the scene has fewer clearance joints, or one start only"})
-    ds = ds.assign_coords(swapped_scene=("swapped_scene", np.array(names, dtype=object), {"units": "1", "long_name": "dry scene"}),
-                          direction=("direction", np.array([f"{starts[-1]} state, {starts[0]} memory", f"{starts[0]} state, {starts[-1]} memory"][: 2], dtype=object),
-                                     {"units": "1", "long_name": "whose state, whose latched velocities"}))
+    ds["swap_mean"] = (
+        ("swapped_scene", "direction", "measure", "quantity"),
+        swap,
+        {
+            "units": "SI of the quantity",
+            "long_name": "the claims' measure on the state continued with the other start's latched impact velocities",
+            "nan_meaning": "one start only: nothing to swap",
+        },
+    )
+    ds["latched_velocity"] = (
+        ("swapped_scene", "start_index", "joint_index"),
+        latched,
+        {
+            "units": "m s-1",
+            "long_name": "impact velocity latched at the start of the judged window",
+            "nan_meaning": "the scene has fewer clearance joints, or one start only",
+        },
+    )
+    ds = ds.assign_coords(
+        swapped_scene=("swapped_scene", np.array(names, dtype=object), {"units": "1", "long_name": "dry scene"}),
+        direction=(
+            "direction",
+            np.array(
+                [f"{starts[-1]} state, {starts[0]} memory", f"{starts[0]} state, {starts[-1]} memory"][:2], dtype=object
+            ),
+            {"units": "1", "long_name": "whose state, whose latched velocities"},
+        ),
+    )
     ds.attrs["title"] = f"clearance model sensitivity: variant {variant}, elastic law {law}, contact memory swapped"
     return ds
 
@@ -74,5 +106,7 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
 def law_judgement(nominal: Any, sensitivity: Any, ratio: float, confidence: float, start: int = 0) -> dict[str, Any]:
     """The claims of one variant under the other elastic law from start ``start`` (``sensitivity``:
     ``model_sensitivity``'s result), the nominal numerical errors kept: ``studies.judge``'s verdict."""
-    verdict, _ = sample_judgement(nominal, sensitivity.isel(start=start, sample=0, variant=0), ratio, confidence, start=start)
+    verdict, _ = sample_judgement(
+        nominal, sensitivity.isel(start=start, sample=0, variant=0), ratio, confidence, start=start
+    )
     return verdict

@@ -26,7 +26,8 @@ from .fourbar import initial_state, journal_offsets, offset_start, run
 from ...engines.states import NOT_PERIODIC, PERIODIC, section_period, settle, thirds_agree
 
 #: The claims' measures of one turn's deviation from the ideal curve: its RMS, its peak |.|, and its ripple (the RMS of
-#: its content above ``claims.ripple_cutoff_hz``: the paper's "small fluctuation peaks" of claim 3, which a size does not measure).
+#: its content above ``claims.ripple_cutoff_hz``: the paper's "small fluctuation peaks" of claim 3, which a size does
+#: not measure).
 MEASURES = ("rms", "peak", "ripple")
 #: The compared responses, in the order of the measure rows.
 RESPONSES = ("rocker_acceleration", "crank_torque")
@@ -60,8 +61,19 @@ class CycleRunner:
     run's whole state (restartable), the measures (MEASURE_ROWS) and the joint extremes; the last ``shown`` cycles'
     diagnostics for the figures."""
 
-    def __init__(self, p, joints, effects, integrator, ideal_cycle: Mapping[str, np.ndarray], per: int, shown: int, ripple_cutoff_hz: float,
-                 y0=None, memory=None):
+    def __init__(
+        self,
+        p,
+        joints,
+        effects,
+        integrator,
+        ideal_cycle: Mapping[str, np.ndarray],
+        per: int,
+        shown: int,
+        ripple_cutoff_hz: float,
+        y0=None,
+        memory=None,
+    ):
         self.p, self.joints, self.per, self.shown = p, tuple(joints), per, shown
         self.run = run(p, joints, effects, integrator, y0=y0, memory=memory)
         self.ideal = np.stack([ideal_cycle[q] for q in RESPONSES])  # one turn, its end point included
@@ -82,13 +94,26 @@ class CycleRunner:
             measures.append(np.r_[np.sqrt(np.mean(d**2, axis=1)), np.abs(d).max(axis=1), ripple(turn, self.harmonic)])
             self.peak_refinement.append([peak_refinement(row) for row in d])
             cols = [[4 + 6 * k + 1, 4 + 6 * k, 4 + 6 * k + 3, 4 + 6 * k + 4] for k in range(len(self.joints))]
-            self.extremes.append(np.array([[np.nanmax(diags[:, c[0]]), np.nanmax(diags[:, c[1]]), np.nanmax(diags[:, c[2]]), np.nanmax(np.abs(diags[:, c[3]]))] for c in cols]))
+            self.extremes.append(
+                np.array(
+                    [
+                        [
+                            np.nanmax(diags[:, c[0]]),
+                            np.nanmax(diags[:, c[1]]),
+                            np.nanmax(diags[:, c[2]]),
+                            np.nanmax(np.abs(diags[:, c[3]])),
+                        ]
+                        for c in cols
+                    ]
+                )
+            )
             self.last = (self.last + [(t, diags)])[-self.shown:]
         return np.array(points), np.array(measures)
 
 
 def ripple_harmonic(cutoff_hz: float, crank_speed: float) -> int:
-    """The highest crank harmonic at or below ``cutoff_hz`` (Hz) at ``crank_speed`` (rad/s): the ripple is the content above it."""
+    """The highest crank harmonic at or below ``cutoff_hz`` (Hz) at ``crank_speed`` (rad/s): the ripple is the content
+    above it."""
     return int(np.floor(cutoff_hz * 2.0 * np.pi / crank_speed + 1e-9))
 
 
@@ -121,8 +146,17 @@ def peak_refinement(x: np.ndarray) -> float:
 
 def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) -> dict[str, Any]:
     """Settle one start (``st``: the ``states`` settings) and return ``engines.states.settle``'s record."""
-    return settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
-                  st["min_cycles"], confidence, rows=SETTLE_ROWS)
+    return settle(
+        runner.step,
+        st["chunk_cycles"],
+        st["max_cycles"],
+        st["max_period"],
+        st["section_tolerance"],
+        st["periods"],
+        st["min_cycles"],
+        confidence,
+        rows=SETTLE_ROWS,
+    )
 
 
 def convergence_error(measures: np.ndarray, found: Mapping[str, Any]) -> np.ndarray:
@@ -165,15 +199,18 @@ def judged_statistics(measures: np.ndarray, found: Mapping[str, Any], batch: int
     return out
 
 
-def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, checks, st: Mapping[str, Any]) -> dict[str, np.ndarray]:
-    """The same state at each check integrator: restarted from the section point (with the contact memory) at the
-    start of the last judged period (a periodic state) or of the judged window (else), run ``check_cycles`` cycles
-    (at least two periods).  Per check: the mean of each measure row over its last period (periodic state) or over
-    all its cycles (else), against the pipeline's mean over its judged period or the same cycles of the window
-    (any drift left in the state is counted with the error) and that mean itself; whether the rerun keeps the state (its last section point within
-    ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the state is not periodic: not testable); the
-    period its section shows over the rerun (0 where the rerun is too short to show one: a report, not a test; -1
-    where the check integrator failed, its delta then NaN).
+def check_state(
+    make_runner, found: Mapping[str, Any], runner: CycleRunner, checks, st: Mapping[str, Any]
+) -> dict[str, np.ndarray]:
+    """The same state at each check integrator: restarted from the section point (with the contact memory) at the start
+    of the last judged period (a periodic state) or of the judged window (else), run ``check_cycles`` cycles (at least
+    two periods).  Per check: the mean of each measure row over its last period (periodic state) or over all its cycles
+    (else), against the pipeline's mean over its judged period or the same cycles of the window (any drift left in the
+    state is counted with the error) and that mean itself; whether the rerun keeps the state (its last section point
+    within
+    ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the
+    state is not periodic: not testable); the period its section shows over the rerun (0 where the rerun is too short to
+    show one: a report, not a test; -1 where the check integrator failed, its delta then NaN).
 
     ``make_runner(integrator, memory)`` builds a CycleRunner at a check integrator from a run state."""
     first, stop = found["window"]
@@ -182,7 +219,11 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     measures = found["measures"]
     deltas = np.full((len(checks), measures.shape[1]), np.nan)
     means = np.full((len(checks), measures.shape[1]), np.nan)
-    kept, periods, distances = np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int), np.full(len(checks), np.nan)
+    kept, periods, distances = (
+        np.full(len(checks), np.nan),
+        np.zeros(len(checks), dtype=int),
+        np.full(len(checks), np.nan),
+    )
     orbit = found["points"][stop - period : stop] if period != NOT_PERIODIC else None
     restart = stop - period if period != NOT_PERIODIC else first
     for i, integ in enumerate(checks):
@@ -207,8 +248,15 @@ def check_state(make_runner, found: Mapping[str, Any], runner: CycleRunner, chec
     return {"delta": deltas, "mean": means, "kept": kept, "period": periods, "distance": distances}
 
 
-def reach_state(make_runner, found: Mapping[str, Any], start_runner_args: Mapping[str, Any], check, st: Mapping[str, Any], batch: int,
-                confidence: float) -> dict[str, Any]:
+def reach_state(
+    make_runner,
+    found: Mapping[str, Any],
+    start_runner_args: Mapping[str, Any],
+    check,
+    st: Mapping[str, Any],
+    batch: int,
+    confidence: float,
+) -> dict[str, Any]:
     """The start settled again from its initial state at the check integrator ``check`` (``make_runner(check,
     **start_runner_args)`` builds its runner): the state it reaches (status, period), its measure (judged as the
     pipeline's: ``judged_statistics``'s mean per measure row) minus the pipeline's, and whether it is the pipeline's

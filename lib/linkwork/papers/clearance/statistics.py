@@ -2,10 +2,11 @@
 is not periodic, and orderings that hold only beyond both the statistical and the numerical margin.
 
 When a scene settles into a state that is not periodic (see ``settling``), each judged cycle gives one value of a
-claim's measure (RMS or peak deviation from the ideal curve over that cycle).  Consecutive cycles can be correlated (an impact pattern that repeats every few turns), so the confidence
-interval of the mean is a batch-means t-interval: the recorded cycles are cut into batches of ``batch``
-consecutive cycles, and the interval is mean +- t_(1 - (1 - confidence)/2, n_b - 1) s_b / sqrt(n_b) over the
-n_b batch means (s_b their sample standard deviation).  With ``batch = 1`` it is the ordinary t-interval.
+claim's measure (RMS or peak deviation from the ideal curve over that cycle).  Consecutive cycles can be correlated (an
+impact pattern that repeats every few turns), so the confidence interval of the mean is a batch-means t-interval: the
+recorded cycles are cut into batches of ``batch`` consecutive cycles, and the interval is mean +- t_(1 - (1 -
+confidence)/2, n_b - 1) s_b / sqrt(n_b) over the n_b batch means (s_b their sample standard deviation).  With ``batch =
+1`` it is the ordinary t-interval.
 
 An ordering a > b (or a linear combination) is *decided* only where the difference of the means exceeds both
 its statistical margin (the t-interval of the difference, Welch-Satterthwaite degrees of freedom) and its
@@ -19,7 +20,10 @@ from collections.abc import Sequence
 
 import numpy as np
 
-DECISION_RULE = "an ordering is decided where |difference of the means| exceeds both its confidence half-width and the sum of the scenes' numerical errors"
+DECISION_RULE = (
+    "an ordering is decided where |difference of the means| exceeds both its confidence half-width and the sum of the"
+    " scenes' numerical errors"
+)
 UNDETERMINED, FAILS, HOLDS = -1, 0, 1
 
 
@@ -46,7 +50,9 @@ def mean_ci(values: np.ndarray, batch: int, confidence: float) -> tuple[float, f
     return float(x.mean()), float(_t_quantile(confidence, dof) * se), se, dof
 
 
-def difference(terms: Sequence[tuple[float, float, float, float, float]], confidence: float) -> tuple[float, float, float]:
+def difference(
+    terms: Sequence[tuple[float, float, float, float, float]], confidence: float
+) -> tuple[float, float, float]:
     """(difference, statistical half-width, numerical error) of sum_i c_i m_i over ``terms`` (c_i, mean m_i,
     standard error, degrees of freedom, numerical error): the half-width uses Welch-Satterthwaite degrees of
     freedom; an infinite standard error (too few cycles) gives an infinite half-width."""

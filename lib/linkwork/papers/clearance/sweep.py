@@ -33,13 +33,15 @@ SCENE_WORDS = {"dry_1": "joint 1 (A) with dry clearance", "dry_2": "joint 2 (B) 
                "lubricated_2": "joint 2 (B) lubricated", "lubricated_both": "both joints lubricated"}
 VARIANT_WORDS = {"slender": "slender links (J = m L^2 / 12)", "decoded": "link inertias as printed"}
 
-#: The measures recorded per cycle: (sweep output, row of the per-cycle RMS measures (settling.MEASURE_ROWS), ideal series).
+#: The measures recorded per cycle: (sweep output, row of the per-cycle RMS measures (settling.MEASURE_ROWS), ideal
+#: series).
 PER_CYCLE = {"rocker_acceleration_deviation": (0, "rocker_acceleration"), "crank_torque_deviation": (1, "crank_torque")}
 #: Suffix of an output's cycle-to-cycle spread.
 SCATTER = "_cycle_spread"
 
 
-#: Section points kept per sweep point for the bifurcation diagram (the judged turns' last ones; a period-k orbit shows k).
+#: Section points kept per sweep point for the bifurcation diagram (the judged turns' last ones; a period-k orbit shows
+#: k).
 SECTION_POINTS = 8
 
 
@@ -55,17 +57,35 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
 
     name, variant = spec["scene"], spec["variant"]
     bearing = cfg["joints"]["bearing_radius_m"]
-    local = {**cfg, "crank_speed_rad_s": point["crank_speed_rad_s"], "joints": {**cfg["joints"], "journal_radius_m": bearing - point["clearance_m"]}}
+    local = {
+        **cfg,
+        "crank_speed_rad_s": point["crank_speed_rad_s"],
+        "joints": {**cfg["joints"], "journal_radius_m": bearing - point["clearance_m"]},
+    }
     joints, effects = scene_effects(cfg, name)
     if "lubrication" in effects:  # keep the film's eccentricity cap: e0 scales with the clearance
         c0 = bearing - cfg["joints"]["journal_radius_m"]
-        local["assumed"] = {**cfg["assumed"], "e0_m": {**cfg["assumed"]["e0_m"], "value": cfg["assumed"]["e0_m"]["value"] * point["clearance_m"] / c0}}
+        local["assumed"] = {
+            **cfg["assumed"],
+            "e0_m": {**cfg["assumed"]["e0_m"], "value": cfg["assumed"]["e0_m"]["value"] * point["clearance_m"] / c0},
+        }
     p = parameters(local, variant, name)
     ppc = cfg["numerics"]["points_per_cycle"]
     period = 2 * np.pi / p.crank_speed
-    ideal = inverse_dynamics(p, np.arange(ppc + 1) * period / ppc, "gravity" in effects)  # one cycle: the ideal response is periodic
-    runner = CycleRunner(p, joints, effects, cfg["integrators"][integrator_kind(cfg["scenes"][name])], ideal, ppc, 1, cfg["claims"]["ripple_cutoff_hz"],
-                         y0=start_state(p, joints, cfg["states"]["starts"][0]))
+    ideal = inverse_dynamics(
+        p, np.arange(ppc + 1) * period / ppc, "gravity" in effects
+    )  # one cycle: the ideal response is periodic
+    runner = CycleRunner(
+        p,
+        joints,
+        effects,
+        cfg["integrators"][integrator_kind(cfg["scenes"][name])],
+        ideal,
+        ppc,
+        1,
+        cfg["claims"]["ripple_cutoff_hz"],
+        y0=start_state(p, joints, cfg["states"]["starts"][0]),
+    )
     found = settle_start(runner, cfg["states"], cfg["statistics"]["confidence"])
     first, stop = found["window"]
     ext = np.array(runner.extremes)[first:stop]  # cycle, joint, (penetration, eccentricity, contact force, film force)
@@ -73,11 +93,18 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
              "crank_torque_deviation": np.sqrt(np.mean(ideal["crank_torque"][:-1] ** 2))}
     ideal_peak = max(float(np.max(ideal["force_A" if j == 1 else "force_B"])) for j in joints)
     pen = float(np.nanmax(ext[:, :, 0]) / p.clearance)
-    out = {"penetration_over_clearance": pen, "penetration_over_limit": pen / validity.penetration_limit(p.elastic_law, p.journal_radius, p.bearing_radius),
-           "peak_joint_force": float(np.nanmax(ext[:, :, 2])),
-           "peak_force_over_ideal": float(np.nanmax(ext[:, :, 2])) / ideal_peak,
-           "state_period": float(found["period"]), "state_transient": float(found["transient"]), "state_periodic": float(found["status"] == PERIODIC)}
-    judged = judged_statistics(found["measures"], found, cfg["statistics"]["batch_cycles"], cfg["statistics"]["confidence"])  # as the scenes judge
+    out = {
+        "penetration_over_clearance": pen,
+        "penetration_over_limit": pen / validity.penetration_limit(p.elastic_law, p.journal_radius, p.bearing_radius),
+        "peak_joint_force": float(np.nanmax(ext[:, :, 2])),
+        "peak_force_over_ideal": float(np.nanmax(ext[:, :, 2])) / ideal_peak,
+        "state_period": float(found["period"]),
+        "state_transient": float(found["transient"]),
+        "state_periodic": float(found["status"] == PERIODIC),
+    }
+    judged = judged_statistics(
+        found["measures"], found, cfg["statistics"]["batch_cycles"], cfg["statistics"]["confidence"]
+    )  # as the scenes judge
     for key, (row, _) in PER_CYCLE.items():
         per_cycle = found["measures"][first:stop, row] / scale[key]
         out[key], out[key + SCATTER] = float(judged[row, 0] / scale[key]), float(per_cycle.max() - per_cycle.min())
@@ -91,20 +118,53 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
 #: Units and long names of the sweep outputs.
 SWEEP_OUTPUTS = {
     "penetration_over_clearance": ("1", "deepest penetration / radial clearance"),
-    "penetration_over_limit": ("1", "deepest penetration / the elastic law's penetration limit (1: the edge of its range)"),
+    "penetration_over_limit": (
+        "1",
+        "deepest penetration / the elastic law's penetration limit (1: the edge of its range)",
+    ),
     "peak_joint_force": ("N", "peak dry contact force over the clearance joints"),
     "peak_force_over_ideal": ("1", "peak contact force / largest reaction of the ideal joints"),
-    "rocker_acceleration_deviation": ("1", "RMS deviation of the rocker acceleration from the ideal joints / RMS of the ideal, mean over the recorded cycles"),
-    "rocker_acceleration_deviation" + SCATTER: ("1", "cycle-to-cycle spread (largest - smallest recorded cycle) of the rocker acceleration's deviation"),
-    "crank_torque_deviation": ("1", "RMS deviation of the crank torque from the ideal joints / RMS of the ideal, mean over the recorded cycles"),
-    "crank_torque_deviation" + SCATTER: ("1", "cycle-to-cycle spread (largest - smallest recorded cycle) of the crank torque's deviation"),
+    "rocker_acceleration_deviation": (
+        "1",
+        (
+            "RMS deviation of the rocker acceleration from the ideal joints / RMS of the ideal, mean over the recorded"
+            " cycles"
+        ),
+    ),
+    "rocker_acceleration_deviation" + SCATTER: (
+        "1",
+        "cycle-to-cycle spread (largest - smallest recorded cycle) of the rocker acceleration's deviation",
+    ),
+    "crank_torque_deviation": (
+        "1",
+        "RMS deviation of the crank torque from the ideal joints / RMS of the ideal, mean over the recorded cycles",
+    ),
+    "crank_torque_deviation" + SCATTER: (
+        "1",
+        "cycle-to-cycle spread (largest - smallest recorded cycle) of the crank torque's deviation",
+    ),
     "state_period": ("1", "period of the settled state in crank turns (0: not periodic)"),
     "state_transient": ("1", "crank turns before the state (never judged)"),
     "state_periodic": ("1", "1 if the state is a periodic orbit"),
-    **{f"section_{k}": ("1", f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the bifurcation diagram)",
-                        "the state was judged on fewer turns") for k in range(SECTION_POINTS)},
-    **{f"section_rate_{k}": ("1", f"joint 1's e_x' / (c omega) at the dead point, judged turn {k + 1} of the last {SECTION_POINTS}",
-                             "the state was judged on fewer turns") for k in range(SECTION_POINTS)},
+    **{
+        f"section_{k}": (
+            "1",
+            (
+                f"joint 1's e_x / c at the dead point, judged turn {k + 1} of the last {SECTION_POINTS} (the"
+                " bifurcation diagram)"
+            ),
+            "the state was judged on fewer turns",
+        )
+        for k in range(SECTION_POINTS)
+    },
+    **{
+        f"section_rate_{k}": (
+            "1",
+            f"joint 1's e_x' / (c omega) at the dead point, judged turn {k + 1} of the last {SECTION_POINTS}",
+            "the state was judged on fewer turns",
+        )
+        for k in range(SECTION_POINTS)
+    },
 }
 
 #: The threshold drawn on the map: where the Hertz contact law leaves its range (the clearance report's limit).
@@ -130,12 +190,20 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset]) -> xr.Dataset
     for k, spread in scatter.items():  # the spread relative to the mean: what a change must exceed, as a fraction
         grid_ds[k + "_relative" + SCATTER] = (grid_ds[spread] / grid_ds[k]).assign_attrs(
             units="1", long_name=f"{grid_ds[spread].attrs['long_name']} / its mean")
-    states = [k for k in grid_ds.data_vars if k.startswith(("section_", "state_"))]  # the bifurcation diagram's: no trends of them
+    states = [
+        k for k in grid_ds.data_vars if k.startswith(("section_", "state_"))
+    ]  # the bifurcation diagram's: no trends of them
     ds = interpret(grid_ds.drop_vars(states), cfg["reference"], THRESHOLDS, scatter=scatter).merge(grid_ds[states])
     periodic = grid_ds.state_periodic.values == 1
-    ds["periodic_points"] = ((), int(periodic.sum()), {"units": "1", "long_name": "grid points whose state is a periodic orbit"})
+    ds["periodic_points"] = (
+        (),
+        int(periodic.sum()),
+        {"units": "1", "long_name": "grid points whose state is a periodic orbit"},
+    )
     ds["grid_points"] = ((), int(periodic.size), {"units": "1", "long_name": "grid points"})
-    ds.attrs["periods_found"] = ", ".join(str(int(k)) for k in sorted(set(grid_ds.state_period.values[periodic].ravel().tolist())))
+    ds.attrs["periods_found"] = ", ".join(
+        str(int(k)) for k in sorted(set(grid_ds.state_period.values[periodic].ravel().tolist()))
+    )
     spec = cfg["spec"]
     ds.attrs.update(title=f"clearance sweep ({cfg['grid']} grid)", scene=spec["scene"], variant=spec["variant"],
                     scene_description=SCENE_WORDS.get(spec["scene"], spec["scene"]),

@@ -1,15 +1,15 @@
 """Input uncertainty of the clearance paper: the assumed joint length, friction thresholds, impact-velocity floor and
 film cap, and the initial state of the journals (a scenario).
 
-Each assumed input is moved alone to both ends of its range, in the first start (the initial state is a scenario;
-the other starts are judged at the nominal inputs).  A batch is one input's samples in one parameter variant; it reruns only
-the scenes the sample's input enters, from the first start's nominal state, each settled and judged as the nominal run is (the same settling rule from the same start: the
-state, its judged window, the measure on it and its interval), without the check reruns: a sample takes the nominal
-run's numerical error bar.  A sample continues from the nominal state (the run state at the start of the nominal
-judged window): its state is the one the nominal state moves to as the input moves.  Its config holds only those scenes' keys and the samples' moved values come as
-arguments, so an edit reruns only the batches whose scenes read the edited key.  The gather step judges the claims
-for every sample on its own measures (the moved scenes from the batch, the others from the nominal runs): no sample
-inherits the nominal outcome.
+Each assumed input is moved alone to both ends of its range, in the first start (the initial state is a scenario; the
+other starts are judged at the nominal inputs).  A batch is one input's samples in one parameter variant; it reruns only
+the scenes the sample's input enters, from the first start's nominal state, each settled and judged as the nominal run
+is (the same settling rule from the same start: the state, its judged window, the measure on it and its interval),
+without the check reruns: a sample takes the nominal run's numerical error bar.  A sample continues from the nominal
+state (the run state at the start of the nominal judged window): its state is the one the nominal state moves to as the
+input moves.  Its config holds only those scenes' keys and the samples' moved values come as arguments, so an edit
+reruns only the batches whose scenes read the edited key.  The gather step judges the claims for every sample on its own
+measures (the moved scenes from the batch, the others from the nominal runs): no sample inherits the nominal outcome.
 """
 
 from __future__ import annotations
@@ -23,13 +23,30 @@ from ...pipeline.uncertainty import Input, apply, labelled_inputs, samples, summ
 
 #: The initial state of the journals as a scenario axis (the labels of ``states.starts``).
 START = "states.start"
-START_REASON = "the journals' initial state inside the clearance: a nonlinear linkage can settle into different states from different starts"
+START_REASON = (
+    "the journals' initial state inside the clearance: a nonlinear linkage can settle into different states from"
+    " different starts"
+)
 
 
 def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     """The assumed inputs of the clearance section (``assumed``) with their ranges, and the start as a choice."""
     labels = tuple(s["label"] for s in cfg["states"]["starts"])
-    start = [Input(START, labels[0], float("nan"), float("nan"), START_REASON, labels, labels=tuple(f"start {x}" for x in labels))] if len(labels) > 1 else []
+    start = (
+        [
+            Input(
+                START,
+                labels[0],
+                float("nan"),
+                float("nan"),
+                START_REASON,
+                labels,
+                labels=tuple(f"start {x}" for x in labels),
+            )
+        ]
+        if len(labels) > 1
+        else []
+    )
     return [*labelled_inputs(cfg["assumed"], "assumed."), *start]
 
 
@@ -61,7 +78,9 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
     for variant in cfg["variants"]:
         for sample in design[1:]:
             if not sample.moved or sample.scenario != design[0].scenario:
-                continue  # a start's nominal point (the nominal runs hold it), or another start's sample (the same batch computes it)
+                # a start's nominal point (the nominal runs hold it), or another start's sample (the same batch computes
+                # it)
+                continue
             moved = tuple(path.removesuffix(".value") for path in _moved_values(sample))
             scenes = [name for name in COMPARED if any(m in model_keys(cfg, variant, name) for m in moved)]
             job = jobs.setdefault((variant, moved), {"variant": variant, "scenes": scenes, "samples": []})
@@ -69,17 +88,37 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
     return list(jobs.values())
 
 
-def batch(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), all_starts: bool = False):
+def batch(
+    cfg: Mapping[str, Any],
+    samples: Sequence[Mapping[str, Any]],
+    variant: str,
+    nominal: Sequence[Any] = (),
+    all_starts: bool = False,
+):
     """Rule study: ``batch_at`` from the first start's nominal state (``all_starts``: from every start's; ``nominal``:
     the moved scenes' nominal runs), along a ``start`` dimension."""
     import xarray as xr
 
     starts = [str(x) for x in nominal[0].start.values][: None if all_starts else 1]
-    ds = xr.concat([batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start")
-    return ds.assign_coords(start=("start", np.array(starts, dtype=object), {"units": "1", "long_name": "the start whose nominal state the sample continues"}))
+    ds = xr.concat(
+        [batch_at(cfg, samples, variant, nominal, k).expand_dims(start=[s]) for k, s in enumerate(starts)], dim="start"
+    )
+    return ds.assign_coords(
+        start=(
+            "start",
+            np.array(starts, dtype=object),
+            {"units": "1", "long_name": "the start whose nominal state the sample continues"},
+        )
+    )
 
 
-def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], variant: str, nominal: Sequence[Any] = (), start: int = 0):
+def batch_at(
+    cfg: Mapping[str, Any],
+    samples: Sequence[Mapping[str, Any]],
+    variant: str,
+    nominal: Sequence[Any] = (),
+    start: int = 0,
+):
     """The samples (each a label and its moved values) of one variant that move the same scenes: each
     moved scene continued from the nominal run's state (``nominal``: those scenes' nominal runs) with
     the sample's inputs, settled and judged on its state as the nominal run is (``studies.scene`` without check
@@ -107,7 +146,17 @@ def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], varia
             if moved <= contact_only and base.attrs["evaluations_contact"] == 0:
                 run, at, held[i, 0, k] = base, start, 1.0
             else:
-                run, at = scene(local, variant, name, first_start_only=True, check=False, memory=base.window_memory.values[start]), 0
+                run, at = (
+                    scene(
+                        local,
+                        variant,
+                        name,
+                        first_start_only=True,
+                        check=False,
+                        memory=base.window_memory.values[start],
+                    ),
+                    0,
+                )
             stats[i, 0, ..., k, :] = np.stack([run[v].values[at] for v in SAMPLE_STATISTICS], axis=-1)
             state[i, 0, k] = [run[v].values[at] for v in SAMPLE_STATE]
             status[i, 0, k] = str(run.state_status.values[at])
@@ -115,23 +164,66 @@ def batch_at(cfg: Mapping[str, Any], samples: Sequence[Mapping[str, Any]], varia
     dims = ("sample", "variant", "measure", "quantity", "scene")
     return xr.Dataset(
         {
-            "judged": (dims + ("statistic",), stats, {"units": "SI of the quantity", "long_name": "the claims' measure on the sample's state and its interval (as the scene run stores them)",
-                                                       "nan_meaning": "the sample does not move this scene (or, for an interval, as in the scene run)"}),
-            "state": (("sample", "variant", "scene", "state_field"), state, {"units": "1", "long_name": "the sample's state: period (0: not periodic), transient, judged window",
-                                                                             "nan_meaning": "the sample does not move this scene"}),
-            "state_status": (("sample", "variant", "scene"), status, {"units": "1", "long_name": "how the sample's state was found ('' where not moved)"}),
-            "held": (("sample", "variant", "scene"), held, {"units": "1", "long_name": "1 where the scene is the nominal run (it never touched, the sample moves contact inputs only)"}),
+            "judged": (
+                dims + ("statistic",),
+                stats,
+                {
+                    "units": "SI of the quantity",
+                    "long_name": (
+                        "the claims' measure on the sample's state and its interval (as the scene run stores them)"
+                    ),
+                    "nan_meaning": "the sample does not move this scene (or, for an interval, as in the scene run)",
+                },
+            ),
+            "state": (
+                ("sample", "variant", "scene", "state_field"),
+                state,
+                {
+                    "units": "1",
+                    "long_name": "the sample's state: period (0: not periodic), transient, judged window",
+                    "nan_meaning": "the sample does not move this scene",
+                },
+            ),
+            "state_status": (
+                ("sample", "variant", "scene"),
+                status,
+                {"units": "1", "long_name": "how the sample's state was found ('' where not moved)"},
+            ),
+            "held": (
+                ("sample", "variant", "scene"),
+                held,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "1 where the scene is the nominal run (it never touched, the sample moves contact inputs only)"
+                    ),
+                },
+            ),
         },
         coords={
             "sample": ("sample", np.array(labels, dtype=object), {"units": "1", "long_name": "sample"}),
             "variant": ("variant", np.array([variant], dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "measure": ("measure", np.array(MEASURES, dtype=object), {"units": "1", "long_name": "deviation measure"}),
-            "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
+            "quantity": (
+                "quantity",
+                np.array(QUANTITIES, dtype=object),
+                {"units": "1", "long_name": "compared response"},
+            ),
             "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
-            "statistic": ("statistic", np.array(SAMPLE_STATISTICS, dtype=object), {"units": "1", "long_name": "statistic"}),
-            "state_field": ("state_field", np.array(SAMPLE_STATE, dtype=object), {"units": "1", "long_name": "state field"}),
+            "statistic": (
+                "statistic",
+                np.array(SAMPLE_STATISTICS, dtype=object),
+                {"units": "1", "long_name": "statistic"},
+            ),
+            "state_field": (
+                "state_field",
+                np.array(SAMPLE_STATE, dtype=object),
+                {"units": "1", "long_name": "state field"},
+            ),
         },
-        attrs={"title": f"clearance input uncertainty: variant {variant}, {len(labels)} samples, the moved scenes' states"},
+        attrs={
+            "title": f"clearance input uncertainty: variant {variant}, {len(labels)} samples, the moved scenes' states"
+        },
     )
 
 
@@ -140,15 +232,28 @@ SAMPLE_STATISTICS = ("judged_mean", "judged_half_width", "judged_standard_error"
 SAMPLE_STATE = ("state_period", "state_transient", "window_first", "window_stop")
 
 
-def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: float, start: int = 0) -> tuple[dict[str, Any], np.ndarray]:
+def sample_judgement(
+    nominal: Any, moved: Any | None, ratio: float, confidence: float, start: int = 0
+) -> tuple[dict[str, Any], np.ndarray]:
     """The claims at one sample of one variant in the first start: the moved scenes' measures and intervals from the
-    sample's own runs (a state the cap cut short: no interval), the others' and every numerical error from the
-    nominal claims (``nominal``: one variant; ``start``: which start's).  Returns (``studies.judge``'s verdict, the measures (measure,
-    quantity, scene))."""
+    sample's own runs (a state the cap cut short: no interval), the others' and every numerical error from the nominal
+    claims (``nominal``: one variant; ``start``: which start's).  Returns (``studies.judge``'s verdict, the measures
+    (measure, quantity, scene))."""
     from .studies import judge, read, stats_for_judging
 
     first = nominal.isel(start=start)
-    stats = read(np.stack([first.mean_deviation.values, first.ci_half_width.values, first.standard_error.values, first.ci_dof.values, first.judged_cycles.values], axis=-1))
+    stats = read(
+        np.stack(
+            [
+                first.mean_deviation.values,
+                first.ci_half_width.values,
+                first.standard_error.values,
+                first.ci_dof.values,
+                first.judged_cycles.values,
+            ],
+            axis=-1,
+        )
+    )
     if moved is not None:
         for k in range(stats.shape[2]):
             x = read(moved.judged.values[:, :, k])
@@ -160,7 +265,9 @@ def sample_judgement(nominal: Any, moved: Any | None, ratio: float, confidence: 
     return verdict, stats[..., 0]
 
 
-def oat_orderings(design, ins, diffs: np.ndarray, outcomes: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def oat_orderings(
+    design, ins, diffs: np.ndarray, outcomes: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Per scenario, continuous input, variant and ordering: the smallest and largest difference over the samples that
     move the input alone and the scenario's nominal one; per claim, whether such a sample decides it (outcome 0 or 1)
     otherwise than the nominal, and whether one leaves it undetermined (-1) where the nominal decides it (``diffs``:
@@ -196,7 +303,11 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
     from ...pipeline.uncertainty import evaluate, evaluated_dataset
 
     ratio, confidence = cfg["claims"]["close_to_ideal_ratio"], cfg["statistics"]["confidence"]
-    moved = {(str(label), str(b.variant.values[0])): b.isel(sample=i, variant=0) for b in batches for i, label in enumerate(b.sample.values)}
+    moved = {
+        (str(label), str(b.variant.values[0])): b.isel(sample=i, variant=0)
+        for b in batches
+        for i, label in enumerate(b.sample.values)
+    }
     variants = [str(v) for v in claims.variant.values]
     starts = [str(x) for x in claims.start.values]
     ins = inputs(cfg)
@@ -210,8 +321,11 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
             nominal = claims.sel(variant=variant)
             if sample.moved:
                 batch_run = moved.get((label, variant))
-                verdict, m = sample_judgement(nominal, batch_run.isel(start=n) if batch_run is not None else None, ratio, confidence, start=n)
-                # a sample enters the claim's range only where its margins decide it: an undetermined sample shows neither outcome
+                verdict, m = sample_judgement(
+                    nominal, batch_run.isel(start=n) if batch_run is not None else None, ratio, confidence, start=n
+                )
+                # a sample enters the claim's range only where its margins decide it: an undetermined sample shows
+                # neither outcome
                 holds.append(np.where(np.array(verdict["outcome"]) >= 0, verdict["point"], np.nan))
                 sample_out.append(verdict["outcome"])
                 sample_diffs.append([r["difference"] for r in verdict["rows"]])
@@ -225,7 +339,10 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
                 sample_diffs.append(at.comparison_difference.values)
                 m = at.mean_deviation.values
             sample_means.append(m)
-        judged = xr.Dataset({"holds": (("variant", "claim"), np.array(holds, dtype=float))}, coords={"variant": variants, "claim": claims.claim.values})
+        judged = xr.Dataset(
+            {"holds": (("variant", "claim"), np.array(holds, dtype=float))},
+            coords={"variant": variants, "claim": claims.claim.values},
+        )
         rows.append(evaluate(published, [judged]))
         means.append(sample_means)
         diffs.append(sample_diffs)
@@ -235,31 +352,99 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
         for key in ("low", "high", "oat_low", "oat_high"):
             ds[key][n] = np.nan
     lo, hi, changed, left = oat_orderings(design, ins, np.array(diffs), np.array(outcomes, dtype=int))
-    ds["sample_mean_deviation"] = (("sample", "variant", "measure", "response", "scene"), np.array(means),
-                                   {"units": "SI of the quantity", "long_name": "the claims' measure on the sample's state (deviation from the ideal curve)"})
-    ds["sample_comparison_difference"] = (("sample", "variant", "comparison"), np.array(diffs),
-                                          {"units": "SI of the quantity", "long_name": "difference the ordering is about at the sample (> 0: as claimed)"})
-    ds["sample_claim_outcome"] = (("sample", "variant", "claim"), np.array(outcomes, dtype=int),
-                                  {"units": "1", "long_name": "the claim at the sample: 1 holds, 0 fails, -1 undetermined (within its margins)"})
+    ds["sample_mean_deviation"] = (
+        ("sample", "variant", "measure", "response", "scene"),
+        np.array(means),
+        {
+            "units": "SI of the quantity",
+            "long_name": "the claims' measure on the sample's state (deviation from the ideal curve)",
+        },
+    )
+    ds["sample_comparison_difference"] = (
+        ("sample", "variant", "comparison"),
+        np.array(diffs),
+        {
+            "units": "SI of the quantity",
+            "long_name": "difference the ordering is about at the sample (> 0: as claimed)",
+        },
+    )
+    ds["sample_claim_outcome"] = (
+        ("sample", "variant", "claim"),
+        np.array(outcomes, dtype=int),
+        {"units": "1", "long_name": "the claim at the sample: 1 holds, 0 fails, -1 undetermined (within its margins)"},
+    )
     oat_dims = ("scenario", "input", "variant")
-    ds["oat_comparison_low"] = (oat_dims + ("comparison",), lo, {"units": "SI of the quantity", "long_name": "smallest difference of the ordering moving this input alone (with the nominal)",
-                                                                 "nan_meaning": "the input moves no sample in this scenario"})
-    ds["oat_comparison_high"] = (oat_dims + ("comparison",), hi, {"units": "SI of the quantity", "long_name": "largest difference of the ordering moving this input alone (with the nominal)",
-                                                                  "nan_meaning": "the input moves no sample in this scenario"})
-    ds["oat_claim_changed"] = (oat_dims + ("claim",), changed, {"units": "1", "long_name": "1 if a sample moving this input decides the claim (holds or fails) otherwise than the scenario's nominal"})
-    ds["oat_claim_left_undetermined"] = (oat_dims + ("claim",), left, {"units": "1", "long_name": "1 if a sample moving this input leaves undetermined, within its margins, a claim the scenario's nominal decides"})
-    ds["oat_sign_changes"] = ((), int(np.sum((lo < 0) & (hi > 0))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets whose difference changes sign over the input's range"})
-    ds["oat_orderings"] = ((), int(np.sum(np.isfinite(lo))), {"units": "1", "long_name": "(scenario, input, variant, ordering) sets propagated"})
-    ds = ds.assign_coords(variant=("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
-                          measure=("measure", claims.measure.values, {"units": "1", "long_name": "deviation measure"}),
-                          response=("response", claims.quantity.values, {"units": "1", "long_name": "compared response"}),
-                          scene=("scene", claims.scene.values, {"units": "1", "long_name": "scene"}),
-                          comparison=("comparison", claims.comparison.values, {"units": "1", "long_name": "ordering a claim is made of"}),
-                          claim=("claim", claims.claim.values, {"units": "1", "long_name": "claim"}))
-    ds.attrs["title"] = "Clearance: assumed joint length, friction thresholds, impact-velocity floor and film cap, propagated; the start as a scenario"
-    ds.attrs["sample_rule"] = ("a sample's claim value is its own outcome on its measures (every ordering's difference > 0), its moved scenes settled and "
-                               "judged as the nominal runs are, where the sample's margins (its own intervals, the nominal numerical errors) decide it; "
-                               "a sample they leave undetermined enters no claim's range (sample_claim_outcome -1), the first start's nominal sample "
-                               "included; no sample takes the nominal outcome")
+    ds["oat_comparison_low"] = (
+        oat_dims + ("comparison",),
+        lo,
+        {
+            "units": "SI of the quantity",
+            "long_name": "smallest difference of the ordering moving this input alone (with the nominal)",
+            "nan_meaning": "the input moves no sample in this scenario",
+        },
+    )
+    ds["oat_comparison_high"] = (
+        oat_dims + ("comparison",),
+        hi,
+        {
+            "units": "SI of the quantity",
+            "long_name": "largest difference of the ordering moving this input alone (with the nominal)",
+            "nan_meaning": "the input moves no sample in this scenario",
+        },
+    )
+    ds["oat_claim_changed"] = (
+        oat_dims + ("claim",),
+        changed,
+        {
+            "units": "1",
+            "long_name": (
+                "1 if a sample moving this input decides the claim (holds or fails) otherwise than the scenario's"
+                " nominal"
+            ),
+        },
+    )
+    ds["oat_claim_left_undetermined"] = (
+        oat_dims + ("claim",),
+        left,
+        {
+            "units": "1",
+            "long_name": (
+                "1 if a sample moving this input leaves undetermined, within its margins, a claim the scenario's"
+                " nominal decides"
+            ),
+        },
+    )
+    ds["oat_sign_changes"] = (
+        (),
+        int(np.sum((lo < 0) & (hi > 0))),
+        {
+            "units": "1",
+            "long_name": (
+                "(scenario, input, variant, ordering) sets whose difference changes sign over the input's range"
+            ),
+        },
+    )
+    ds["oat_orderings"] = (
+        (),
+        int(np.sum(np.isfinite(lo))),
+        {"units": "1", "long_name": "(scenario, input, variant, ordering) sets propagated"},
+    )
+    ds = ds.assign_coords(
+        variant=("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
+        measure=("measure", claims.measure.values, {"units": "1", "long_name": "deviation measure"}),
+        response=("response", claims.quantity.values, {"units": "1", "long_name": "compared response"}),
+        scene=("scene", claims.scene.values, {"units": "1", "long_name": "scene"}),
+        comparison=("comparison", claims.comparison.values, {"units": "1", "long_name": "ordering a claim is made of"}),
+        claim=("claim", claims.claim.values, {"units": "1", "long_name": "claim"}),
+    )
+    ds.attrs["title"] = (
+        "Clearance: assumed joint length, friction thresholds, impact-velocity floor and film cap, propagated; the"
+        " start as a scenario"
+    )
+    ds.attrs["sample_rule"] = (
+        "a sample's claim value is its own outcome on its measures (every ordering's difference > 0), its moved scenes"
+        " settled and judged as the nominal runs are, where the sample's margins (its own intervals, the nominal"
+        " numerical errors) decide it; a sample they leave undetermined enters no claim's range (sample_claim_outcome"
+        " -1), the first start's nominal sample included; no sample takes the nominal outcome"
+    )
     return ds
-

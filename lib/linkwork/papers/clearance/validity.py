@@ -30,7 +30,8 @@ def penetration_ratio(penetration: np.ndarray, clearance: float) -> float:
 
 
 def beyond_cap_fraction(eccentricity: np.ndarray, clearance: float, cap: float) -> float:
-    """Fraction of the recorded samples at which some joint's |e|/c exceeds the film cap (``eccentricity``: joint x time, m)."""
+    """Fraction of the recorded samples at which some joint's |e|/c exceeds the film cap (``eccentricity``: joint x
+    time, m)."""
     ratio = np.where(np.isfinite(eccentricity), eccentricity / clearance, 0.0)
     return float(np.mean((ratio > cap).any(axis=0)))
 
@@ -47,15 +48,21 @@ def warnings(penetration_over_c: float, beyond_cap: float | None, limit: float) 
     elastic law's penetration limit over the clearance."""
     out = []
     if np.isfinite(penetration_over_c) and penetration_over_c > limit:
-        out.append(f"dry penetration reaches {penetration_over_c:.3g} times the radial clearance (the elastic law's limit: {limit:.3g}): "
-                   "outside its contact law")
+        out.append(
+            f"dry penetration reaches {penetration_over_c:.3g} times the radial clearance (the elastic law's limit:"
+            f" {limit:.3g}): outside its contact law"
+        )
     if beyond_cap:
-        out.append(f"eccentricity beyond the film cap during {100 * beyond_cap:.3g} % of the time shown: the film force is held "
-                   "there at its capped value, set by the assumed e0")
+        out.append(
+            f"eccentricity beyond the film cap during {100 * beyond_cap:.3g} % of the time shown: the film force is"
+            " held there at its capped value, set by the assumed e0"
+        )
     return "; ".join(out)
 
 
-def attributes(penetration: np.ndarray, eccentricity: np.ndarray, clearance: float, cap: float | None, limit: float) -> dict[str, object]:
+def attributes(
+    penetration: np.ndarray, eccentricity: np.ndarray, clearance: float, cap: float | None, limit: float
+) -> dict[str, object]:
     """The scene attributes: the two measures, the limit they are judged by, and the warnings."""
     pen = penetration_ratio(penetration, clearance)
     beyond = beyond_cap_fraction(eccentricity, clearance, cap) if cap is not None else None

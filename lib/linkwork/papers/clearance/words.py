@@ -23,8 +23,15 @@ QUANTITY_WORDS = {"rocker_acceleration": "rocker acceleration", "crank_torque": 
 #: Symbols of the interval's description -> words.
 SYMBOL_WORDS = {"n_b": "N", "s_b": "S"}
 #: Integrator and contact-law names -> words.
-METHOD_WORDS = {"dopri5": "Dormand–Prince 5(4)", "ndf": "variable-order BDF (compiled)", "bdf": "BDF (scipy)", "radau": "Radau IIA (scipy)",
-                "rk4": "RK4", "pereira": "Pereira et al.", "hertz-sphere": "sphere law (eq. 9)"}
+METHOD_WORDS = {
+    "dopri5": "Dormand–Prince 5(4)",
+    "ndf": "variable-order BDF (compiled)",
+    "bdf": "BDF (scipy)",
+    "radau": "Radau IIA (scipy)",
+    "rk4": "RK4",
+    "pereira": "Pereira et al.",
+    "hertz-sphere": "sphere law (eq. 9)",
+}
 WORDS = {**SCENE_WORDS, **CLAIM_WORDS, **QUANTITY_WORDS, **SYMBOL_WORDS, **METHOD_WORDS}
 _NAMES = sorted((re.escape(k) for k in WORDS if "_" in k or k in METHOD_WORDS), key=len, reverse=True)
 _CODE = re.compile(r"(?<![\w])(" + "|".join(_NAMES) + r")(?![\w])")
@@ -36,7 +43,10 @@ def in_words(text: str) -> str:
 
 
 #: The two parameter variants (sets of link inertias), as a clause of prose.
-VARIANT_WORDS = {"slender": "with slender-rod inertias (our defensible reading)", "decoded": "with the inertias as decoded from the text"}
+VARIANT_WORDS = {
+    "slender": "with slender-rod inertias (our defensible reading)",
+    "decoded": "with the inertias as decoded from the text",
+}
 
 
 def sample_in_words(label: str) -> str:

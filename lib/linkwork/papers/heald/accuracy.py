@@ -19,7 +19,8 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     """Frequency-grid resolution vs error in the peak joint force near a resonance, and cost.
 
     The band (config) brackets a damped resonance peak of the chosen force (elastic joints).  Reference: that peak
-    located by bounded Brent search around the finest grid's maximum (x-tolerance from config).  Times: median of ``repeats`` after a warm-up.
+    located by bounded Brent search around the finest grid's maximum (x-tolerance from config).  Times: median of
+    ``repeats`` after a warm-up.
     """
     from scipy.optimize import minimize_scalar
 
@@ -63,16 +64,51 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     ds = xr.Dataset(
         {
             **summary_variables("chain frequency grid", settings, np.maximum(errors, 1e-16), f"{closest} points"),
-            "pipeline_density": xr.DataArray(float(density), attrs={"units": "1", "long_name": "points of a uniform grid over the study band with the pipeline's spacing"}),
-            "points_for_0_1_percent": xr.DataArray(float(min(below)) if below else np.nan, attrs={"units": "1", "long_name": "fewest studied points with a peak error below 0.1 %"}),
-            "peak_error": xr.DataArray(np.array(errors), dims="grid_points", attrs={"units": "1", "long_name": f"relative error of the peak |{acc['quantity']}| on a uniform grid"}),
-            "reference_peak": xr.DataArray(ref, attrs={"units": "N", "long_name": f"peak |{acc['quantity']}| by bounded Brent search"}),
-            "reference_omega": xr.DataArray(float(res.x), attrs={"units": "rad s-1", "long_name": "frequency of the peak"}),
-            "reference_evaluations": xr.DataArray(int(res.nfev), attrs={"units": "1", "long_name": "force evaluations of the Brent search"}),
+            "pipeline_density": xr.DataArray(
+                float(density),
+                attrs={
+                    "units": "1",
+                    "long_name": "points of a uniform grid over the study band with the pipeline's spacing",
+                },
+            ),
+            "points_for_0_1_percent": xr.DataArray(
+                float(min(below)) if below else np.nan,
+                attrs={"units": "1", "long_name": "fewest studied points with a peak error below 0.1 %"},
+            ),
+            "peak_error": xr.DataArray(
+                np.array(errors),
+                dims="grid_points",
+                attrs={"units": "1", "long_name": f"relative error of the peak |{acc['quantity']}| on a uniform grid"},
+            ),
+            "reference_peak": xr.DataArray(
+                ref, attrs={"units": "N", "long_name": f"peak |{acc['quantity']}| by bounded Brent search"}
+            ),
+            "reference_omega": xr.DataArray(
+                float(res.x), attrs={"units": "rad s-1", "long_name": "frequency of the peak"}
+            ),
+            "reference_evaluations": xr.DataArray(
+                int(res.nfev), attrs={"units": "1", "long_name": "force evaluations of the Brent search"}
+            ),
         },
-        coords={"grid_points": ("grid_points", np.array(acc["points"]), {"units": "1", "long_name": "points of the uniform frequency grid"})},
+        coords={
+            "grid_points": (
+                "grid_points",
+                np.array(acc["points"]),
+                {"units": "1", "long_name": "points of the uniform frequency grid"},
+            )
+        },
     )
-    ds.attrs.update(title="Frequency-grid resolution vs error in a resonance peak (heald)", model=model, quantity=acc["quantity"], reference_xtol_rad_s=acc["reference_xtol_rad_s"], repeats=acc["repeats"], band_rad_s=[lo, hi])
-    timings = {"method": f"median of {acc['repeats']} runs after a warm-up, time.perf_counter", "grid_s": dict(zip(map(str, acc["points"]), times, strict=True)),
-               "summary_s": dict(zip(settings, times, strict=True))}
+    ds.attrs.update(
+        title="Frequency-grid resolution vs error in a resonance peak (heald)",
+        model=model,
+        quantity=acc["quantity"],
+        reference_xtol_rad_s=acc["reference_xtol_rad_s"],
+        repeats=acc["repeats"],
+        band_rad_s=[lo, hi],
+    )
+    timings = {
+        "method": f"median of {acc['repeats']} runs after a warm-up, time.perf_counter",
+        "grid_s": dict(zip(map(str, acc["points"]), times, strict=True)),
+        "summary_s": dict(zip(settings, times, strict=True)),
+    }
     return ds, timings

@@ -22,25 +22,38 @@ def check(section: Mapping[str, Any], key: str = "heald") -> None:
         value = entry["value"]
         if name.startswith("eta"):
             if value == 0:
-                raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r}: a lever ratio cannot be 0")
+                raise ConfigError(
+                    f"config key {key}.parameters.{name}.value: value {value!r}: a lever ratio cannot be 0"
+                )
         elif name in NONNEGATIVE:
             if value < 0:
                 raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be >= 0")
         elif value <= 0:
-            raise ConfigError(f"config key {key}.parameters.{name}.value: value {value!r} must be > 0 (a mass, stiffness or reaction)")
+            raise ConfigError(
+                f"config key {key}.parameters.{name}.value: value {value!r} must be > 0 (a mass, stiffness or reaction)"
+            )
     speeds = section["speeds"]
     if speeds["min_rpm"] >= speeds["max_rpm"]:
-        raise ConfigError(f"config key {key}.speeds: min_rpm {speeds['min_rpm']!r} must be below max_rpm {speeds['max_rpm']!r}")
+        raise ConfigError(
+            f"config key {key}.speeds: min_rpm {speeds['min_rpm']!r} must be below max_rpm {speeds['max_rpm']!r}"
+        )
     band = section["accuracy"]["band_rpm"]
     if band["start"] >= band["stop"]:
-        raise ConfigError(f"config key {key}.accuracy.band_rpm: start {band['start']!r} must be below stop {band['stop']!r}")
+        raise ConfigError(
+            f"config key {key}.accuracy.band_rpm: start {band['start']!r} must be below stop {band['stop']!r}"
+        )
     for name, sweep in section["sweeps"].items():
         if sweep["start"] >= sweep["stop"]:
-            raise ConfigError(f"config key {key}.sweeps.{name}: start {sweep['start']!r} must be below stop {sweep['stop']!r}")
+            raise ConfigError(
+                f"config key {key}.sweeps.{name}: start {sweep['start']!r} must be below stop {sweep['stop']!r}"
+            )
     rise = section["cam"]["rise_fraction"]
     for what, value in (("value", rise["value"]), *((f"range.{i}", v) for i, v in enumerate(rise.get("range", ())))):
         if not 0 < value < 0.5:
-            raise ConfigError(f"config key {key}.cam.rise_fraction.{what}: value {value!r} must lie in (0, 0.5): the rise and the return share one turn")
+            raise ConfigError(
+                f"config key {key}.cam.rise_fraction.{what}: value {value!r} must lie in (0, 0.5): the rise and the"
+                " return share one turn"
+            )
     _check_contact(section, key)
     for model in section["models"]:
         try:
@@ -62,12 +75,16 @@ def _check_contact(section: Mapping[str, Any], key: str) -> None:
     for case, ends in cfg["cases"].items():
         for name in ends:
             if name not in params or "range" not in params[name]:
-                raise ConfigError(f"config key {key}.contact.cases.{case}.{name}: not a parameter of {key}.parameters with a range")
+                raise ConfigError(
+                    f"config key {key}.contact.cases.{case}.{name}: not a parameter of {key}.parameters with a range"
+                )
             ranges[name] = tuple(params[name]["range"])
     p = parameters(section)
     rpm = max(cfg["speeds_rpm"])  # the lever's motion is the same at every speed: one turn followed per case
     for case, ends in cfg["cases"].items():
         try:
-            follow_turn(linkage(cfg, section["cam"], case_parameters(p, ranges, ends), rpm * RAD_S_PER_RPM, clearances=False))
+            follow_turn(
+                linkage(cfg, section["cam"], case_parameters(p, ranges, ends), rpm * RAD_S_PER_RPM, clearances=False)
+            )
         except LinkageError as exc:
             raise ConfigError(f"config key {key}.contact (case {case}): the heald linkage {exc}") from None

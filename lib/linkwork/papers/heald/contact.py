@@ -34,7 +34,11 @@ from .adapter import DRIVE_RATIO, drive_ratio, parameters
 from .dynamics import cam_harmonics, harmonic_transfer, periodic_peaks
 
 #: Model A's masses carried by each body of the linkage, at its named points.
-LUMPED = {"rod": {"D": "m_D", "E": "m_E6", "F": "m_F6"}, "crank7": {"E": "m_E7", "G": "M_G"}, "crank8": {"F": "m_F8", "K": "M_K"}}
+LUMPED = {
+    "rod": {"D": "m_D", "E": "m_E6", "F": "m_F6"},
+    "crank7": {"E": "m_E7", "G": "M_G"},
+    "crank8": {"F": "m_F8", "K": "M_K"},
+}
 #: Diagnostic columns of the clearance joints E and F (``model``: per joint e, delta, delta', dry normal force, ...).
 PENETRATION = [DIAG_FIXED + DIAG_PER_JOINT * k + 1 for k in range(2)]
 CONTACT_FORCE = [DIAG_FIXED + DIAG_PER_JOINT * k + 3 for k in range(2)]
@@ -52,11 +56,27 @@ def points(geom: Mapping[str, float], p: Mapping[str, float]) -> dict[str, tuple
     h, lp = (g[0], geom["rod_GH"]), (k[0], geom["rod_GH"])
     centre = ((h[0] + lp[0]) / 2, h[1])
     s = (lp[0] + 0.1 * (lp[0] - h[0]), h[1])
-    return {"O1": (c[0], y - geom["lever"]), "C": c, "D": d, "E": e, "F": f, "O3": (0.0, 0.0), "O4": (geom["E_to_F"], 0.0),
-            "G": g, "K": k, "H": h, "L": lp, "P": centre, "S": s, "Q": (s[0] + geom["guide"], s[1])}
+    return {
+        "O1": (c[0], y - geom["lever"]),
+        "C": c,
+        "D": d,
+        "E": e,
+        "F": f,
+        "O3": (0.0, 0.0),
+        "O4": (geom["E_to_F"], 0.0),
+        "G": g,
+        "K": k,
+        "H": h,
+        "L": lp,
+        "P": centre,
+        "S": s,
+        "Q": (s[0] + geom["guide"], s[1]),
+    }
 
 
-def _lumped(name: str, pts: Mapping[str, tuple[float, float]], masses: Mapping[str, float], inertia: float = 0.0) -> Body:
+def _lumped(
+    name: str, pts: Mapping[str, tuple[float, float]], masses: Mapping[str, float], inertia: float = 0.0
+) -> Body:
     """A body of point masses at named points (kg at m), plus ``inertia`` about its centre of mass (kg m^2)."""
     m = sum(masses.values())
     cx = sum(masses[k] * pts[k][0] for k in masses) / m
@@ -69,15 +89,26 @@ def _bar(name: str, a: str, b: str, pts, mass: float) -> Body:
     """A uniform slender bar from point a to point b (mass kg)."""
     (xa, ya), (xb, yb) = pts[a], pts[b]
     cx, cy = (xa + xb) / 2, (ya + yb) / 2
-    return Body(name, mass, mass * ((xb - xa) ** 2 + (yb - ya) ** 2) / 12, {a: (xa - cx, ya - cy), b: (xb - cx, yb - cy)})
+    return Body(
+        name, mass, mass * ((xb - xa) ** 2 + (yb - ya) ** 2) / 12, {a: (xa - cx, ya - cy), b: (xb - cx, yb - cy)}
+    )
 
 
 def pin(cfg: Mapping[str, Any], clearance: float) -> Clearance:
     """A dry frictionless clearance joint of radial clearance ``clearance`` (m), from ``contact.pin``."""
     pn = cfg["pin"]
     r = labelled(pn["journal_radius_m"])
-    return Clearance(r, r + clearance, ("contact",), (pn["youngs_modulus_Pa"],) * 2, (pn["poisson"],) * 2, labelled(pn["restitution"]),
-                     "lankarani-nikravesh", "hertz-sphere", impact_velocity_floor=pn["impact_velocity_floor_m_s"])
+    return Clearance(
+        r,
+        r + clearance,
+        ("contact",),
+        (pn["youngs_modulus_Pa"],) * 2,
+        (pn["poisson"],) * 2,
+        labelled(pn["restitution"]),
+        "lankarani-nikravesh",
+        "hertz-sphere",
+        impact_velocity_floor=pn["impact_velocity_floor_m_s"],
+    )
 
 
 def drive_coefficients(cam: Mapping[str, Any], stroke: float) -> np.ndarray:
@@ -87,14 +118,22 @@ def drive_coefficients(cam: Mapping[str, Any], stroke: float) -> np.ndarray:
     return c * stroke / abs(c[0])
 
 
-def linkage(cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, float], drive_omega: float, clearances: bool = True) -> Linkage:
+def linkage(
+    cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, float], drive_omega: float, clearances: bool = True
+) -> Linkage:
     """The heald linkage driven at the drive frequency ``drive_omega`` (rad/s); E and F clearance joints (or ideal)."""
     geom, mk = cfg["geometry_m"], cfg["masses_kg"]
     pts = points(geom, p)
-    lever = _lumped("lever", {"O": pts["O1"], "C": pts["C"]}, {"O": mk["lever"] / 2, "C": mk["lever"] / 2}, 1e-3 * mk["lever"])
+    lever = _lumped(
+        "lever", {"O": pts["O1"], "C": pts["C"]}, {"O": mk["lever"] / 2, "C": mk["lever"] / 2}, 1e-3 * mk["lever"]
+    )
     rod = _lumped("rod", {k: pts[k] for k in "DEF"}, {k: p[v] for k, v in LUMPED["rod"].items()})
-    c7 = _lumped("crank7", {"O": pts["O3"], "E": pts["E"], "G": pts["G"]}, {k: p[v] for k, v in LUMPED["crank7"].items()})
-    c8 = _lumped("crank8", {"O": pts["O4"], "F": pts["F"], "K": pts["K"]}, {k: p[v] for k, v in LUMPED["crank8"].items()})
+    c7 = _lumped(
+        "crank7", {"O": pts["O3"], "E": pts["E"], "G": pts["G"]}, {k: p[v] for k, v in LUMPED["crank7"].items()}
+    )
+    c8 = _lumped(
+        "crank8", {"O": pts["O4"], "F": pts["F"], "K": pts["K"]}, {k: p[v] for k, v in LUMPED["crank8"].items()}
+    )
     frame = _lumped("frame", {k: pts[k] for k in "HLPS"}, {"P": p["M_P"]}, labelled(cfg["frame_inertia_kg_m2"]))
     bodies = (lever, _bar("conrod", "C", "D", pts, mk["conrod"]), rod, c7, c8, _bar("rodGH", "G", "H", pts, p["m_H9"]),
               _bar("rodKL", "K", "L", pts, p["m_L10"]), frame, _bar("guide", "S", "Q", pts, mk["guide"]))
@@ -108,13 +147,17 @@ def linkage(cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, floa
               Joint("Q", ("guide", "Q"), ("ground", "Q")))
     # the lever turns by the displacement at D over its length; D moves towards +x as the lever turns clockwise
     c = drive_coefficients(cam, p["stroke_D"]) / cfg["geometry_m"]["lever"]
-    driver = Driver("lever", drive_omega, 0.0, tuple(-c.real), tuple(c.imag), rocking=True)  # angles from the drawn configuration
+    driver = Driver(
+        "lever", drive_omega, 0.0, tuple(-c.real), tuple(c.imag), rocking=True
+    )  # angles from the drawn configuration
     warp = Spring("warp", ("frame", "P"), pts["P"], (0.0, p["k_O"]), (0.0, p["c_O"]))
     ground = {k: pts[k] for k in ("O1", "O3", "O4", "Q")}
     return Linkage(bodies, ground, joints, driver, "frame", springs=(warp,))
 
 
-def case_parameters(p: Mapping[str, float], ranges: Mapping[str, tuple[float, float]], case: Mapping[str, str]) -> dict[str, float]:
+def case_parameters(
+    p: Mapping[str, float], ranges: Mapping[str, tuple[float, float]], case: Mapping[str, str]
+) -> dict[str, float]:
     """The parameters of a named case: each key it names at the low or high end of its assumed range."""
     return {**p, **{k: float(ranges[k][0 if end == "low" else 1]) for k, end in case.items()}}
 
@@ -166,16 +209,32 @@ def _settled(lk: Linkage, cfg, per: int) -> dict[str, Any]:
     """The settled state at one speed: status, judged measures' means and extremes, numerical error."""
     st = cfg["states"]
     runner = _Cycles(lk, cfg["gravity"], cfg["integrator"], per, y0=assembly.start_state(lk))
-    found = settle(runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
-                   st["min_cycles"], 0.95, rows=(4, 5))
+    found = settle(
+        runner.step,
+        st["chunk_cycles"],
+        st["max_cycles"],
+        st["max_period"],
+        st["section_tolerance"],
+        st["periods"],
+        st["min_cycles"],
+        0.95,
+        rows=(4, 5),
+    )
     first, stop = found["window"]
     m = found["measures"][first:stop]
     n_check = min(st["check_cycles"], stop - first)
     check = _Cycles(lk, cfg["gravity"], cfg["check_integrator"], per, memory=runner.memories[first])
     _, cm = check.step(n_check)
-    return {"status": found["status"], "period": found["period"], "transient": found["transient"], "cycles": len(runner.forces),
-            "mean": m.mean(axis=0), "max": m.max(axis=0), "numerical": np.abs(cm.mean(axis=0) - m[:n_check].mean(axis=0)),
-            "force": np.array(runner.forces[max(first, stop - 1)])}
+    return {
+        "status": found["status"],
+        "period": found["period"],
+        "transient": found["transient"],
+        "cycles": len(runner.forces),
+        "mean": m.mean(axis=0),
+        "max": m.max(axis=0),
+        "numerical": np.abs(cm.mean(axis=0) - m[:n_check].mean(axis=0)),
+        "force": np.array(runner.forces[max(first, stop - 1)]),
+    }
 
 
 def study(section: Mapping[str, Any]) -> xr.Dataset:
@@ -207,8 +266,11 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
             out["force_E_mean"][i, j], out["force_F_mean"][i, j] = s["mean"][4], s["mean"][5]
             out["force_numerical"][i, j] = s["numerical"][4:6].max()
             forces[i, j] = s["force"]
-            print(f"heald_contact: {name} at {rpm[j]:g} rev/min: {s['status']} (period {s['period']}, {s['cycles']} cycles); "
-                  f"free flight E {s['max'][0]:.3f}, F {s['max'][1]:.3f} of a cycle", flush=True)
+            print(
+                f"heald_contact: {name} at {rpm[j]:g} rev/min: {s['status']} (period {s['period']}, {s['cycles']}"
+                f" cycles); free flight E {s['max'][0]:.3f}, F {s['max'][1]:.3f} of a cycle",
+                flush=True,
+            )
     return _dataset(names, rpm, out, status, periods, cycles, np.array(margins), forces, ratio)
 
 
@@ -230,37 +292,159 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
     scale = np.array([ratio / r for r in DRIVE_RATIO.values()])
     brackets = np.array([first_loss(rpm, row) for row in lost])[:, :, None] * scale
     pull, weight, eta7, eta8 = np.array(margins).T
-    units = {"flight": ("1", "largest fraction of a judged cycle in which the journal at {j} is in free flight (no contact)"),
-             "gap": ("m", "largest separation of the journal at {j} from its bearing's wall over the judged cycles"),
-             "force": ("N", "largest dry contact force at {j} over the judged cycles")}
+    units = {
+        "flight": (
+            "1",
+            "largest fraction of a judged cycle in which the journal at {j} is in free flight (no contact)",
+        ),
+        "gap": ("m", "largest separation of the journal at {j} from its bearing's wall over the judged cycles"),
+        "force": ("N", "largest dry contact force at {j} over the judged cycles"),
+    }
     data = {}
     for key in ("flight_E", "flight_F", "gap_E", "gap_F", "force_E", "force_F"):
         kind, joint = key.split("_")
         u, text = units[kind]
         data[key] = (dims, out[key], {"units": u, "long_name": text.format(j=joint)})
-    data.update({
-        "force_E_mean": (dims, out["force_E_mean"], {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at E"}),
-        "force_F_mean": (dims, out["force_F_mean"], {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at F"}),
-        "force_numerical_error": (dims, out["force_numerical"], {"units": "N", "long_name": "change of the mean largest contact force (E or F, the larger) when the first judged cycles are rerun at the check integrator"}),
-        "chain_E": (dims, out["chain_E"], {"units": "N", "long_name": "model A's linear chain: peak |Q_E| over a cycle under the same cam drive (Vulfson's joints, contact held)"}),
-        "chain_F": (dims, out["chain_F"], {"units": "N", "long_name": "model A's linear chain: peak |Q_F| over a cycle under the same cam drive"}),
-        "contact_lost": (dims, lost, {"units": "1", "long_name": "a journal (E or F) in free flight at some stored point of the judged cycles"}),
-        "state_status": (dims, status.astype(str), {"units": "1", "long_name": "the settled state's status"}),
-        "state_period": (dims, periods, {"units": "1", "long_name": "period of the settled state in cycles (0: not periodic)"}),
-        "cycles_run": (dims, cycles, {"units": "1", "long_name": "drive cycles integrated"}),
-        "warp_pull": ("case", pull, {"units": "N", "long_name": "the warp's largest pull on the frame, k_O eta7 max|x_D| (closed form, quasi-static, the warp unstretched at the cam's mean position)"}),
-        "weight_held": ("case", weight, {"units": "N", "long_name": "the weight the bell cranks hold up at G and K (the frame, rods GH and KL, the masses at G and K)"}),
-        "reversal_margin": ("case", pull / weight, {"units": "1", "long_name": "warp's largest pull on the frame over the weight held up (above 1 the load at E and F reverses at any speed)"}),
-        "weight_share": (("case", "joint"), np.stack([weight * eta7, weight * eta8], axis=-1) / 2, {"units": "N", "long_name": "the held weight's static share at each joint along the drive (weight times its lever ratio over two)"}),
-        "held_up_to_rpm": (("case", "drive"), brackets[:, 0], {"units": "rev/min", "long_name": "highest shaft speed simulated below the first with contact lost, per drive scenario",
-                                                               "nan_meaning": "contact is lost already at the lowest speed simulated"}),
-        "first_lost_rpm": (("case", "drive"), brackets[:, 1], {"units": "rev/min", "long_name": "lowest shaft speed simulated with contact lost, per drive scenario",
-                                                               "nan_meaning": "contact holds at every speed simulated"}),
-        "contact_force": (("case", "speed", "cycle_point", "joint"), forces, {"units": "N", "long_name": "dry contact force over the last judged cycle"}),
-    })
-    coords = {"case": ("case", names, {"units": "1", "long_name": "named case of the assumed parameters"}),
-              "speed": ("speed", rpm, {"units": "rev/min", "long_name": "main-shaft speed"}),
-              "cycle_point": ("cycle_point", np.linspace(0.0, 360.0, forces.shape[2]), {"units": "deg", "long_name": "drive angle over a cycle"}),
-              "joint": ("joint", ["E", "F"], {"units": "1", "long_name": "clearance joint"}),
-              "drive": ("drive", list(DRIVE_RATIO), {"units": "1", "long_name": "drive-frequency scenario (heald.drive.frequency's choices)"})}
-    return xr.Dataset(data, coords=coords, attrs={"drive_ratio": float(ratio), "title": "Heald linkage with clearance joints at E and F"})
+    data.update(
+        {
+            "force_E_mean": (
+                dims,
+                out["force_E_mean"],
+                {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at E"},
+            ),
+            "force_F_mean": (
+                dims,
+                out["force_F_mean"],
+                {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at F"},
+            ),
+            "force_numerical_error": (
+                dims,
+                out["force_numerical"],
+                {
+                    "units": "N",
+                    "long_name": (
+                        "change of the mean largest contact force (E or F, the larger) when the first judged cycles are"
+                        " rerun at the check integrator"
+                    ),
+                },
+            ),
+            "chain_E": (
+                dims,
+                out["chain_E"],
+                {
+                    "units": "N",
+                    "long_name": (
+                        "model A's linear chain: peak |Q_E| over a cycle under the same cam drive (Vulfson's joints,"
+                        " contact held)"
+                    ),
+                },
+            ),
+            "chain_F": (
+                dims,
+                out["chain_F"],
+                {"units": "N", "long_name": "model A's linear chain: peak |Q_F| over a cycle under the same cam drive"},
+            ),
+            "contact_lost": (
+                dims,
+                lost,
+                {
+                    "units": "1",
+                    "long_name": "a journal (E or F) in free flight at some stored point of the judged cycles",
+                },
+            ),
+            "state_status": (dims, status.astype(str), {"units": "1", "long_name": "the settled state's status"}),
+            "state_period": (
+                dims,
+                periods,
+                {"units": "1", "long_name": "period of the settled state in cycles (0: not periodic)"},
+            ),
+            "cycles_run": (dims, cycles, {"units": "1", "long_name": "drive cycles integrated"}),
+            "warp_pull": (
+                "case",
+                pull,
+                {
+                    "units": "N",
+                    "long_name": (
+                        "the warp's largest pull on the frame, k_O eta7 max|x_D| (closed form, quasi-static, the warp"
+                        " unstretched at the cam's mean position)"
+                    ),
+                },
+            ),
+            "weight_held": (
+                "case",
+                weight,
+                {
+                    "units": "N",
+                    "long_name": (
+                        "the weight the bell cranks hold up at G and K (the frame, rods GH and KL, the masses at G"
+                        " and K)"
+                    ),
+                },
+            ),
+            "reversal_margin": (
+                "case",
+                pull / weight,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "warp's largest pull on the frame over the weight held up (above 1 the load at E and F reverses"
+                        " at any speed)"
+                    ),
+                },
+            ),
+            "weight_share": (
+                ("case", "joint"),
+                np.stack([weight * eta7, weight * eta8], axis=-1) / 2,
+                {
+                    "units": "N",
+                    "long_name": (
+                        "the held weight's static share at each joint along the drive (weight times its lever ratio"
+                        " over two)"
+                    ),
+                },
+            ),
+            "held_up_to_rpm": (
+                ("case", "drive"),
+                brackets[:, 0],
+                {
+                    "units": "rev/min",
+                    "long_name": "highest shaft speed simulated below the first with contact lost, per drive scenario",
+                    "nan_meaning": "contact is lost already at the lowest speed simulated",
+                },
+            ),
+            "first_lost_rpm": (
+                ("case", "drive"),
+                brackets[:, 1],
+                {
+                    "units": "rev/min",
+                    "long_name": "lowest shaft speed simulated with contact lost, per drive scenario",
+                    "nan_meaning": "contact holds at every speed simulated",
+                },
+            ),
+            "contact_force": (
+                ("case", "speed", "cycle_point", "joint"),
+                forces,
+                {"units": "N", "long_name": "dry contact force over the last judged cycle"},
+            ),
+        }
+    )
+    coords = {
+        "case": ("case", names, {"units": "1", "long_name": "named case of the assumed parameters"}),
+        "speed": ("speed", rpm, {"units": "rev/min", "long_name": "main-shaft speed"}),
+        "cycle_point": (
+            "cycle_point",
+            np.linspace(0.0, 360.0, forces.shape[2]),
+            {"units": "deg", "long_name": "drive angle over a cycle"},
+        ),
+        "joint": ("joint", ["E", "F"], {"units": "1", "long_name": "clearance joint"}),
+        "drive": (
+            "drive",
+            list(DRIVE_RATIO),
+            {"units": "1", "long_name": "drive-frequency scenario (heald.drive.frequency's choices)"},
+        ),
+    }
+    return xr.Dataset(
+        data,
+        coords=coords,
+        attrs={"drive_ratio": float(ratio), "title": "Heald linkage with clearance joints at E and F"},
+    )

@@ -55,7 +55,9 @@ def damped_modes(net: Network, held: bool = True) -> tuple[np.ndarray, np.ndarra
     wn = np.abs(lam)
     keep = wn > 1e-9 * max(wn.max(initial=0.0), 1.0)
     wn, zeta = wn[keep], -lam.real[keep] / wn[keep]
-    zeta = np.where(zeta > 0.0, zeta, 0.0)  # an undamped mode gives -0.0 or a round-off negative: no negative damping here
+    zeta = np.where(
+        zeta > 0.0, zeta, 0.0
+    )  # an undamped mode gives -0.0 or a round-off negative: no negative damping here
     order = np.argsort(wn)
     return wn[order], zeta[order]
 
@@ -163,7 +165,9 @@ def cam_harmonics(rise_fraction: float, harmonics: int, samples: int) -> np.ndar
     return 2.0 * spec[1 : harmonics + 1]
 
 
-def harmonic_transfer(model: str, p: Mapping[str, float], omega: np.ndarray, harmonics: int) -> tuple[np.ndarray, np.ndarray]:
+def harmonic_transfer(
+    model: str, p: Mapping[str, float], omega: np.ndarray, harmonics: int
+) -> tuple[np.ndarray, np.ndarray]:
     """Q_E and Q_F per metre of drive displacement at h omega, h = 1..harmonics: arrays (speeds, harmonics)."""
 
     freqs = np.outer(omega, np.arange(1, harmonics + 1))
@@ -171,9 +175,12 @@ def harmonic_transfer(model: str, p: Mapping[str, float], omega: np.ndarray, har
     return q_e.reshape(freqs.shape), q_f.reshape(freqs.shape)
 
 
-def periodic_peaks(transfer: tuple[np.ndarray, np.ndarray], coefficients: np.ndarray, samples: int) -> tuple[np.ndarray, np.ndarray]:
+def periodic_peaks(
+    transfer: tuple[np.ndarray, np.ndarray], coefficients: np.ndarray, samples: int
+) -> tuple[np.ndarray, np.ndarray]:
     """Peak |Q_E(t)|, |Q_F(t)| over one turn at each shaft speed, the drive being Re sum_h c_h exp(j h omega t)
-    (coefficients in m, ``transfer`` from :func:`harmonic_transfer`): the chain is linear, so the harmonics superpose."""
+    (coefficients in m, ``transfer`` from :func:`harmonic_transfer`): the chain is linear, so the harmonics
+    superpose."""
     h = np.arange(1, coefficients.size + 1)
     phase = np.exp(1j * np.outer(h, 2 * np.pi * np.arange(samples) / samples))  # (harmonics, samples)
     return tuple(np.abs(np.real((q * coefficients) @ phase)).max(axis=1) for q in transfer)

@@ -10,8 +10,17 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import (acceptance, classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scenario_changes, tolerance_of,
-                                 where_true)
+from ...pipeline.compare import (
+    acceptance,
+    classify,
+    compare_datasets,
+    counts_dataset,
+    findings_attrs,
+    nominal_rows,
+    scenario_changes,
+    tolerance_of,
+    where_true,
+)
 from ...units import RAD_S_PER_RPM
 from .adapter import amplitude, omega_grid, parameters
 from .dynamics import clearance_difference_for_ratio, flip_point
@@ -34,8 +43,18 @@ SCAN = 9
 #: the clearance sweep moves both clearances together and has no single input.
 SWEEP_INPUT = {"reaction_ratio": "reaction_E", "heald_mass": "M_P", "warp_stiffness": "k_O"}
 #: What the findings carry over from the chain study on eq. (2)'s massless-node condition.
-EQ2_NODE_MASS = ("eq2_relative_difference", "eq2_node_mass_difference", "eq2_node_mass_difference_at", "eq2_node_mass", "eq2_node_mass_antiresonance")
-CLAIM_SHORT = {"force_E_many_times_F": "E many times F", "forces_grow_with_frequency": "forces grow", "limit_41_89": "the speed limit"}
+EQ2_NODE_MASS = (
+    "eq2_relative_difference",
+    "eq2_node_mass_difference",
+    "eq2_node_mass_difference_at",
+    "eq2_node_mass",
+    "eq2_node_mass_antiresonance",
+)
+CLAIM_SHORT = {
+    "force_E_many_times_F": "E many times F",
+    "forces_grow_with_frequency": "forces grow",
+    "limit_41_89": "the speed limit",
+}
 
 
 def bounded_text(x: np.ndarray, ok: np.ndarray, boundary) -> str:
@@ -58,7 +77,9 @@ def bounded_text(x: np.ndarray, ok: np.ndarray, boundary) -> str:
     return ", ".join(parts)
 
 
-def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance: float, boundary=None) -> dict[str, np.ndarray]:
+def support(
+    chain: xr.Dataset, many_times: float, limit: float, limit_tolerance: float, boundary=None
+) -> dict[str, np.ndarray]:
     """Per model, claim and sweep: where along the sweep the claim holds (text; '' where not swept for that claim).
     ``boundary(model, claim, sweep, a, b)``, if given, locates a change of the claim between the sweep values a
     and b (else the text names grid cells)."""
@@ -79,7 +100,9 @@ def support(chain: xr.Dataset, many_times: float, limit: float, limit_tolerance:
                 text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = INDEPENDENT_TEXT
             elif boundary is not None and sweep in SWEEP_INPUT:
                 x = chain[sweep].values
-                text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = bounded_text(x, ok.values, lambda k, m=m, c=claim, w=sweep, x=x: boundary(m, c, w, x[k], x[k + 1]))
+                text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = bounded_text(
+                    x, ok.values, lambda k, m=m, c=claim, w=sweep, x=x: boundary(m, c, w, x[k], x[k + 1])
+                )
             else:
                 text[i, CLAIMS.index(claim), SWEEPS.index(sweep)] = where_true(chain[sweep].values, ok.values)
     return {"models": models, "text": text}
@@ -92,8 +115,14 @@ def numerical_errors(chain: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple
     for m in chain.model.values:
         s = chain.sel(model=m)
         out[str(m)] = {
-            "force_E_many_times_F": (pipeline * float(s.ratio_EF_min), "extremes on the frequency grid: the accuracy study's error at the pipeline's density"),
-            "forces_grow_with_frequency": (float(s.growth_fraction_refinement), "change when the frequency grid is halved"),
+            "force_E_many_times_F": (
+                pipeline * float(s.ratio_EF_min),
+                "extremes on the frequency grid: the accuracy study's error at the pipeline's density",
+            ),
+            "forces_grow_with_frequency": (
+                float(s.growth_fraction_refinement),
+                "change when the frequency grid is halved",
+            ),
             "limit_41_89": (1e-9 * float(s.first_resonance), "eigenvalues of the condensed chain (float rounding)"),
         }
     return out
@@ -133,7 +162,11 @@ def sweep_boundary(cfg: Mapping[str, Any], published: Mapping[str, Any], flips: 
         name, k = SWEEP_INPUT[sweep], scale(sweep)
         lo, hi = min(a, b), max(a, b)
         for j in range(flips.sizes["flip"]):
-            if (str(flips.flip_model.values[j]), str(flips.flip_claim.values[j]), str(flips.flip_input.values[j])) == (model, claim, name):
+            if (str(flips.flip_model.values[j]), str(flips.flip_claim.values[j]), str(flips.flip_input.values[j])) == (
+                model,
+                claim,
+                name,
+            ):
                 v = float(flips.flip_value.values[j]) * k
                 if lo <= v <= hi:
                     return v
@@ -172,24 +205,64 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
                 elif row.relation != "eq":  # a one-sided claim on a monotone measure: this end does not flip it
                     brackets = []
                 else:  # an interval claim can flip and flip back inside the range: scan for the changes
-                    grid = np.geomspace(nominal, end, SCAN) if nominal > 0 and end > 0 else np.linspace(nominal, end, SCAN)
+                    grid = (
+                        np.geomspace(nominal, end, SCAN) if nominal > 0 and end > 0 else np.linspace(nominal, end, SCAN)
+                    )
                     state = [holds(x) for x in grid]
                     brackets = [(grid[i], grid[i + 1]) for i in range(SCAN - 1) if state[i] != state[i + 1]]
                 for a, b in brackets:
                     value = flip_point(holds, a, b, FLIP_RTOL)
-                    rows.append((row.model, row.id, name, nominal, end, value, f(moved(cfg, name, value)), "holds" if base else "fails"))
+                    rows.append(
+                        (
+                            row.model,
+                            row.id,
+                            name,
+                            nominal,
+                            end,
+                            value,
+                            f(moved(cfg, name, value)),
+                            "holds" if base else "fails",
+                        )
+                    )
     cols = list(zip(*rows, strict=True)) if rows else [[] for _ in range(8)]
     dim = "flip"
     ds = xr.Dataset(
         {
             "flip_model": (dim, np.array(cols[0], dtype=object), {"units": "1", "long_name": "chain model"}),
             "flip_claim": (dim, np.array(cols[1], dtype=object), {"units": "1", "long_name": "published claim"}),
-            "flip_input": (dim, np.array(cols[2], dtype=object), {"units": "1", "long_name": "the assumed input moved alone"}),
-            "flip_nominal": (dim, np.array(cols[3], dtype=float), {"units": "config units of the input", "long_name": "its assumed value"}),
-            "flip_end": (dim, np.array(cols[4], dtype=float), {"units": "config units of the input", "long_name": "the end of its range on the flipping side"}),
-            "flip_value": (dim, np.array(cols[5], dtype=float), {"units": "config units of the input", "long_name": f"value at which the verdict flips (bisection to a relative {FLIP_RTOL:g})"}),
-            "flip_measure": (dim, np.array(cols[6], dtype=float), {"units": "the claim's unit", "long_name": "the claim's measure at the flip value"}),
-            "flip_nominal_state": (dim, np.array(cols[7], dtype=object), {"units": "1", "long_name": "whether the claim holds at the assumed value"}),
+            "flip_input": (
+                dim,
+                np.array(cols[2], dtype=object),
+                {"units": "1", "long_name": "the assumed input moved alone"},
+            ),
+            "flip_nominal": (
+                dim,
+                np.array(cols[3], dtype=float),
+                {"units": "config units of the input", "long_name": "its assumed value"},
+            ),
+            "flip_end": (
+                dim,
+                np.array(cols[4], dtype=float),
+                {"units": "config units of the input", "long_name": "the end of its range on the flipping side"},
+            ),
+            "flip_value": (
+                dim,
+                np.array(cols[5], dtype=float),
+                {
+                    "units": "config units of the input",
+                    "long_name": f"value at which the verdict flips (bisection to a relative {FLIP_RTOL:g})",
+                },
+            ),
+            "flip_measure": (
+                dim,
+                np.array(cols[6], dtype=float),
+                {"units": "the claim's unit", "long_name": "the claim's measure at the flip value"},
+            ),
+            "flip_nominal_state": (
+                dim,
+                np.array(cols[7], dtype=object),
+                {"units": "1", "long_name": "whether the claim holds at the assumed value"},
+            ),
         },
         coords={dim: (dim, np.arange(len(rows)), {"units": "1", "long_name": "flip point"})},
     )
@@ -199,11 +272,29 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
     p = parameters(cfg)
     if "A" in cfg["models"]:
         at = [r[5] for r in rows if r[0] == "A" and r[1] == "force_E_many_times_F" and r[2] == "reaction_E"]
-        ds["threshold_reaction_ratio_A"] = ((), float(at[0]) / p["reaction_F"] if at else float("nan"), {
-            "units": "1", "long_name": f"model A: |R_E|/|R_F| (|R_F| assumed) at which min |Q_E|/|Q_F| = {many:g} (the flip point of reaction_E)",
-            "nan_meaning": "reaction_E does not decide the verdict alone"})
-        ds["threshold_clearance_difference_A"] = ((), clearance_difference_for_ratio(p, many, "A"), {
-            "units": "m", "long_name": f"model A: Delta_F - Delta_E (Delta_E assumed) at which the self-consistent reactions split as {many:g} : 1"})
+        ds["threshold_reaction_ratio_A"] = (
+            (),
+            float(at[0]) / p["reaction_F"] if at else float("nan"),
+            {
+                "units": "1",
+                "long_name": (
+                    f"model A: |R_E|/|R_F| (|R_F| assumed) at which min |Q_E|/|Q_F| = {many:g} (the flip point of"
+                    " reaction_E)"
+                ),
+                "nan_meaning": "reaction_E does not decide the verdict alone",
+            },
+        )
+        ds["threshold_clearance_difference_A"] = (
+            (),
+            clearance_difference_for_ratio(p, many, "A"),
+            {
+                "units": "m",
+                "long_name": (
+                    "model A: Delta_F - Delta_E (Delta_E assumed) at which the self-consistent reactions split as"
+                    f" {many:g} : 1"
+                ),
+            },
+        )
     return ds
 
 
@@ -212,7 +303,11 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
     and over the rise fraction's range, the other inputs at their assumed values)."""
     errors = numerical_errors(chain, accuracy)
     sine = compare_datasets(published, [chain], errors=errors)
-    names = {"ratio_EF_min": "ratio_EF_min_cam", "growth_fraction": "growth_fraction_cam", "first_resonance": "first_resonance_cam"}
+    names = {
+        "ratio_EF_min": "ratio_EF_min_cam",
+        "growth_fraction": "growth_fraction_cam",
+        "first_resonance": "first_resonance_cam",
+    }
     cam = xr.Dataset({k: chain[v].sel(rise="nominal", drop=True) for k, v in names.items()})
     cam_table = compare_datasets(published, [cam], errors=errors)
     pub = {q["id"]: q for q in published["quantities"]}
@@ -220,12 +315,37 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
     for _, row in cam_table.iterrows():
         var = names[pub[row.id]["measure"]["variable"]]
         values = chain[var].sel(model=row.model).values
-        over.append(classify(float(row.published), float(row.tolerance), row.relation, float(values[0]), float(row.numerical_error), float(values.min()), float(values.max())))
+        over.append(
+            classify(
+                float(row.published),
+                float(row.tolerance),
+                row.relation,
+                float(values[0]),
+                float(row.numerical_error),
+                float(values.min()),
+                float(values.max()),
+            )
+        )
     shape = (len(chain.model), len(CLAIMS))
     limit_row = sine[sine.id == "limit_41_89"].set_index("model")
-    by_h = np.array([[classify(float(limit_row.published[str(m)]), float(limit_row.tolerance[str(m)]), limit_row.relation[str(m)], float(v),
-                               float(limit_row.numerical_error[str(m)]), float(v), float(v)) for v in chain.cam_harmonic_speed.sel(model=m).values]
-                     for m in chain.model.values], dtype=object)
+    by_h = np.array(
+        [
+            [
+                classify(
+                    float(limit_row.published[str(m)]),
+                    float(limit_row.tolerance[str(m)]),
+                    limit_row.relation[str(m)],
+                    float(v),
+                    float(limit_row.numerical_error[str(m)]),
+                    float(v),
+                    float(v),
+                )
+                for v in chain.cam_harmonic_speed.sel(model=m).values
+            ]
+            for m in chain.model.values
+        ],
+        dtype=object,
+    )
 
     def grid(col):
         return np.array(list(col), dtype=object).reshape(shape)
@@ -237,16 +357,57 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
 
     return xr.Dataset(
         {
-            "verdict_sine_nominal": (("model", "claim"), grid(sine.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, harmonic drive"}),
-            "verdict_cam_nominal": (("model", "claim"), grid(cam_table.verdict), {"units": "1", "long_name": "verdict at the assumed parameters, cam drive"}),
-            "verdict_cam_over_rise": (("model", "claim"), grid(over), {"units": "1", "long_name": "verdict with the cam drive over the rise fraction's range (other inputs assumed)"}),
-            "value_cam_nominal": (("model", "claim"), np.array(list(cam_table.reproduced), dtype=float).reshape(shape), {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"}),
-            "verdict_limit_by_harmonic": (("model", "harmonic"), by_h, {"units": "1", "long_name": "verdict on the speed limit at the assumed parameters if harmonic h were the highest one counted (cam drive)"}),
-            "verdict_cam_by_joint_damping": (("model", "claim", "joint_damping"), np.stack(damp, axis=-1), {
-                "units": "1", "long_name": "verdict with the cam drive at the ends of the joint damping's range (other inputs assumed)"}),
+            "verdict_sine_nominal": (
+                ("model", "claim"),
+                grid(sine.verdict),
+                {"units": "1", "long_name": "verdict at the assumed parameters, harmonic drive"},
+            ),
+            "verdict_cam_nominal": (
+                ("model", "claim"),
+                grid(cam_table.verdict),
+                {"units": "1", "long_name": "verdict at the assumed parameters, cam drive"},
+            ),
+            "verdict_cam_over_rise": (
+                ("model", "claim"),
+                grid(over),
+                {
+                    "units": "1",
+                    "long_name": "verdict with the cam drive over the rise fraction's range (other inputs assumed)",
+                },
+            ),
+            "value_cam_nominal": (
+                ("model", "claim"),
+                np.array(list(cam_table.reproduced), dtype=float).reshape(shape),
+                {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"},
+            ),
+            "verdict_limit_by_harmonic": (
+                ("model", "harmonic"),
+                by_h,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "verdict on the speed limit at the assumed parameters if harmonic h were the highest one"
+                        " counted (cam drive)"
+                    ),
+                },
+            ),
+            "verdict_cam_by_joint_damping": (
+                ("model", "claim", "joint_damping"),
+                np.stack(damp, axis=-1),
+                {
+                    "units": "1",
+                    "long_name": (
+                        "verdict with the cam drive at the ends of the joint damping's range (other inputs assumed)"
+                    ),
+                },
+            ),
             "largest_dip_cam_by_joint_damping": chain.largest_dip_cam_by_joint_damping,
             "joint_branch_damping_ratio": chain.joint_branch_damping_ratio,
-            "cam_changes_a_verdict": ((), int((sine.verdict.values != cam_table.verdict.values).any()), {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"}),
+            "cam_changes_a_verdict": (
+                (),
+                int((sine.verdict.values != cam_table.verdict.values).any()),
+                {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"},
+            ),
         }
     )
 
@@ -259,20 +420,46 @@ def drive_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr
     verdict = np.empty((chain.sizes["model"], len(CLAIMS), len(drives)), dtype=object)
     value = np.empty(verdict.shape)
     for j, d in enumerate(drives):
-        at = xr.Dataset({k: chain[f"{k}_by_drive"].sel(drive=d, drop=True) for k in ("ratio_EF_min", "growth_fraction", "first_resonance")})
+        at = xr.Dataset(
+            {
+                k: chain[f"{k}_by_drive"].sel(drive=d, drop=True)
+                for k in ("ratio_EF_min", "growth_fraction", "first_resonance")
+            }
+        )
         t = compare_datasets(published, [at], errors=errors)
         verdict[:, :, j] = np.array(list(t.verdict), dtype=object).reshape(verdict.shape[:2])
         value[:, :, j] = np.array(list(t.reproduced), dtype=float).reshape(verdict.shape[:2])
     dims = ("model", "claim", "drive")
     return xr.Dataset(
-        {"verdict_by_drive": (dims, verdict, {"units": "1", "long_name": "verdict per drive-frequency scenario, the other inputs at their assumed values"}),
-         "value_by_drive": (dims, value, {"units": "the claim's unit", "long_name": "the claim's measure per drive-frequency scenario"}),
-         "drive_ratio": ("drive", chain.drive_ratio.values, dict(chain.drive_ratio.attrs))},
-        coords={"drive": ("drive", np.array(drives, dtype=object), {"units": "1", "long_name": "drive-frequency scenario"})},
+        {
+            "verdict_by_drive": (
+                dims,
+                verdict,
+                {
+                    "units": "1",
+                    "long_name": "verdict per drive-frequency scenario, the other inputs at their assumed values",
+                },
+            ),
+            "value_by_drive": (
+                dims,
+                value,
+                {"units": "the claim's unit", "long_name": "the claim's measure per drive-frequency scenario"},
+            ),
+            "drive_ratio": ("drive", chain.drive_ratio.values, dict(chain.drive_ratio.attrs)),
+        },
+        coords={
+            "drive": ("drive", np.array(drives, dtype=object), {"units": "1", "long_name": "drive-frequency scenario"})
+        },
     )
 
 
-def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.Dataset, uncertainty: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
+def compare(
+    cfg: Mapping[str, Any],
+    published: Mapping[str, Any],
+    chain: xr.Dataset,
+    accuracy: xr.Dataset,
+    uncertainty: xr.Dataset,
+) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table per model, the support ranges of every claim, the flip points of the verdicts an input
     decides, and the verdicts with a cam's harmonics."""
     table = compare_datasets(published, [chain], errors=numerical_errors(chain, accuracy), uncertainty=uncertainty)
@@ -283,10 +470,22 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
     sup = support(chain, many_times, limit, tolerance_of(pub["limit_41_89"]), sweep_boundary(cfg, published, flips))
     findings = xr.Dataset(
         {
-            "holds_for": (("model", "claim", "sweep"), sup["text"], {"units": "1", "long_name": "sub-ranges of the swept parameter over which the claim holds"}),
+            "holds_for": (
+                ("model", "claim", "sweep"),
+                sup["text"],
+                {"units": "1", "long_name": "sub-ranges of the swept parameter over which the claim holds"},
+            ),
             "limit_rad_s": ((), limit, {"units": "rad s-1", "long_name": "the paper's speed limit"}),
-            "limit_rpm": ((), limit / RAD_S_PER_RPM, {"units": "min-1", "long_name": "the paper's speed limit as a shaft speed"}),
-            "limit_band": ((), tolerance_of(pub["limit_41_89"]), {"units": "rad s-1", "long_name": "half-width of the band around the limit (our reading)"}),
+            "limit_rpm": (
+                (),
+                limit / RAD_S_PER_RPM,
+                {"units": "min-1", "long_name": "the paper's speed limit as a shaft speed"},
+            ),
+            "limit_band": (
+                (),
+                tolerance_of(pub["limit_41_89"]),
+                {"units": "rad s-1", "long_name": "half-width of the band around the limit (our reading)"},
+            ),
             "many_times": ((), many_times, {"units": "1", "long_name": "ratio read as 'many times' (our reading)"}),
         },
         coords={
@@ -297,8 +496,14 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], chain: xr.Data
     )
     findings = findings.merge(chain[list(EQ2_NODE_MASS)])
     findings = findings.merge(counts_dataset(table))
-    findings = findings.merge(flips).merge(cam_verdicts(published, chain, accuracy)).merge(drive_verdicts(published, chain, accuracy))
-    findings.attrs.update(findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain)))
+    findings = (
+        findings.merge(flips)
+        .merge(cam_verdicts(published, chain, accuracy))
+        .merge(drive_verdicts(published, chain, accuracy))
+    )
+    findings.attrs.update(
+        findings_attrs("Heald paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, chain))
+    )
     # the parameters each model reads (for the report's tables, which leave the others out)
     findings.attrs.update({f"inputs_of_model_{m}": ",".join(names) for m, names in MODEL_INPUTS.items()})
     findings.attrs["notes"] = notes(chain, findings)
@@ -310,16 +515,31 @@ def notes(chain: xr.Dataset, findings: xr.Dataset) -> str:
     dwell cam's harmonics change and whether damped joints undo that (plain prose, for the report's summary)."""
     out = []
     if "threshold_reaction_ratio_A" in findings and "ratio_EF_min_self_consistent_A" in chain:
-        out.append(f"Model A's E/F claim holds only for an assumed split of the reactions of at least {float(findings.threshold_reaction_ratio_A):.4g} : 1; "
-                   f"with the mechanism's own (self-consistent) reactions the E/F ratio is {float(chain.ratio_EF_min_self_consistent_A):.3f} and the claim fails.")
+        out.append(
+            "Model A's E/F claim holds only for an assumed split of the reactions of at least"
+            f" {float(findings.threshold_reaction_ratio_A):.4g} : 1; with the mechanism's own (self-consistent)"
+            f" reactions the E/F ratio is {float(chain.ratio_EF_min_self_consistent_A):.3f} and the claim fails."
+        )
     if "verdict_cam_nominal" in findings:
-        pairs = [(m, c) for m in findings.model.values for c in findings.claim.values
-                 if findings.verdict_sine_nominal.sel(model=m, claim=c).item() != findings.verdict_cam_nominal.sel(model=m, claim=c).item()]
-        changed = [f"model {m}, {CLAIM_SHORT[str(c)]}: {findings.verdict_sine_nominal.sel(model=m, claim=c).item()} → {findings.verdict_cam_nominal.sel(model=m, claim=c).item()}"
-                   for m, c in pairs]
+        pairs = [
+            (m, c)
+            for m in findings.model.values
+            for c in findings.claim.values
+            if findings.verdict_sine_nominal.sel(model=m, claim=c).item()
+            != findings.verdict_cam_nominal.sel(model=m, claim=c).item()
+        ]
+        changed = [
+            f"model {m}, {CLAIM_SHORT[str(c)]}: {findings.verdict_sine_nominal.sel(model=m, claim=c).item()} →"
+            f" {findings.verdict_cam_nominal.sel(model=m, claim=c).item()}"
+            for m, c in pairs
+        ]
         if changed:
-            out.append("With a dwell cam's harmonics instead of the harmonic drive (all inputs at their assumed values) the verdict changes for "
-                       + "; ".join(changed) + ".")
+            out.append(
+                "With a dwell cam's harmonics instead of the harmonic drive (all inputs at their assumed values) the"
+                " verdict changes for "
+                + "; ".join(changed)
+                + "."
+            )
             out.extend(damped_cam_text(findings, m, c) for m, c in pairs)
     return " ".join(out)
 
@@ -330,9 +550,12 @@ def damped_cam_text(findings: xr.Dataset, model: str, claim: str) -> str:
     v = [findings.verdict_cam_by_joint_damping.sel(model=model, claim=claim, joint_damping=x).item() for x in d]
     dip = [float(findings.largest_dip_cam_by_joint_damping.sel(model=model, joint_damping=x)) for x in d]
     zeta = float(findings.joint_branch_damping_ratio.sel(model=model, joint_damping=d[-1]))
-    return (f"With the joints damped at the top of their assumed range ({d[-1]:g} N s/m, a damping ratio of {zeta:.3f}) the cam's verdict on "
-            f"model {model}, {CLAIM_SHORT[str(claim)]}, is {v[-1]} {'still' if v[-1] == v[0] else 'instead'}, and the largest fall of a peak joint force "
-            f"between neighbouring speeds shrinks from {dip[0]:.0%} to {dip[-1]:.2%}.")
+    return (
+        f"With the joints damped at the top of their assumed range ({d[-1]:g} N s/m, a damping ratio of {zeta:.3f}) the"
+        f" cam's verdict on model {model}, {CLAIM_SHORT[str(claim)]}, is {v[-1]}"
+        f" {'still' if v[-1] == v[0] else 'instead'}, and the largest fall of a peak joint force between neighbouring"
+        f" speeds shrinks from {dip[0]:.0%} to {dip[-1]:.2%}."
+    )
 
 
 def counts_in_words(table: pd.DataFrame, model: str) -> str:
@@ -340,15 +563,27 @@ def counts_in_words(table: pd.DataFrame, model: str) -> str:
     scenario (the drive at the shaft frequency), in words."""
     part = nominal_rows(table[(table.model == model) & (table.role == "headline")])
     numbers = ("no", "one", "two", "three", "four", "five", "six", "seven", "eight", "nine")
-    verbs = {"matches": ("matches", "match"), "deviates": ("deviates", "deviate"), "depends on assumptions": ("depends on assumptions", "depend on assumptions"),
-             "not reconciled": ("holds only under assumptions that fail the others", "hold only under assumptions that fail the others"),
-             "undetermined (numerics)": ("is undetermined by numerics", "are undetermined by numerics"), "not reproducible": ("is not reproducible", "are not reproducible")}
+    verbs = {
+        "matches": ("matches", "match"),
+        "deviates": ("deviates", "deviate"),
+        "depends on assumptions": ("depends on assumptions", "depend on assumptions"),
+        "not reconciled": (
+            "holds only under assumptions that fail the others",
+            "hold only under assumptions that fail the others",
+        ),
+        "undetermined (numerics)": ("is undetermined by numerics", "are undetermined by numerics"),
+        "not reproducible": ("is not reproducible", "are not reproducible"),
+    }
     parts = []
     for verdict, (one, many) in verbs.items():
         n = int((part.verdict == verdict).sum())
         if n:
             parts.append(f"{numbers[n] if n < len(numbers) else n} {one if n == 1 else many}")
-    return " and ".join([", ".join(parts[:-1]), parts[-1]]) if len(parts) > 1 else (parts[0] if parts else "none is judged")
+    return (
+        " and ".join([", ".join(parts[:-1]), parts[-1]])
+        if len(parts) > 1
+        else (parts[0] if parts else "none is judged")
+    )
 
 
 def answer(table: pd.DataFrame, chain: xr.Dataset) -> str:
@@ -358,9 +593,11 @@ def answer(table: pd.DataFrame, chain: xr.Dataset) -> str:
     both = (", and driving the frames at half the shaft frequency changes no verdict" if not len(changed) else
             f", and driving the frames at half the shaft frequency changes {len(changed)} of them")
     return (
-        f"The paper prints no parameter, so its three claims can only be tried over assumed ones: {counts_in_words(table, DEFENSIBLE)} "
-        f"on the physical linkage, {counts_in_words(table, PAPER_MODEL)} on the chain of its own eq. (2){both}. "
-        f"That eq. (2) is the chain's mobility only if the driven node carries no mass: with the rod's {float(chain.eq2_node_mass):.1f} kg on it the chain's "
-        f"lowest antiresonance moves from eq. (2)'s {float(chain.eq2_denominator_frequencies.min()):.2f} to {float(chain.eq2_node_mass_antiresonance):.2f} rad/s, "
-        "and between the two eq. (2) and the chain differ without bound."
+        "The paper prints no parameter, so its three claims can only be tried over assumed ones:"
+        f" {counts_in_words(table, DEFENSIBLE)} on the physical linkage, {counts_in_words(table, PAPER_MODEL)} on the"
+        f" chain of its own eq. (2){both}. That eq. (2) is the chain's mobility only if the driven node carries no"
+        f" mass: with the rod's {float(chain.eq2_node_mass):.1f} kg on it the chain's lowest antiresonance moves from"
+        f" eq. (2)'s {float(chain.eq2_denominator_frequencies.min()):.2f} to"
+        f" {float(chain.eq2_node_mass_antiresonance):.2f} rad/s, and between the two eq. (2) and the chain differ"
+        " without bound."
     )

@@ -33,9 +33,12 @@ def batch(cfg: Mapping[str, Any], published: Mapping[str, Any], index: int):
 
 
 def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[str, Any], workers: int = 1):
-    """Rule study: every batch, with each headline value's extremes over the box and the consistent sets (bounded searches)."""
+    """Rule study: every batch, with each headline value's extremes over the box and the consistent sets (bounded
+    searches)."""
     ins = inputs(cfg)
-    return gathered(ins, batches, "Heald: assumed chain parameters, propagated", searcher(cfg, published, ins, results), workers)
+    return gathered(
+        ins, batches, "Heald: assumed chain parameters, propagated", searcher(cfg, published, ins, results), workers
+    )
 
 
 def model_inputs(cfg: Mapping[str, Any], model: str) -> list[Input]:

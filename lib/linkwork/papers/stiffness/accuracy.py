@@ -33,12 +33,18 @@ def quadrature_accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, A
     for n in panels:
         approx = trapezoid_displacement((l1, l2, l3), members, forces, n)
         errors.append(float(np.max(np.abs(approx - exact) / exact)))
-        times[str(n)] = median_time(lambda n=n: trapezoid_displacement((l1, l2, l3), members, forces, n), acc["repeats"])
+        times[str(n)] = median_time(
+            lambda n=n: trapezoid_displacement((l1, l2, l3), members, forces, n), acc["repeats"]
+        )
     closed = median_time(lambda: unit_load_displacement((l1, l2, l3), members, forces), acc["repeats"])
     settings = [f"trapezoid {n} panels" for n in panels] + ["closed form"]
     ds = xr.Dataset(
         {
-            "error": ("panels", np.array(errors), {"units": "1", "long_name": "max relative error of x_O' (trapezoid vs closed form)"}),
+            "error": (
+                "panels",
+                np.array(errors),
+                {"units": "1", "long_name": "max relative error of x_O' (trapezoid vs closed form)"},
+            ),
             **summary_variables("stiffness quadrature", settings, [*errors, ROUNDING], "closed form"),
         },
         coords={"panels": ("panels", np.array(panels), {"units": "1", "long_name": "trapezoid panels per member"})},

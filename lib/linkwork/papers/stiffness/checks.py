@@ -21,7 +21,10 @@ def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
     """The forms the findings compare are computed; the grids divide a turn; the linkage assembles on both grids."""
     for needed in ("equilibrium", "tables"):  # the findings compare the defensible form with the paper's own
         if needed not in section["forms"]:
-            raise ConfigError(f"config key {key}.forms: value {section['forms']!r} lacks {needed!r} (the comparison needs the statics-consistent form and the paper's tables)")
+            raise ConfigError(
+                f"config key {key}.forms: value {section['forms']!r} lacks {needed!r} (the comparison needs the"
+                " statics-consistent form and the paper's tables)"
+            )
     linkage = section["linkage"]
     try:
         lw = linkage_from_config(linkage, section["numerics"]["assembly_tol"])
@@ -29,8 +32,10 @@ def check(section: Mapping[str, Any], key: str = "stiffness") -> None:
         raise ConfigError(f"config key {key}.linkage: {exc}") from None
     values = ", ".join(f"{k}={linkage[k]!r}" for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
     if change_point_distance(lw.lengths) < CHANGE_POINT_MARGIN:
-        raise ConfigError(f"config key {key}.linkage ({values}): within {CHANGE_POINT_MARGIN:.1%} of a change-point linkage (s + l = p + q): "
-                          "it passes a singular configuration every turn, where the energy method's stiffness is undefined")
+        raise ConfigError(
+            f"config key {key}.linkage ({values}): within {CHANGE_POINT_MARGIN:.1%} of a change-point linkage (s + l ="
+            " p + q): it passes a singular configuration every turn, where the energy method's stiffness is undefined"
+        )
     for grid_key in ("paper_step_deg", "fine_step_deg"):
         step = section["grids"][grid_key]
         if not divides_turn(step):

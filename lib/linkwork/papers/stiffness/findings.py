@@ -27,10 +27,19 @@ def implied_modulus(table: pd.DataFrame, youngs_modulus: float, forms: list[str]
     for i, form in enumerate(forms):
         part = rows[rows.model == form].set_index("id")
         values[i] = [youngs_modulus * part.published[q] / part.reproduced[q] for q in ids]
-    return xr.DataArray(values, dims=("implied_form", "stiffness_quantity"),
-                        coords={"implied_form": ("implied_form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"}),
-                                "stiffness_quantity": ("stiffness_quantity", np.array(ids, dtype=object), {"units": "1", "long_name": "published stiffness"})},
-                        attrs={"units": "Pa", "long_name": "Young's modulus the published stiffness implies"})
+    return xr.DataArray(
+        values,
+        dims=("implied_form", "stiffness_quantity"),
+        coords={
+            "implied_form": ("implied_form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"}),
+            "stiffness_quantity": (
+                "stiffness_quantity",
+                np.array(ids, dtype=object),
+                {"units": "1", "long_name": "published stiffness"},
+            ),
+        },
+        attrs={"units": "Pa", "long_name": "Young's modulus the published stiffness implies"},
+    )
 
 
 def _wrapped_deg(value: float) -> float:
@@ -48,16 +57,46 @@ def shown_deviations(headline: pd.DataFrame, forms: list[str]) -> dict[str, Any]
     values = np.full((len(forms), len(ids)), np.nan)
     for i, form in enumerate(forms):
         part = headline[headline.model == form].set_index("id")
-        values[i] = [_wrapped_deg(part.deviation[q]) if unit == "deg" else (part.reproduced[q] if unit == "ratio" else part.relative_deviation[q])
-                     for q, unit in zip(ids, units, strict=True)]
+        values[i] = [
+            (
+                _wrapped_deg(part.deviation[q])
+                if unit == "deg"
+                else (part.reproduced[q] if unit == "ratio" else part.relative_deviation[q])
+            )
+            for q, unit in zip(ids, units, strict=True)
+        ]
     return {
-        "coords": {"quantity_id": ("quantity_id", np.array(ids, dtype=object), {"units": "1", "long_name": "published headline number"}),
-                   "deviation_unit": ("quantity_id", np.array(units, dtype=object),
-                                      {"units": "1", "long_name": "what deviation_shown holds: deg (ours - published), 1 (relative deviation) or ratio (our value of a thresholded ratio itself)"})},
-        "deviation_shown": (("form", "quantity_id"), values, {"units": "deg, 1 or ratio (see deviation_unit)",
-                                                              "long_name": "ours against published: in degrees for crank angles (on the circle), our own max/min for a threshold claim "
-                                                                           "(a deviation from a threshold means nothing), relative to the published value otherwise",
-                                                              "nan_meaning": "no value: the form has no counterpart of this number (K_h of the pinned mechanism)"}),
+        "coords": {
+            "quantity_id": (
+                "quantity_id",
+                np.array(ids, dtype=object),
+                {"units": "1", "long_name": "published headline number"},
+            ),
+            "deviation_unit": (
+                "quantity_id",
+                np.array(units, dtype=object),
+                {
+                    "units": "1",
+                    "long_name": (
+                        "what deviation_shown holds: deg (ours - published), 1 (relative deviation) or ratio (our value"
+                        " of a thresholded ratio itself)"
+                    ),
+                },
+            ),
+        },
+        "deviation_shown": (
+            ("form", "quantity_id"),
+            values,
+            {
+                "units": "deg, 1 or ratio (see deviation_unit)",
+                "long_name": (
+                    "ours against published: in degrees for crank angles (on the circle), our own max/min for a"
+                    " threshold claim (a deviation from a threshold means nothing), relative to the published value"
+                    " otherwise"
+                ),
+                "nan_meaning": "no value: the form has no counterpart of this number (K_h of the pinned mechanism)",
+            },
+        ),
     }
 
 
@@ -98,28 +137,47 @@ def axial_statement(cfg: Mapping[str, Any], result: xr.Dataset) -> dict[str, Any
     threshold = float(cfg["axial_negligible_share"])
     share = result.axial_share_max
     return {
-        "axial_negligible_share": scalar(threshold, "1", "our reading of 'negligible': a share of the displacement below this"),
-        "axial_terms_negligible": (share.dims, (share.values < threshold).astype(int),
-                                   {"units": "1", "long_name": "1 if the axial share stays below the 'negligible' threshold at every frame"}),
-        "axial_share_largest": scalar(float(share.max()), "1", "largest axial share over forms, load cases and the paper's frames"),
-        "axial_share_largest_force": scalar(float(share.sel(load_case="unit force").max()), "1", "largest axial share of x_O' (forms with internal forces)"),
-        "axial_share_largest_moment": scalar(float(share.sel(load_case="unit moment").max()), "1", "largest axial share of phi_O' (forms with internal forces)"),
+        "axial_negligible_share": scalar(
+            threshold, "1", "our reading of 'negligible': a share of the displacement below this"
+        ),
+        "axial_terms_negligible": (
+            share.dims,
+            (share.values < threshold).astype(int),
+            {"units": "1", "long_name": "1 if the axial share stays below the 'negligible' threshold at every frame"},
+        ),
+        "axial_share_largest": scalar(
+            float(share.max()), "1", "largest axial share over forms, load cases and the paper's frames"
+        ),
+        "axial_share_largest_force": scalar(
+            float(share.sel(load_case="unit force").max()),
+            "1",
+            "largest axial share of x_O' (forms with internal forces)",
+        ),
+        "axial_share_largest_moment": scalar(
+            float(share.sel(load_case="unit moment").max()),
+            "1",
+            "largest axial share of phi_O' (forms with internal forces)",
+        ),
     }
 
 
 def material_statement(findings: xr.Dataset, result: xr.Dataset) -> str:
     """The one sentence (report and README) saying that the printed modulus and sections do not describe a steel
-    mechanism of these link lengths: steel's modulus against the printed one, each area's square side against its link."""
+    mechanism of these link lengths: steel's modulus against the printed one, each area's square side against its
+    link."""
     crank = result.sel(member="OA")
 
     def mm(values) -> str:
         return " and ".join(f"{float(v) * 1e3:.0f}" for v in values)
 
     rest = result.sel(member=["AB", "BO"])
-    return (f"E = {float(crank.youngs_modulus) / 1e6:g} MPa with A₁ = {float(crank.section_area) * 1e4:g} cm² does not describe a steel "
-            f"mechanism: steel's modulus is {float(findings.steel_factor):.0f} times the printed one, and A₁ is a square "
-            f"{float(crank.section_side) * 1e3:.0f} mm on a side on a {float(crank.member_length) * 1e3:.0f} mm crank "
-            f"(A₂, A₃: squares of {mm(rest.section_side.values)} mm on the {mm(rest.member_length.values)} mm coupler and rocker).")
+    return (
+        f"E = {float(crank.youngs_modulus) / 1e6:g} MPa with A₁ = {float(crank.section_area) * 1e4:g} cm² does not"
+        f" describe a steel mechanism: steel's modulus is {float(findings.steel_factor):.0f} times the printed one, and"
+        f" A₁ is a square {float(crank.section_side) * 1e3:.0f} mm on a side on a"
+        f" {float(crank.member_length) * 1e3:.0f} mm crank (A₂, A₃: squares of {mm(rest.section_side.values)} mm on the"
+        f" {mm(rest.member_length.values)} mm coupler and rocker)."
+    )
 
 
 #: The statics-consistent form is the defensible model; the paper's own model is its Tables 1-2 as printed.
@@ -138,7 +196,10 @@ def numerical_errors(published: Mapping[str, Any], result: xr.Dataset) -> dict[s
             out[qid] = (1e-10, "closed-form kinematics (loop closure below 1e-12 m, tests)")
         else:
             value = abs(float(entry["value"]))
-            out[qid] = (ROUNDING * value, "closed-form strain energy: float rounding (quadrature and a frame FE solve agree, tests)")
+            out[qid] = (
+                ROUNDING * value,
+                "closed-form strain energy: float rounding (quadrature and a frame FE solve agree, tests)",
+            )
     return out
 
 
@@ -198,7 +259,9 @@ def joint_verdicts(verdicts: Mapping[str, str]) -> dict[str, str]:
     return out
 
 
-def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
+def compare(
+    cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dataset
+) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table (every form of the paper's rigid frame, and the pinned mechanism) and the findings Dataset.
 
     No input of this paper is assumed: every length, section and modulus is printed, so each verdict rests on our
@@ -217,78 +280,184 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], result: xr.Dat
     numbers = headline[~headline.id.isin(CONCLUSION)]
     used = float(cfg["members"]["OA"]["youngs_modulus_Pa"])
     data: dict[str, Any] = {
-        "table3_matches": scalar((first.verdict == "matches").sum(), "1", "Table 3 angles within half the printed digit"),
+        "table3_matches": scalar(
+            (first.verdict == "matches").sum(), "1", "Table 3 angles within half the printed digit"
+        ),
         "table3_total": scalar(len(first), "1", "Table 3 angles compared"),
-        "table3_max_deviation_beta": scalar(first[first.id.str.contains("beta")].deviation.abs().max(), "deg", "largest |deviation| of beta in Table 3"),
-        "table3_max_deviation_gamma": scalar(first[first.id.str.contains("gamma")].deviation.abs().max(), "deg", "largest |deviation| of gamma in Table 3"),
-        "headline_matches": ("form", [int((numbers[numbers.model == f].verdict == "matches").sum()) for f in forms],
-                             {"units": "1", "long_name": "published stiffness numbers (extremes, their angles, means; the conclusion apart) within rounding, per form"}),
-        "headline_total": ("form", [int((numbers.model == f).sum()) for f in forms],
-                           {"units": "1", "long_name": "published stiffness numbers compared (the conclusion apart), per form"}),
+        "table3_max_deviation_beta": scalar(
+            first[first.id.str.contains("beta")].deviation.abs().max(), "deg", "largest |deviation| of beta in Table 3"
+        ),
+        "table3_max_deviation_gamma": scalar(
+            first[first.id.str.contains("gamma")].deviation.abs().max(),
+            "deg",
+            "largest |deviation| of gamma in Table 3",
+        ),
+        "headline_matches": (
+            "form",
+            [int((numbers[numbers.model == f].verdict == "matches").sum()) for f in forms],
+            {
+                "units": "1",
+                "long_name": (
+                    "published stiffness numbers (extremes, their angles, means; the conclusion apart) within rounding,"
+                    " per form"
+                ),
+            },
+        ),
+        "headline_total": (
+            "form",
+            [int((numbers.model == f).sum()) for f in forms],
+            {"units": "1", "long_name": "published stiffness numbers compared (the conclusion apart), per form"},
+        ),
         "used_youngs_modulus": scalar(used, "Pa", "Young's modulus used (as printed)"),
-        "steel_factor": scalar(float(cfg["steel_youngs_modulus_Pa"]["value"]) / used, "1", "steel's modulus over the printed one: the factor every stiffness would grow by"),
+        "steel_factor": scalar(
+            float(cfg["steel_youngs_modulus_Pa"]["value"]) / used,
+            "1",
+            "steel's modulus over the printed one: the factor every stiffness would grow by",
+        ),
     }
     if "printed" in forms:
-        kc = headline[(headline.model == "printed") & headline.id.isin(["K_c_min", "K_c_max", "K_c_mean"])].relative_deviation.abs()
-        data["printed_K_c_deviation_min"] = scalar(kc.min(), "1", "smallest |relative deviation| of the literal eq. (14) from the published K_c")
-        data["printed_K_c_deviation_max"] = scalar(kc.max(), "1", "largest |relative deviation| of the literal eq. (14) from the published K_c")
+        kc = headline[
+            (headline.model == "printed") & headline.id.isin(["K_c_min", "K_c_max", "K_c_mean"])
+        ].relative_deviation.abs()
+        data["printed_K_c_deviation_min"] = scalar(
+            kc.min(), "1", "smallest |relative deviation| of the literal eq. (14) from the published K_c"
+        )
+        data["printed_K_c_deviation_max"] = scalar(
+            kc.max(), "1", "largest |relative deviation| of the literal eq. (14) from the published K_c"
+        )
     if {"printed", "tables"} <= set(forms):
         same = float(np.max(np.abs(result.K_h.sel(form="printed") / result.K_h.sel(form="tables") - 1)))
-        data["printed_K_h_same_as_tables"] = scalar(same < 1e3 * ROUNDING, "1", "1 if eq. (8) as printed gives the K_h of Tables 1-2 to rounding at every frame")
+        data["printed_K_h_same_as_tables"] = scalar(
+            same < 1e3 * ROUNDING, "1", "1 if eq. (8) as printed gives the K_h of Tables 1-2 to rounding at every frame"
+        )
     implied = implied_modulus(headline, used, [f for f in ("tables", "equilibrium") if f in forms])
     data["implied_youngs_modulus"] = implied
     if "tables" in forms:
-        data["implied_youngs_modulus_tables_min"] = scalar(implied.sel(implied_form="tables").min(), "Pa", "smallest modulus implied, paper's own model")
-        data["implied_youngs_modulus_tables_max"] = scalar(implied.sel(implied_form="tables").max(), "Pa", "largest modulus implied, paper's own model")
-    jump = float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force")) if PAPER_MODEL in forms else 0.0
-    data["tables_in_equilibrium"] = scalar(jump <= EQUILIBRIUM_JUMP, "1", f"1 if the paper's tables give no moment jump at B above {EQUILIBRIUM_JUMP:g} N m per N")
-    data["tables_moment_jump"] = scalar(jump, "N m per N",
-                                        "largest jump of the bending moment at the rigid joint B in the paper's tables (unit force)")
+        data["implied_youngs_modulus_tables_min"] = scalar(
+            implied.sel(implied_form="tables").min(), "Pa", "smallest modulus implied, paper's own model"
+        )
+        data["implied_youngs_modulus_tables_max"] = scalar(
+            implied.sel(implied_form="tables").max(), "Pa", "largest modulus implied, paper's own model"
+        )
+    jump = (
+        float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force")) if PAPER_MODEL in forms else 0.0
+    )
+    data["tables_in_equilibrium"] = scalar(
+        jump <= EQUILIBRIUM_JUMP,
+        "1",
+        f"1 if the paper's tables give no moment jump at B above {EQUILIBRIUM_JUMP:g} N m per N",
+    )
+    data["tables_moment_jump"] = scalar(
+        jump, "N m per N", "largest jump of the bending moment at the rigid joint B in the paper's tables (unit force)"
+    )
     conclusion = headline[headline.id.isin(CONCLUSION)]
     verdicts = conclusion_verdicts(table, forms)
-    data["conclusion_holds"] = ("form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
-                                {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"})
-    data["conclusion_verdict"] = ("form", np.array(verdicts, dtype=object),
-                                  {"units": "1", "long_name": "the paper's conclusion (neither stiffness is constant) as one verdict per form, from its K_h and K_c claims"})
+    data["conclusion_holds"] = (
+        "form",
+        [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
+        {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"},
+    )
+    data["conclusion_verdict"] = (
+        "form",
+        np.array(verdicts, dtype=object),
+        {
+            "units": "1",
+            "long_name": (
+                "the paper's conclusion (neither stiffness is constant) as one verdict per form, from its K_h and K_c"
+                " claims"
+            ),
+        },
+    )
     by_joints = joint_verdicts(dict(zip(forms, verdicts, strict=True)))
-    data["conclusion_by_joints"] = ("joint_model", np.array([by_joints[j] for j in JOINT_MODELS], dtype=object),
-                                    {"units": "1", "long_name": "the paper's conclusion per joint model (the scenario that decides it)"})
-    data["conclusion_decided_by_joints"] = scalar(len(set(by_joints.values())) > 1, "1",
-                                                  "1 if the joint model (welded or pinned) changes the conclusion's verdict")
-    data["conclusion_counted_for_defensible"] = ((), physical_verdict(dict(zip(forms, verdicts, strict=True))), {"units": "1", "long_name": (
-        "the conclusion's verdict counted in the defensible model's block: over the joint model (welded or pinned), which decides it")})
-    data["pinned_K_h_exists"] = scalar(0, "1", "0: K_h has no pinned counterpart (the pinned chain with O' free is a mechanism)")
+    data["conclusion_by_joints"] = (
+        "joint_model",
+        np.array([by_joints[j] for j in JOINT_MODELS], dtype=object),
+        {"units": "1", "long_name": "the paper's conclusion per joint model (the scenario that decides it)"},
+    )
+    data["conclusion_decided_by_joints"] = scalar(
+        len(set(by_joints.values())) > 1,
+        "1",
+        "1 if the joint model (welded or pinned) changes the conclusion's verdict",
+    )
+    data["conclusion_counted_for_defensible"] = (
+        (),
+        physical_verdict(dict(zip(forms, verdicts, strict=True))),
+        {
+            "units": "1",
+            "long_name": (
+                "the conclusion's verdict counted in the defensible model's block: over the joint model (welded or"
+                " pinned), which decides it"
+            ),
+        },
+    )
+    data["pinned_K_h_exists"] = scalar(
+        0, "1", "0: K_h has no pinned counterpart (the pinned chain with O' free is a mechanism)"
+    )
     data["pinned_free_mobility"] = scalar(int(result.mobility.isel(mobility_case=0)), "1",
                                           "mobility of the pinned chain with the crank held and O' free")
     ratios = np.array([float(result[f"{k}_max_over_min"].sel(form=f)) for k in ("K_h", "K_c") for f in welded])
-    data["welded_max_over_min_least"] = scalar(ratios.min(), "1", "smallest max/min of K_h or K_c over the paper's frames, welded forms")
-    data["welded_max_over_min_most"] = scalar(ratios.max(), "1", "largest max/min of K_h or K_c over the paper's frames, welded forms")
+    data["welded_max_over_min_least"] = scalar(
+        ratios.min(), "1", "smallest max/min of K_h or K_c over the paper's frames, welded forms"
+    )
+    data["welded_max_over_min_most"] = scalar(
+        ratios.max(), "1", "largest max/min of K_h or K_c over the paper's frames, welded forms"
+    )
     data["pinned_max_over_min"] = scalar(float(result.K_pinned_max_over_min), "1",
                                          "max/min of the pinned output stiffness over the paper's frames")
-    data["table3_all_match"] = scalar(bool((first.verdict == "matches").all()), "1", "1 if every Table 3 angle is reproduced within half the printed digit")
+    data["table3_all_match"] = scalar(
+        bool((first.verdict == "matches").all()),
+        "1",
+        "1 if every Table 3 angle is reproduced within half the printed digit",
+    )
     if "implied_youngs_modulus_tables_min" in data:
         lo, hi = (float(data[k][1]) for k in ("implied_youngs_modulus_tables_min", "implied_youngs_modulus_tables_max"))
-        data["implies_printed_modulus"] = scalar(abs(lo / used - 1) < IMPLIED_MODULUS_RTOL and abs(hi / used - 1) < IMPLIED_MODULUS_RTOL, "1",
-                                                 f"1 if every published stiffness implies the printed modulus within {IMPLIED_MODULUS_RTOL:.0%}")
+        data["implies_printed_modulus"] = scalar(
+            abs(lo / used - 1) < IMPLIED_MODULUS_RTOL and abs(hi / used - 1) < IMPLIED_MODULUS_RTOL,
+            "1",
+            f"1 if every published stiffness implies the printed modulus within {IMPLIED_MODULUS_RTOL:.0%}",
+        )
     data.update(axial_statement(cfg, result))
     deviations = shown_deviations(headline, forms)
     claim = table[(table.model == forms[0]) & (table.id == "K_c_not_constant")]
     if len(claim):
         limit = float(claim.published.iloc[0] - claim.tolerance.iloc[0])
-        data["conclusion_ratio_threshold"] = scalar(limit, "1", "max/min that the conclusion claims read as 'varies considerably' (published yaml)")
-        data["pinned_varies_considerably"] = scalar(float(result.K_pinned_max_over_min) >= limit, "1",
-                                                    "1 if the pinned output stiffness varies considerably by the same reading (max/min over the frames)")
-    coords = {"form": ("form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form (pinned: the real mechanism, crank held)"}),
-              "joints": ("form", np.array([joint_model(f) for f in forms], dtype=object), {"units": "1", "long_name": "joint model of the form: welded or pinned"}),
-              "joint_model": ("joint_model", np.array(JOINT_MODELS, dtype=object), {"units": "1", "long_name": "joints A and B welded (the paper) or pinned (the machine)"}),
-              **deviations.pop("coords")}
+        data["conclusion_ratio_threshold"] = scalar(
+            limit, "1", "max/min that the conclusion claims read as 'varies considerably' (published yaml)"
+        )
+        data["pinned_varies_considerably"] = scalar(
+            float(result.K_pinned_max_over_min) >= limit,
+            "1",
+            "1 if the pinned output stiffness varies considerably by the same reading (max/min over the frames)",
+        )
+    coords = {
+        "form": (
+            "form",
+            np.array(forms, dtype=object),
+            {"units": "1", "long_name": "model form (pinned: the real mechanism, crank held)"},
+        ),
+        "joints": (
+            "form",
+            np.array([joint_model(f) for f in forms], dtype=object),
+            {"units": "1", "long_name": "joint model of the form: welded or pinned"},
+        ),
+        "joint_model": (
+            "joint_model",
+            np.array(JOINT_MODELS, dtype=object),
+            {"units": "1", "long_name": "joints A and B welded (the paper) or pinned (the machine)"},
+        ),
+        **deviations.pop("coords"),
+    }
     coords.update({c: result[c] for c in ("force_form", "load_case")})
     findings = xr.Dataset({**data, **deviations}, coords=coords)
     counts = counts_dataset(conclusion_counted_once(table, forms, physical={DEFENSIBLE: PINNED}))
-    counts.verdict_count.attrs["long_name"] = ("comparison rows per model, role and verdict class; the conclusion's two claims count as one row "
-                                               "per form, and the defensible model's block counts it over the joint model (welded or pinned)")
+    counts.verdict_count.attrs["long_name"] = (
+        "comparison rows per model, role and verdict class; the conclusion's two claims count as one row "
+        "per form, and the defensible model's block counts it over the joint model (welded or pinned)"
+    )
     findings = findings.merge(counts)
-    attrs = findings_attrs("Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result))
+    attrs = findings_attrs(
+        "Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result)
+    )
     attrs["material_statement"] = material_statement(findings, result)
     attrs["extremes_grid"] = result.attrs["extremes_grid"]
     findings.attrs.update(attrs)
@@ -319,22 +488,34 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str
         size = fair.set_index("id").relative_deviation.abs()
         stiff = [i for i in size.index if i in ("K_h_max", "K_h_min", "K_c_min", "K_c_max")]
         means = [i for i in size.index if i.endswith("_mean")]
-        first += (f", which are not in equilibrium (a sign error in the coupler's bending moment): with internal forces from "
-                  f"statics {'none' if n_fair == 0 else n_fair} of the {total} match (the means within "
-                  f"{100 * size[means].max():.1f} %, the extremes off by up to {100 * size[stiff].max():.0f} %).")
+        first += (
+            ", which are not in equilibrium (a sign error in the coupler's bending moment): with internal forces from "
+            f"statics {'none' if n_fair == 0 else n_fair} of the {total} match (the means within "
+            f"{100 * size[means].max():.1f} %, the extremes off by up to {100 * size[stiff].max():.0f} %)."
+        )
     else:
         first += ", and those tables are in equilibrium."
     by_joints = dict(zip(JOINT_MODELS, findings.conclusion_by_joints.values, strict=True))
     limit = float(findings.conclusion_ratio_threshold)
-    span = f"max/min {float(findings.welded_max_over_min_least):.2f}–{float(findings.welded_max_over_min_most):.2f} over the turn"
-    pinned = (f"in a model with pinned joints and the crank held the rotational stiffness at the output shaft varies by max/min "
-              f"{float(findings.pinned_max_over_min):.2f}, {'at least' if bool(findings.pinned_varies_considerably) else 'below'} the "
-              f"{limit:g} we read as 'varies considerably', and the linear stiffness has no counterpart")
+    span = (
+        f"max/min {float(findings.welded_max_over_min_least):.2f}–{float(findings.welded_max_over_min_most):.2f} over"
+        " the turn"
+    )
+    pinned = (
+        "in a model with pinned joints and the crank held the rotational stiffness at the output shaft varies by"
+        f" max/min {float(findings.pinned_max_over_min):.2f},"
+        f" {'at least' if bool(findings.pinned_varies_considerably) else 'below'} the {limit:g} we read as 'varies"
+        " considerably', and the linear stiffness has no counterpart"
+    )
     if by_joints["welded"] == "matches" and by_joints["pinned"] == "deviates":
-        second = (f"Whether the conclusion that neither stiffness is constant holds depends on the joint model: it holds with the joints "
-                  f"welded, as the paper models them ({span}), while {pinned}.")
+        second = (
+            "Whether the conclusion that neither stiffness is constant holds depends on the joint model: it holds with"
+            f" the joints welded, as the paper models them ({span}), while {pinned}."
+        )
     else:
         welded = "holds" if by_joints["welded"] == "matches" else f"is '{by_joints['welded']}'"
-        second = (f"The conclusion that neither stiffness is constant {welded} with the joints welded ({span}); {pinned}, "
-                  f"so with the joints pinned it is '{by_joints['pinned']}'.")
+        second = (
+            f"The conclusion that neither stiffness is constant {welded} with the joints welded ({span}); {pinned}, "
+            f"so with the joints pinned it is '{by_joints['pinned']}'."
+        )
     return f"{first} {second}"

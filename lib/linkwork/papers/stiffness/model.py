@@ -255,7 +255,10 @@ def equivalent_stiffness(
 
 
 def trapezoid_displacement(
-    lengths: tuple[float, float, float], sections: tuple[Section, Section, Section], forces: tuple[MemberForces, ...], panels: int
+    lengths: tuple[float, float, float],
+    sections: tuple[Section, Section, Section],
+    forces: tuple[MemberForces, ...],
+    panels: int,
 ) -> FloatArray:
     """The unit-load displacement by the composite trapezoid rule with ``panels`` panels per member.
 
@@ -265,7 +268,9 @@ def trapezoid_displacement(
     for length, sec, f in zip(lengths, sections, forces, strict=True):
         x = np.linspace(0.0, length, panels + 1)
         m = np.asarray(f.m0)[..., None] + np.asarray(f.m1)[..., None] * x
-        density = np.asarray(f.axial)[..., None] ** 2 / (sec.youngs_modulus * sec.area) + m**2 / (sec.youngs_modulus * sec.second_moment)
+        density = np.asarray(f.axial)[..., None] ** 2 / (sec.youngs_modulus * sec.area) + m**2 / (
+            sec.youngs_modulus * sec.second_moment
+        )
         total = total + np.trapezoid(density, x, axis=-1)
     return np.asarray(total, dtype=float)
 
@@ -330,7 +335,9 @@ def planar_mobility(bodies: int, pins: int) -> int:
     A body welded to the frame (the crank held by the drive) is part of the frame.
     """
     if bodies < 1 or pins < 0:
-        raise ValueError(f"a chain needs at least the frame and no negative pin count, got {bodies} bodies, {pins} pins")
+        raise ValueError(
+            f"a chain needs at least the frame and no negative pin count, got {bodies} bodies, {pins} pins"
+        )
     return 3 * (bodies - 1) - 2 * pins
 
 

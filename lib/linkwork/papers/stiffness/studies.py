@@ -56,13 +56,31 @@ def _grid_variables(cfg: Mapping[str, Any], step_deg: float, suffix: str) -> dic
     dim = "crank_angle" + suffix
     curves = [equivalent_stiffness(linkage, members, np.radians(alpha_deg), form) for form in cfg["forms"]]
     first = curves[0]
-    coord = xr.DataArray(alpha_deg, dims=dim, attrs={"units": "deg", "long_name": f"crank angle alpha ({step_deg:g} deg grid)"})
+    coord = xr.DataArray(
+        alpha_deg, dims=dim, attrs={"units": "deg", "long_name": f"crank angle alpha ({step_deg:g} deg grid)"}
+    )
     return {
         "coords": {dim: coord},
-        "beta" + suffix: xr.DataArray(np.degrees(first.beta), dims=dim, attrs={"units": "deg", "long_name": "rocker angle beta = 180 deg - direction of O'B"}),
-        "gamma" + suffix: xr.DataArray(np.degrees(first.gamma), dims=dim, attrs={"units": "deg", "long_name": "coupler angle gamma = direction of AB"}),
-        "K_h" + suffix: xr.DataArray(np.stack([c.linear for c in curves]), dims=("form", dim), attrs={"units": "N m-1", "long_name": "equivalent linear stiffness K_h = 1/x_O'"}),
-        "K_c" + suffix: xr.DataArray(np.stack([c.rotational for c in curves]), dims=("form", dim), attrs={"units": "N m rad-1", "long_name": "equivalent rotational stiffness K_c = 1/phi_O'"}),
+        "beta" + suffix: xr.DataArray(
+            np.degrees(first.beta),
+            dims=dim,
+            attrs={"units": "deg", "long_name": "rocker angle beta = 180 deg - direction of O'B"},
+        ),
+        "gamma" + suffix: xr.DataArray(
+            np.degrees(first.gamma),
+            dims=dim,
+            attrs={"units": "deg", "long_name": "coupler angle gamma = direction of AB"},
+        ),
+        "K_h" + suffix: xr.DataArray(
+            np.stack([c.linear for c in curves]),
+            dims=("form", dim),
+            attrs={"units": "N m-1", "long_name": "equivalent linear stiffness K_h = 1/x_O'"},
+        ),
+        "K_c" + suffix: xr.DataArray(
+            np.stack([c.rotational for c in curves]),
+            dims=("form", dim),
+            attrs={"units": "N m rad-1", "long_name": "equivalent rotational stiffness K_c = 1/phi_O'"},
+        ),
     }
 
 
@@ -70,7 +88,10 @@ def _load_case_forces(cfg: Mapping[str, Any], form: str, alpha: np.ndarray):
     linkage, _ = linkage_and_sections(cfg)
     a, b, g = paper_angles(linkage, alpha)
     l1, _, _, l4 = linkage.lengths
-    return {"unit force": unit_force_internal_forces(l1, a, b, g, form), "unit moment": unit_moment_internal_forces(l1, l4, a, b, g, form)}
+    return {
+        "unit force": unit_force_internal_forces(l1, a, b, g, form),
+        "unit moment": unit_moment_internal_forces(l1, l4, a, b, g, form),
+    }
 
 
 def continuity_and_axial(cfg: Mapping[str, Any]) -> dict[str, xr.DataArray]:
@@ -92,12 +113,32 @@ def continuity_and_axial(cfg: Mapping[str, Any]) -> dict[str, xr.DataArray]:
     unit = "N m per unit load (N for the force case, N m for the moment case)"
     return {
         "coords": {
-            "force_form": ("force_form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form defined by internal forces"}),
-            "load_case": ("load_case", np.array(LOAD_CASES, dtype=object), {"units": "1", "long_name": "unit load at O'"}),
+            "force_form": (
+                "force_form",
+                np.array(forms, dtype=object),
+                {"units": "1", "long_name": "model form defined by internal forces"},
+            ),
+            "load_case": (
+                "load_case",
+                np.array(LOAD_CASES, dtype=object),
+                {"units": "1", "long_name": "unit load at O'"},
+            ),
         },
-        "moment_jump_B": (dims, jump, {"units": unit, "long_name": "largest jump of |M| at the rigid joint B over the paper's frames"}),
-        "moment_BO_at_B": (dims, moment_b, {"units": unit, "long_name": "largest |M| in BO' at B over the paper's frames"}),
-        "axial_share_max": (dims, share, {"units": "1", "long_name": "largest axial share of the unit-load displacement over the paper's frames"}),
+        "moment_jump_B": (
+            dims,
+            jump,
+            {"units": unit, "long_name": "largest jump of |M| at the rigid joint B over the paper's frames"},
+        ),
+        "moment_BO_at_B": (
+            dims,
+            moment_b,
+            {"units": unit, "long_name": "largest |M| in BO' at B over the paper's frames"},
+        ),
+        "axial_share_max": (
+            dims,
+            share,
+            {"units": "1", "long_name": "largest axial share of the unit-load displacement over the paper's frames"},
+        ),
     }
 
 
@@ -121,8 +162,11 @@ def variation(ds: xr.Dataset) -> dict[str, Any]:
         v = ds[var]
         values = _statistics(v, ds.crank_angle, "crank_angle")
         for stat, (text, stat_unit) in STATISTICS.items():
-            out[f"{var}_{stat}"] = xr.DataArray(np.asarray(values[stat].values, dtype=float), dims="form",
-                                                attrs={"units": stat_unit or v.attrs["units"], "long_name": f"{var} {text} (over the paper's frames)"})
+            out[f"{var}_{stat}"] = xr.DataArray(
+                np.asarray(values[stat].values, dtype=float),
+                dims="form",
+                attrs={"units": stat_unit or v.attrs["units"], "long_name": f"{var} {text} (over the paper's frames)"},
+            )
     return out
 
 
@@ -137,20 +181,51 @@ def pinned(cfg: Mapping[str, Any], ds: xr.Dataset) -> dict[str, Any]:
     k = xr.DataArray(1.0 / parts.sum(axis=-1), dims="crank_angle", attrs={"units": "N m rad-1", "long_name": name})
     out: dict[str, Any] = {
         "K_pinned": k,
-        "K_pinned_fine": xr.DataArray(1.0 / fine, dims="crank_angle_fine", attrs={"units": "N m rad-1", "long_name": name}),
-        "pinned_share_max": xr.DataArray((parts / parts.sum(axis=-1, keepdims=True)).max(axis=0), dims="pinned_part",
-                                         attrs={"units": "1", "long_name": "largest share of each part in the pinned output's compliance over the paper's frames"}),
-        "pinned_share_min": xr.DataArray((parts / parts.sum(axis=-1, keepdims=True)).min(axis=0), dims="pinned_part",
-                                         attrs={"units": "1", "long_name": "smallest share of each part in the pinned output's compliance over the paper's frames"}),
+        "K_pinned_fine": xr.DataArray(
+            1.0 / fine, dims="crank_angle_fine", attrs={"units": "N m rad-1", "long_name": name}
+        ),
+        "pinned_share_max": xr.DataArray(
+            (parts / parts.sum(axis=-1, keepdims=True)).max(axis=0),
+            dims="pinned_part",
+            attrs={
+                "units": "1",
+                "long_name": "largest share of each part in the pinned output's compliance over the paper's frames",
+            },
+        ),
+        "pinned_share_min": xr.DataArray(
+            (parts / parts.sum(axis=-1, keepdims=True)).min(axis=0),
+            dims="pinned_part",
+            attrs={
+                "units": "1",
+                "long_name": "smallest share of each part in the pinned output's compliance over the paper's frames",
+            },
+        ),
     }
     values = _statistics(k, ds.crank_angle, "crank_angle")
     for stat, (text, stat_unit) in STATISTICS.items():
-        out[f"K_pinned_{stat}"] = xr.DataArray(float(values[stat]), attrs={"units": stat_unit or "N m rad-1", "long_name": f"pinned output stiffness {text} (over the paper's frames)"})
+        out[f"K_pinned_{stat}"] = xr.DataArray(
+            float(values[stat]),
+            attrs={
+                "units": stat_unit or "N m rad-1",
+                "long_name": f"pinned output stiffness {text} (over the paper's frames)",
+            },
+        )
     ratio = k / ds.K_c
-    out["K_pinned_over_K_c_min"] = xr.DataArray(ratio.min("crank_angle").values, dims="form", attrs={"units": "1", "long_name": "smallest K_pinned / K_c over the paper's frames"})
-    out["K_pinned_over_K_c_max"] = xr.DataArray(ratio.max("crank_angle").values, dims="form", attrs={"units": "1", "long_name": "largest K_pinned / K_c over the paper's frames"})
-    out["mobility"] = xr.DataArray(np.array([planar_mobility(*c) for c in MOBILITY_CASES.values()]), dims="mobility_case",
-                                   attrs={"units": "1", "long_name": "Grübler mobility 3 (bodies - 1) - 2 pins"})
+    out["K_pinned_over_K_c_min"] = xr.DataArray(
+        ratio.min("crank_angle").values,
+        dims="form",
+        attrs={"units": "1", "long_name": "smallest K_pinned / K_c over the paper's frames"},
+    )
+    out["K_pinned_over_K_c_max"] = xr.DataArray(
+        ratio.max("crank_angle").values,
+        dims="form",
+        attrs={"units": "1", "long_name": "largest K_pinned / K_c over the paper's frames"},
+    )
+    out["mobility"] = xr.DataArray(
+        np.array([planar_mobility(*c) for c in MOBILITY_CASES.values()]),
+        dims="mobility_case",
+        attrs={"units": "1", "long_name": "Grübler mobility 3 (bodies - 1) - 2 pins"},
+    )
     return out
 
 
@@ -162,10 +237,22 @@ def sections_size(cfg: Mapping[str, Any]) -> dict[str, Any]:
     side = np.sqrt(area)
     return {
         "member_length": xr.DataArray(lengths, dims="member", attrs={"units": "m", "long_name": "member length"}),
-        "section_area": xr.DataArray(area, dims="member", attrs={"units": "m2", "long_name": "printed cross-section area"}),
-        "section_side": xr.DataArray(side, dims="member", attrs={"units": "m", "long_name": "side of a square of the printed area"}),
-        "section_side_over_length": xr.DataArray(side / lengths, dims="member", attrs={"units": "1", "long_name": "square side of the printed area over the member's length"}),
-        "youngs_modulus": xr.DataArray(np.array([m.youngs_modulus for m in members]), dims="member", attrs={"units": "Pa", "long_name": "Young's modulus as printed"}),
+        "section_area": xr.DataArray(
+            area, dims="member", attrs={"units": "m2", "long_name": "printed cross-section area"}
+        ),
+        "section_side": xr.DataArray(
+            side, dims="member", attrs={"units": "m", "long_name": "side of a square of the printed area"}
+        ),
+        "section_side_over_length": xr.DataArray(
+            side / lengths,
+            dims="member",
+            attrs={"units": "1", "long_name": "square side of the printed area over the member's length"},
+        ),
+        "youngs_modulus": xr.DataArray(
+            np.array([m.youngs_modulus for m in members]),
+            dims="member",
+            attrs={"units": "Pa", "long_name": "Young's modulus as printed"},
+        ),
     }
 
 
@@ -176,19 +263,42 @@ def stiffness(cfg: Mapping[str, Any]) -> xr.Dataset:
     forms = list(cfg["forms"])
     analysis = continuity_and_axial(cfg)
     coords = {
-        **paper.pop("coords"), **fine.pop("coords"), **analysis.pop("coords"),
-        "form": xr.DataArray(np.array(forms, dtype=object), dims="form",
-                             attrs={"units": "1", "long_name": "; ".join(f"{f}: {FORM_DESCRIPTIONS[f]}" for f in forms)}),
+        **paper.pop("coords"),
+        **fine.pop("coords"),
+        **analysis.pop("coords"),
+        "form": xr.DataArray(
+            np.array(forms, dtype=object),
+            dims="form",
+            attrs={"units": "1", "long_name": "; ".join(f"{f}: {FORM_DESCRIPTIONS[f]}" for f in forms)},
+        ),
     }
-    coords["pinned_part"] = ("pinned_part", np.array(PINNED_PARTS, dtype=object), {"units": "1", "long_name": "part of the pinned output's compliance"})
-    coords["mobility_case"] = ("mobility_case", np.array(list(MOBILITY_CASES), dtype=object), {"units": "1", "long_name": "mechanism (bodies counted with the frame)"})
-    coords["member"] = ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member (BO: the rocker BO')"})
+    coords["pinned_part"] = (
+        "pinned_part",
+        np.array(PINNED_PARTS, dtype=object),
+        {"units": "1", "long_name": "part of the pinned output's compliance"},
+    )
+    coords["mobility_case"] = (
+        "mobility_case",
+        np.array(list(MOBILITY_CASES), dtype=object),
+        {"units": "1", "long_name": "mechanism (bodies counted with the frame)"},
+    )
+    coords["member"] = (
+        "member",
+        np.array(MEMBERS, dtype=object),
+        {"units": "1", "long_name": "member (BO: the rocker BO')"},
+    )
     ds = xr.Dataset({**paper, **fine, **analysis}, coords=coords)
     ds = ds.assign(variation(ds))
     ds = ds.assign(pinned(cfg, ds))
     ds = ds.assign(sections_size(cfg))
     frames = ds.sizes["crank_angle"]
-    ds.attrs.update(title="Equivalent stiffness of the needle crank-rocker (energy method)", assembly_tol=cfg["numerics"]["assembly_tol"],
-                    extremes_grid=f"the paper's {frames} frames ({cfg['grids']['paper_step_deg']:g} deg grid); the {cfg['grids']['fine_step_deg']:g} deg grid only draws curves",
-                    frames=frames)
+    ds.attrs.update(
+        title="Equivalent stiffness of the needle crank-rocker (energy method)",
+        assembly_tol=cfg["numerics"]["assembly_tol"],
+        extremes_grid=(
+            f"the paper's {frames} frames ({cfg['grids']['paper_step_deg']:g} deg grid); the"
+            f" {cfg['grids']['fine_step_deg']:g} deg grid only draws curves"
+        ),
+        frames=frames,
+    )
     return ds

@@ -41,11 +41,19 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     for kind in kinds:
         for level in levels:
             disc = discretisation(cfg, kind=kind, elements=tuple(base * level))
-            runs[(kind, level)], times[f"{kind} x{level}"] = run_and_time(lambda disc=disc: solve(cfg, d, "quasi-static", theta, disc=disc), acc["repeats"])
+            runs[(kind, level)], times[f"{kind} x{level}"] = run_and_time(
+                lambda disc=disc: solve(cfg, d, "quasi-static", theta, disc=disc), acc["repeats"]
+            )
     # the reference (a much finer quintic mesh) only where the peaks are: near the finest studied mesh's maxima
     finest = runs[("quintic8", max(levels))] if "quintic8" in kinds else runs[(kinds[0], max(levels))]
     window = reference_angles(finest, acc["reference_window"])
-    ref_r = solve(cfg, d, "quasi-static", theta[window], disc=discretisation(cfg, kind="quintic8", elements=tuple(base * acc["reference_refinement"])))
+    ref_r = solve(
+        cfg,
+        d,
+        "quasi-static",
+        theta[window],
+        disc=discretisation(cfg, kind="quintic8", elements=tuple(base * acc["reference_refinement"])),
+    )
     ref_tip, ref_stress = np.abs(ref_r.tip[:, 1]).max(), ref_r.stress.max()
     tip_err, stress_err, dofs = (np.empty((len(kinds), len(levels))) for _ in range(3))
     for i, kind in enumerate(kinds):
@@ -64,27 +72,57 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
         tip, stress = ked_modal(mech, disc, d, mat, np.radians(theta), n, gravity)
         modal_tip.append(abs(np.abs(tip[:, 1]).max() - np.abs(full.tip[:, 1]).max()) / np.abs(full.tip[:, 1]).max())
         modal_stress.append(abs(stress.max() - full.stress.max()) / full.stress.max())
-        times[f"{n} modes"] = median_time(lambda n=n: ked_modal(mech, disc, d, mat, np.radians(theta), n, gravity), 1, warmup=False)
+        times[f"{n} modes"] = median_time(
+            lambda n=n: ked_modal(mech, disc, d, mat, np.radians(theta), n, gravity), 1, warmup=False
+        )
     mesh_settings = [f"{kind} x{level}" for kind in kinds for level in levels]
     settings = mesh_settings + [f"{n} modes" for n in modes]
     errors = [*stress_err.ravel(), *np.maximum(modal_stress, ROUNDING)]
     ds = xr.Dataset(
         {
-            "tip_error": (("element", "refinement"), tip_err, {"units": "1", "long_name": "relative error of the peak |Uy| vs a fine quintic reference"}),
-            "stress_error": (("element", "refinement"), stress_err, {"units": "1", "long_name": "relative error of the peak stress vs the reference"}),
-            "tip_error_max": ((), float(tip_err.max()), {"units": "1", "long_name": "largest relative error of the peak |Uy| over the meshes"}),
+            "tip_error": (
+                ("element", "refinement"),
+                tip_err,
+                {"units": "1", "long_name": "relative error of the peak |Uy| vs a fine quintic reference"},
+            ),
+            "stress_error": (
+                ("element", "refinement"),
+                stress_err,
+                {"units": "1", "long_name": "relative error of the peak stress vs the reference"},
+            ),
+            "tip_error_max": (
+                (),
+                float(tip_err.max()),
+                {"units": "1", "long_name": "largest relative error of the peak |Uy| over the meshes"},
+            ),
             "dofs": (("element", "refinement"), dofs, {"units": "1", "long_name": "system coordinates"}),
-            "modal_tip_error": ("modes", np.array(modal_tip), {"units": "1", "long_name": "relative error of the peak |Uy|, modes kept vs all (base mesh)"}),
-            "modal_stress_error": ("modes", np.array(modal_stress), {"units": "1", "long_name": "relative error of the peak stress, modes kept vs all"}),
+            "modal_tip_error": (
+                "modes",
+                np.array(modal_tip),
+                {"units": "1", "long_name": "relative error of the peak |Uy|, modes kept vs all (base mesh)"},
+            ),
+            "modal_stress_error": (
+                "modes",
+                np.array(modal_stress),
+                {"units": "1", "long_name": "relative error of the peak stress, modes kept vs all"},
+            ),
             **summary_variables("FE mesh and modes", settings, errors, f"{cfg['fe']['element']} x1"),
         },
         coords={
             "modes": ("modes", np.array(modes), {"units": "1", "long_name": "modes kept in the superposition"}),
             "element": ("element", np.array(kinds, dtype=object), {"units": "1", "long_name": "element type"}),
-            "refinement": ("refinement", np.array(levels), {"units": "1", "long_name": "elements per member, multiple of the base mesh"}),
+            "refinement": (
+                "refinement",
+                np.array(levels),
+                {"units": "1", "long_name": "elements per member, multiple of the base mesh"},
+            ),
         },
-        attrs={"title": "Mesh and mode accuracy vs cost (transplanter)", "reference_refinement": acc["reference_refinement"], "base_mesh": str(list(base)),
-               "reference_crank_angles": int(window.sum())},
+        attrs={
+            "title": "Mesh and mode accuracy vs cost (transplanter)",
+            "reference_refinement": acc["reference_refinement"],
+            "base_mesh": str(list(base)),
+            "reference_crank_angles": int(window.sum()),
+        },
     )
     timings = {"method": f"median of {acc['repeats']} runs, time.perf_counter (modal: one run)", "summary_s": times}
     return ds, timings

@@ -60,7 +60,11 @@ def compared_solution(cfg: Mapping[str, Any]) -> str:
 def dynamic_settings(cfg: Mapping[str, Any]) -> dict[str, Any]:
     """Newmark settings of the dynamic solution: Rayleigh damping ratio, revolutions, substeps."""
     fe = cfg["fe"]
-    return {"damping_ratio": labelled(fe["damping_ratio"]), "revolutions": fe["revolutions"], "substeps": fe["substeps"]}
+    return {
+        "damping_ratio": labelled(fe["damping_ratio"]),
+        "revolutions": fe["revolutions"],
+        "substeps": fe["substeps"],
+    }
 
 
 def discretisation(cfg: Mapping[str, Any], kind: str | None = None, elements=None) -> Discretisation:

@@ -13,8 +13,11 @@ from .adapter import mechanism
 from .model import rigid_motion
 
 #: The result variables a published-numbers file's measures may name: what the comparison reads from
-#: results/transplanter/optim.nc and at_published.nc (tests/test_workflow.py checks that the study writes each; a new one is added here).
-RESULT_VARIABLES = frozenset({"Ux", "Uy", "distortion", "distortion_ratio", "governing_elasticity", "mass_ratio", "stress_max"})
+#: results/transplanter/optim.nc and at_published.nc (tests/test_workflow.py checks that the study writes each; a new
+#: one is added here).
+RESULT_VARIABLES = frozenset(
+    {"Ux", "Uy", "distortion", "distortion_ratio", "governing_elasticity", "mass_ratio", "stress_max"}
+)
 
 
 def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance: float = 0.005) -> None:
@@ -27,24 +30,37 @@ def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance
     """
     name = section["material"]["name"]
     if name not in section["materials"]:
-        raise ConfigError(f"config key {key}.material.name: value {name!r} is not a material in {key}.materials ({', '.join(section['materials'])})")
+        raise ConfigError(
+            f"config key {key}.material.name: value {name!r} is not a material in {key}.materials"
+            f" ({', '.join(section['materials'])})"
+        )
     for group, field in (("fe", "angle_step_deg"), ("optimization", "angle_step_deg")):
         step = section[group][field]
         if not divides_turn(step):
             raise ConfigError(f"config key {key}.{group}.{field}: value {step!r} does not divide 360 deg")
     fine, coarse = section["fe"]["angle_step_deg"], section["optimization"]["angle_step_deg"]
     if not _multiple(coarse, fine):
-        raise ConfigError(f"config key {key}.optimization.angle_step_deg: value {coarse!r} is not a multiple of fe.angle_step_deg ({fine!r}): "
-                          "the optimiser's crank angles must be points of the report grid")
+        raise ConfigError(
+            f"config key {key}.optimization.angle_step_deg: value {coarse!r} is not a multiple of fe.angle_step_deg"
+            f" ({fine!r}): the optimiser's crank angles must be points of the report grid"
+        )
     study = section["fe"]["newmark_study"]
     largest = max(study["steps_deg"])
     if not divides_turn(largest):
-        raise ConfigError(f"config key {key}.fe.newmark_study.steps_deg: the largest step {largest!r} does not divide 360 deg")
+        raise ConfigError(
+            f"config key {key}.fe.newmark_study.steps_deg: the largest step {largest!r} does not divide 360 deg"
+        )
     for step in [*study["steps_deg"], study["reference_step_deg"]]:
         if not _multiple(largest, step):
-            raise ConfigError(f"config key {key}.fe.newmark_study: step {step!r} does not divide the largest step {largest!r} (the output grid)")
+            raise ConfigError(
+                f"config key {key}.fe.newmark_study: step {step!r} does not divide the largest step {largest!r} (the"
+                " output grid)"
+            )
     if study["reference_step_deg"] >= min(study["steps_deg"]):
-        raise ConfigError(f"config key {key}.fe.newmark_study.reference_step_deg: value {study['reference_step_deg']!r} is not finer than every studied step")
+        raise ConfigError(
+            f"config key {key}.fe.newmark_study.reference_step_deg: value {study['reference_step_deg']!r} is not finer"
+            " than every studied step"
+        )
     theta = np.radians(np.arange(0.0, 360.0, 1.0))
     geometry = section["geometry"]
     try:
@@ -58,8 +74,9 @@ def check(section: Mapping[str, Any], key: str = "transplanter", pivot_clearance
         dist = np.hypot(*(b + t[:, None] * seg - point).T)
         if dist.min() < pivot_clearance:
             raise ConfigError(
-                f"config key {key}.geometry.arm_angle_deg: value {geometry['arm_angle_deg']!r} sweeps the arm BE "
-                f"within {dist.min() * 1e3:.1f} mm of pivot {label} (crank angle {np.degrees(theta[np.argmin(dist)]):.0f} deg)"
+                f"config key {key}.geometry.arm_angle_deg: value {geometry['arm_angle_deg']!r} sweeps the arm BE within"
+                f" {dist.min() * 1e3:.1f} mm of pivot {label} (crank angle {np.degrees(theta[np.argmin(dist)]):.0f}"
+                " deg)"
             )
 
 

@@ -14,8 +14,15 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ...pipeline.compare import classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scalar, scenario_changes
-
+from ...pipeline.compare import (
+    classify,
+    compare_datasets,
+    counts_dataset,
+    findings_attrs,
+    nominal_rows,
+    scalar,
+    scenario_changes,
+)
 
 def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple[float, str]]:
     """Our numerical error bar of each compared number (the diameters and SS have none: not reproducible); for the
@@ -30,14 +37,29 @@ def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.D
     out = {}  # the diameters: not reproducible (a load the paper does not print), no error bar of ours
     for key, mesh in (("Ux", mesh_tip), ("Uy", mesh_tip), ("distortion", mesh_tip), ("stress_max", mesh_stress)):
         value = float(base[key])
-        out[key] = (mesh * abs(value) + abs(float(coarse[key]) - value) / 100, "mesh error (accuracy study) + crank-angle sampling error")
+        out[key] = (
+            mesh * abs(value) + abs(float(coarse[key]) - value) / 100,
+            "mesh error (accuracy study) + crank-angle sampling error",
+        )
     return out
 
 
-def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], optim: xr.Dataset, at_published: xr.Dataset, ked: xr.Dataset,
-            accuracy: xr.Dataset, uncertainty: xr.Dataset) -> tuple[pd.DataFrame, xr.Dataset]:
+def compare(
+    cfg: Mapping[str, Any],
+    published: Mapping[str, Any],
+    optim: xr.Dataset,
+    at_published: xr.Dataset,
+    ked: xr.Dataset,
+    accuracy: xr.Dataset,
+    uncertainty: xr.Dataset,
+) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table and findings (dynamic peak stress at our optimum against the allowable)."""
-    table = compare_datasets(published, [optim, at_published], errors={"": numerical_errors(optim, at_published, accuracy)}, uncertainty=uncertainty)
+    table = compare_datasets(
+        published,
+        [optim, at_published],
+        errors={"": numerical_errors(optim, at_published, accuracy)},
+        uncertainty=uncertainty,
+    )
     table = label_compared_solution(table, at_published)
     allowable = float(optim.allowable)
     dynamic = float(ked.peak_stress.sel(diameters="optimal", solution="dynamic"))
@@ -48,20 +70,38 @@ def compare(cfg: Mapping[str, Any], published: Mapping[str, Any], optim: xr.Data
             "allowable": scalar(allowable, "MPa", "allowable stress"),
             "optimum_quasi_static_peak": scalar(quasi, "MPa", "largest quasi-static stress at our optimum"),
             "optimum_dynamic_peak": scalar(dynamic, "MPa", "largest dynamic (Newmark) stress at our optimum"),
-            "optimum_dynamic_excess": scalar(dynamic / allowable - 1.0, "1", "dynamic peak at our optimum over the allowable, minus 1"),
-            "optimum_dynamic_error": scalar(claim["error"], "MPa", "numerical error bar of the dynamic peak at our optimum (Newmark step + periodicity + mesh)"),
-            "optimum_dynamic_low": scalar(claim["low"], "MPa", "lowest dynamic peak at our optimum over the damping range"),
-            "optimum_dynamic_high": scalar(claim["high"], "MPa", "highest dynamic peak at our optimum over the damping range"),
-            "damping_threshold": scalar(float(ked.damping_threshold), "1", "damping ratio at which the dynamic peak equals the allowable"),
+            "optimum_dynamic_excess": scalar(
+                dynamic / allowable - 1.0, "1", "dynamic peak at our optimum over the allowable, minus 1"
+            ),
+            "optimum_dynamic_error": scalar(
+                claim["error"],
+                "MPa",
+                "numerical error bar of the dynamic peak at our optimum (Newmark step + periodicity + mesh)",
+            ),
+            "optimum_dynamic_low": scalar(
+                claim["low"], "MPa", "lowest dynamic peak at our optimum over the damping range"
+            ),
+            "optimum_dynamic_high": scalar(
+                claim["high"], "MPa", "highest dynamic peak at our optimum over the damping range"
+            ),
+            "damping_threshold": scalar(
+                float(ked.damping_threshold), "1", "damping ratio at which the dynamic peak equals the allowable"
+            ),
             **active_bounds(cfg, optim, at_published),
             **missing_load_evidence(optim, at_published),
             **claim_evidence(optim, at_published),
             **closest_iterate(optim, published),
         },
-        coords={"member": optim.member, "direction": at_published.direction, "loaded": at_published.loaded,
-                "response": at_published.response},
+        coords={
+            "member": optim.member,
+            "direction": at_published.direction,
+            "loaded": at_published.loaded,
+            "response": at_published.response,
+        },
     ).merge(counts_dataset(table))
-    findings.damping_threshold.attrs["nan_meaning"] = "no damping ratio in the assumed range brings the peak to the allowable"
+    findings.damping_threshold.attrs["nan_meaning"] = (
+        "no damping ratio in the assumed range brings the peak to the allowable"
+    )
     findings.attrs["optimum_dynamic_finding"] = claim["status"]
     findings.attrs.update(findings_attrs("Transplanter paper: comparison findings", "", "",
                                          answer(table, findings, float(cfg["minimum_diameter_m"]))))
@@ -118,14 +158,32 @@ def active_bounds(cfg: Mapping[str, Any], optim: xr.Dataset, at_published: xr.Da
     allowable = float(optim.allowable)
     grad = at_published.gradient_SS.values
     return {
-        "at_minimum_diameter": ("member", (optim.d_opt.values - d_min <= ACTIVE_RTOL * d_min).astype(int),
-                                {"units": "1", "long_name": f"1 if our optimal diameter is within {ACTIVE_RTOL:.0%} of the minimum"}),
-        "at_allowable": ("member", (optim.stress_opt.values >= (1 - ACTIVE_RTOL) * allowable).astype(int),
-                         {"units": "1", "long_name": f"1 if the member's stress at our optimum is within {ACTIVE_RTOL:.0%} of the allowable"}),
-        "published_stress_fraction": ("member", at_published.stress_members.values / allowable,
-                                      {"units": "1", "long_name": "member stress at the published optimum over the allowable"}),
-        "published_point_stationary": scalar(bool(np.all(np.abs(grad) <= STATIONARY_PER_MM)), "1", f"1 if every |dSS/dx| at the published optimum is at most {STATIONARY_PER_MM:g} per mm"),
-        "published_gradient_all_positive": scalar(bool(np.all(grad > 0)), "1", "1 if dSS/dx > 0 in every diameter at the published optimum"),
+        "at_minimum_diameter": (
+            "member",
+            (optim.d_opt.values - d_min <= ACTIVE_RTOL * d_min).astype(int),
+            {"units": "1", "long_name": f"1 if our optimal diameter is within {ACTIVE_RTOL:.0%} of the minimum"},
+        ),
+        "at_allowable": (
+            "member",
+            (optim.stress_opt.values >= (1 - ACTIVE_RTOL) * allowable).astype(int),
+            {
+                "units": "1",
+                "long_name": f"1 if the member's stress at our optimum is within {ACTIVE_RTOL:.0%} of the allowable",
+            },
+        ),
+        "published_stress_fraction": (
+            "member",
+            at_published.stress_members.values / allowable,
+            {"units": "1", "long_name": "member stress at the published optimum over the allowable"},
+        ),
+        "published_point_stationary": scalar(
+            bool(np.all(np.abs(grad) <= STATIONARY_PER_MM)),
+            "1",
+            f"1 if every |dSS/dx| at the published optimum is at most {STATIONARY_PER_MM:g} per mm",
+        ),
+        "published_gradient_all_positive": scalar(
+            bool(np.all(grad > 0)), "1", "1 if dSS/dx > 0 in every diameter at the published optimum"
+        ),
     }
 
 
@@ -141,26 +199,61 @@ def missing_load_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[s
     ours, theirs = optim.stress_inertia_only_opt.values, at_published.stress_inertia_only.values
     other = "crank, coupler or arm"
     return {
-        "inertia_stress_ours": ("member", ours, {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"}),
-        "inertia_stress_published": ("member", theirs, {"units": "MPa", "long_name": "the same at the published optimum"}),
-        "inertia_fraction_ours": ("member", ours / allowable, {"units": "1", "long_name": "the same at our optimum over the allowable"}),
-        "inertia_fraction_published": ("member", theirs / allowable, {"units": "1", "long_name": "the same at the published optimum over the allowable"}),
+        "inertia_stress_ours": (
+            "member",
+            ours,
+            {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"},
+        ),
+        "inertia_stress_published": (
+            "member",
+            theirs,
+            {"units": "MPa", "long_name": "the same at the published optimum"},
+        ),
+        "inertia_fraction_ours": (
+            "member",
+            ours / allowable,
+            {"units": "1", "long_name": "the same at our optimum over the allowable"},
+        ),
+        "inertia_fraction_published": (
+            "member",
+            theirs / allowable,
+            {"units": "1", "long_name": "the same at the published optimum over the allowable"},
+        ),
         "inferred_load": (("direction", "member"), loads.values, dict(loads.attrs)),
-        "rocker_load_low": scalar(float(rocker.min()), "N", "smallest tip force over the directions making the published rocker stress-active"),
+        "rocker_load_low": scalar(
+            float(rocker.min()), "N", "smallest tip force over the directions making the published rocker stress-active"
+        ),
         "rocker_load_high": scalar(float(rocker.max()), "N", "largest such force over the directions"),
-        "other_load_high": scalar(float(others.max()), "N", f"largest tip force over the directions making the {other} stress-active"),
-        "other_load_low": scalar(float(others.min()), "N", f"smallest tip force over the directions making the {other} stress-active"),
-        "arm_overload_at_rocker_load": scalar(float(arm_at_rocker_load.min()), "1",
-                                              "arm's peak stress over the allowable under the rocker's force (smallest over directions)"),
-        "one_load_reconciles": scalar(bool(np.any(loads.max("member") <= 1.1 * loads.min("member"))), "1",
-                                      "1 if in some direction one tip force (within 10 %) makes all four diameters stress-active"),
+        "other_load_high": scalar(
+            float(others.max()), "N", f"largest tip force over the directions making the {other} stress-active"
+        ),
+        "other_load_low": scalar(
+            float(others.min()), "N", f"smallest tip force over the directions making the {other} stress-active"
+        ),
+        "arm_overload_at_rocker_load": scalar(
+            float(arm_at_rocker_load.min()),
+            "1",
+            "arm's peak stress over the allowable under the rocker's force (smallest over directions)",
+        ),
+        "one_load_reconciles": scalar(
+            bool(np.any(loads.max("member") <= 1.1 * loads.min("member"))),
+            "1",
+            "1 if in some direction one tip force (within 10 %) makes all four diameters stress-active",
+        ),
     }
 
 
 def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tuple]:
     """The claims' measures (at_published) for the answer and the report: masses (g), distortions, elasticities."""
-    keep = ("mass_initial", "mass_published", "mass_ratio", "distortion_initial", "distortion_published", "distortion_ratio",
-            "stress_initial")
+    keep = (
+        "mass_initial",
+        "mass_published",
+        "mass_ratio",
+        "distortion_initial",
+        "distortion_published",
+        "distortion_ratio",
+        "stress_initial",
+    )
     out = {k: ((), float(at_published[k]), dict(at_published[k].attrs)) for k in keep}
     out["mass_ours"] = ((), float(optim.mass_opt), dict(optim.mass_opt.attrs))
     out["elasticity"] = (("response", "member"), at_published.elasticity.values, dict(at_published.elasticity.attrs))
@@ -169,7 +262,11 @@ def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tup
 
 def dynamic_clause(findings: xr.Dataset) -> str:
     """How our dynamic finding stands over the damping range, in words."""
-    lo, hi, allowable = float(findings.optimum_dynamic_low), float(findings.optimum_dynamic_high), float(findings.allowable)
+    lo, hi, allowable = (
+        float(findings.optimum_dynamic_low),
+        float(findings.optimum_dynamic_high),
+        float(findings.allowable),
+    )
     span = f"{lo / allowable - 1:+.0%} to {hi / allowable - 1:+.0%} over the damping range"
     status = findings.attrs["optimum_dynamic_finding"]
     threshold = float(findings.damping_threshold)
@@ -185,8 +282,13 @@ def _verdict(table: pd.DataFrame, row: str) -> str:
 #: The claims in words, by published id, in the order the answer names them.
 CLAIM_IDS = ("mass_reduced", "lighter_distorts_more", "sections_govern_deflection", "sections_govern_stress")
 #: How the answer names a verdict class of the claims.
-CLAIM_VERDICT_WORDS = {"matches": "hold", "deviates": "fail", "depends on assumptions": "depend on the assumptions",
-                       "undetermined (numerics)": "are undetermined by our numerics", "not reproducible": "cannot be judged"}
+CLAIM_VERDICT_WORDS = {
+    "matches": "hold",
+    "deviates": "fail",
+    "depends on assumptions": "depend on the assumptions",
+    "undetermined (numerics)": "are undetermined by our numerics",
+    "not reproducible": "cannot be judged",
+}
 
 
 def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
@@ -196,24 +298,38 @@ def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
         start, end = float(findings.mass_initial), float(findings.mass_published)
         return f"the mass {'falls' if holds else 'falls only'} from {start:.1f} g to {end:.1f} g"
     if row.id == "lighter_distorts_more":
-        return f"the lighter design distorts {'' if holds else 'only '}{float(findings.distortion_ratio):.1f} times as much"
+        return (
+            f"the lighter design distorts {'' if holds else 'only '}{float(findings.distortion_ratio):.1f} times as"
+            " much"
+        )
     response = "tip deflection" if row.id == "sections_govern_deflection" else "peak stress"
     if holds:
         return f"the arm's and the coupler's diameters govern the {response}"
     e = findings.elasticity.sel(response="largest tip displacement" if response == "tip deflection" else "peak stress")
     weaker = "coupler" if abs(float(e.sel(member="coupler"))) <= abs(float(e.sel(member="arm"))) else "arm"
     high = float(row.input_high)
-    return (f"1 % on the {weaker}'s diameter moves the {response} by at most {high:.2f} %" if high >= 0.005
-            else f"at the published optimum, where the arm alone governs, 1 % on the {weaker}'s diameter leaves the {response} unchanged "
-                 f"(at most {high:.1e} %)")
+    return (
+        f"1 % on the {weaker}'s diameter moves the {response} by at most {high:.2f} %"
+        if high >= 0.005
+        else (
+            f"at the published optimum, where the arm alone governs, 1 % on the {weaker}'s diameter leaves the"
+            f" {response} unchanged (at most {high:.1e} %)"
+        )
+    )
 
 
 #: The same for numbers compared with printed ones.
 NUMBER_VERDICT_WORDS = {**CLAIM_VERDICT_WORDS, "matches": "match", "deviates": "deviate"}
 #: The singular of each plural verb above.
-SINGULAR = {"hold": "holds", "fail": "fails", "match": "matches", "deviate": "deviates",
-            "depend on the assumptions": "depends on the assumptions", "are undetermined by our numerics": "is undetermined by our numerics",
-            "cannot be judged": "cannot be judged"}
+SINGULAR = {
+    "hold": "holds",
+    "fail": "fails",
+    "match": "matches",
+    "deviate": "deviates",
+    "depend on the assumptions": "depends on the assumptions",
+    "are undetermined by our numerics": "is undetermined by our numerics",
+    "cannot be judged": "cannot be judged",
+}
 
 
 def in_words(rows: pd.DataFrame, details=None, words=CLAIM_VERDICT_WORDS) -> str:
@@ -244,15 +360,23 @@ def closest_iterate(optim: xr.Dataset, published: Mapping[str, Any]) -> dict[str
     """The SUMT iterate (one penalty factor r(k)) closest to the printed optimum in the crank, rocker and arm
     diameters: the paper prints the objective at a finite r(k), whose barrier keeps diameters off their bound, but
     not r(k) itself; and the coupler's diameter there and at its largest over the iterates (mm)."""
-    printed = xr.DataArray(np.asarray(published["optimum_diameters_mm"], dtype=float), dims="member", coords={"member": optim.member})
+    printed = xr.DataArray(
+        np.asarray(published["optimum_diameters_mm"], dtype=float), dims="member", coords={"member": optim.member}
+    )
     gap = abs(optim.x - printed).sel(member=list(NOT_COUPLER)).max("member")
     k = int(gap.argmin())
     return {
         "closest_iteration": scalar(k, "1", "SUMT iteration closest to the printed crank, rocker and arm diameters"),
         "closest_r": scalar(float(optim.r.isel(iteration=k)), "1", "penalty factor r(k) of that iteration"),
-        "closest_gap_mm": scalar(float(gap.isel(iteration=k)), "mm", "largest |ours - printed| of the crank, rocker and arm diameters there"),
-        "closest_coupler_mm": scalar(float(optim.x.isel(iteration=k).sel(member="coupler")), "mm", "our coupler diameter there"),
-        "printed_coupler_mm": scalar(float(printed.sel(member="coupler")), "mm", "the printed optimal coupler diameter"),
+        "closest_gap_mm": scalar(
+            float(gap.isel(iteration=k)), "mm", "largest |ours - printed| of the crank, rocker and arm diameters there"
+        ),
+        "closest_coupler_mm": scalar(
+            float(optim.x.isel(iteration=k).sel(member="coupler")), "mm", "our coupler diameter there"
+        ),
+        "printed_coupler_mm": scalar(
+            float(printed.sel(member="coupler")), "mm", "the printed optimal coupler diameter"
+        ),
     }
 
 
@@ -262,13 +386,15 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, minimum_diameter_m: float)
     frac = findings.inertia_fraction_published
     allowable = float(findings.allowable)
     first = (
-        "The published optimal diameters cannot be reproduced, because the paper prints neither the penalty factor at which its "
-        f"optimiser stopped nor its objective's reference diameter, nor any load beyond the inertia loads: our optimiser passes within "
-        f"{float(findings.closest_gap_mm):.3g} mm of the printed crank, rocker and arm diameters at a penalty factor of "
-        f"{float(findings.closest_r):g}, but its coupler is {float(findings.closest_coupler_mm):.2f} mm there against the printed "
-        f"{float(findings.printed_coupler_mm):.2f}, and under the inertia loads alone the printed rocker and crank carry only "
-        f"{float(frac.sel(member='rocker')) * allowable:.1f} and {float(frac.sel(member='crank')) * allowable:.1f} MPa of the allowable "
-        f"{allowable:.1f} MPa, so a converged optimiser takes them to the {minimum_diameter_m * 1e3:g} mm bound."
+        "The published optimal diameters cannot be reproduced, because the paper prints neither the penalty factor at"
+        " which its optimiser stopped nor its objective's reference diameter, nor any load beyond the inertia loads:"
+        f" our optimiser passes within {float(findings.closest_gap_mm):.3g} mm of the printed crank, rocker and arm"
+        f" diameters at a penalty factor of {float(findings.closest_r):g}, but its coupler is"
+        f" {float(findings.closest_coupler_mm):.2f} mm there against the printed"
+        f" {float(findings.printed_coupler_mm):.2f}, and under the inertia loads alone the printed rocker and crank"
+        f" carry only {float(frac.sel(member='rocker')) * allowable:.1f} and"
+        f" {float(frac.sel(member='crank')) * allowable:.1f} MPa of the allowable {allowable:.1f} MPa, so a converged"
+        f" optimiser takes them to the {minimum_diameter_m * 1e3:g} mm bound."
     )
     nominal = nominal_rows(table)
     response = nominal[nominal.id.isin(["Ux", "Uy", "distortion", "stress_max"])]
@@ -277,8 +403,11 @@ def answer(table: pd.DataFrame, findings: xr.Dataset, minimum_diameter_m: float)
     changed = scenario_changes(table[table.id.isin(["Ux", "Uy", "distortion", "stress_max", *CLAIM_IDS])])
     others = table.scenario.nunique() - 1 if "scenario" in table else 0
     readings = f"the other {NUMBER_WORDS.get(others, str(others))} readings of gravity and of the solution"
-    other = (f"; {readings} change {NUMBER_WORDS.get(changed.id.nunique(), str(changed.id.nunique()))} of these verdicts" if len(changed)
-             else f"; {readings} change none of them" if others else "")
+    other = (
+        f"; {readings} change {NUMBER_WORDS.get(changed.id.nunique(), str(changed.id.nunique()))} of these verdicts"
+        if len(changed)
+        else f"; {readings} change none of them" if others else ""
+    )
     second = (f"With {scenario} (our nominal reading), of our deflections and stress at the published optimum {words}, "
               f"and of the paper's claims in words {claims_clause(nominal, findings)}{other}.")
     return f"{first} {second}"

@@ -23,7 +23,18 @@ from dataclasses import dataclass, replace
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ...engines.fem import BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate, rotated, scatter
+from ...engines.fem import (
+    BeamMesh,
+    assemble,
+    element_strain_extremes,
+    gather,
+    local_matrices,
+    local_to_global,
+    newmark_history,
+    rotate,
+    rotated,
+    scatter,
+)
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
 FloatArray = NDArray[np.float64]
@@ -89,7 +100,9 @@ def rigid_motion(mech: Transplanter, theta: ArrayLike) -> RigidMotion:
     e_pos = b.pos + r
     e_acc = b.acc * w**2 + (coupler.accel * w**2)[..., None] * perp - ((coupler.rate * w) ** 2)[..., None] * r
     pos = np.stack([m.points["A"].pos, b.pos, m.points["C"].pos, m.points["D"].pos, e_pos], axis=-2)
-    acc = np.stack([m.points["A"].acc * w**2, b.acc * w**2, m.points["C"].acc * w**2, m.points["D"].acc * w**2, e_acc], axis=-2)
+    acc = np.stack(
+        [m.points["A"].acc * w**2, b.acc * w**2, m.points["C"].acc * w**2, m.points["D"].acc * w**2, e_acc], axis=-2
+    )
     angle = np.stack([crank.angle, coupler.angle, rocker.angle, arm_angle], axis=-1)
     omega = np.stack([crank.rate, coupler.rate, rocker.rate, coupler.rate], axis=-1) * w
     alpha = np.stack([crank.accel, coupler.accel, rocker.accel, coupler.accel], axis=-1) * w**2
@@ -116,7 +129,13 @@ def discretise(elements_per_member: tuple[int, int, int, int], kind: str = "quin
     elements, extra, member_of = [], [], []
     fraction = [0.0, 1.0, 1.0, 0.0, 1.0]
     node_member = [0, 0, 1, 2, 3]
-    node_ends = [MEMBER_ENDS["crank"], MEMBER_ENDS["crank"], MEMBER_ENDS["coupler"], MEMBER_ENDS["rocker"], MEMBER_ENDS["arm"]]
+    node_ends = [
+        MEMBER_ENDS["crank"],
+        MEMBER_ENDS["crank"],
+        MEMBER_ENDS["coupler"],
+        MEMBER_ENDS["rocker"],
+        MEMBER_ENDS["arm"],
+    ]
     next_node = 5
     end_keys = {  # (slope key, curvature key) at the member's start and end joint
         "crank": (("s-drive", "k-crank-A"), ("s-crank-B", None)),
@@ -215,8 +234,16 @@ def tip_dofs(disc: Discretisation) -> list[int]:
     return [int(i) for i in last[-(4 if disc.mesh.kind == "quintic8" else 3):][:2]]
 
 
-def system_matrices(mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0,
-                    mass: str = "all", tip_force=(0.0, 0.0)):
+def system_matrices(
+    mech: Transplanter,
+    disc: Discretisation,
+    diameters,
+    material: Material,
+    theta,
+    gravity: float = 0.0,
+    mass: str = "all",
+    tip_force=(0.0, 0.0),
+):
     """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element, plus an
     external force ``tip_force`` (N, global x and y, the same at every crank angle) at the arm tip E.
 
@@ -301,8 +328,9 @@ def ked(
     """
     theta = np.asarray(theta, dtype=float)
     if solution == "quasi-static":
-        k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, theta, gravity, mass="first",
-                                                            tip_force=tip_force)
+        k, m, f, (el_len, el_dir, motion) = system_matrices(
+            mech, disc, diameters, material, theta, gravity, mass="first", tip_force=tip_force
+        )
         u = np.linalg.solve(k, f[..., None])[..., 0]
         freqs = natural_frequencies(k[0], m[0])
         periodicity, rayleigh = 0.0, (0.0, 0.0)
@@ -370,7 +398,9 @@ def modal_quasi_static(k: FloatArray, m: FloatArray, f: FloatArray, modes: int) 
 
 def ked_modal(mech, disc, diameters, material, theta, modes: int, gravity: float = 0.0):
     """Quasi-static KED by truncated mode superposition: (tip (n, 2), stress (n, 4))."""
-    k, m, f, (el_len, el_dir, motion) = system_matrices(mech, disc, diameters, material, np.asarray(theta, dtype=float), gravity)
+    k, m, f, (el_len, el_dir, motion) = system_matrices(
+        mech, disc, diameters, material, np.asarray(theta, dtype=float), gravity
+    )
     u = modal_quasi_static(k, m, f, modes)
     tip, _, _, stress = _postprocess(mech, disc, diameters, material, u, el_len, el_dir, motion)
     return tip, stress

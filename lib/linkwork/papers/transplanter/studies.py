@@ -27,8 +27,16 @@ def solve(cfg, diameters, solution, theta_deg, *, mech=None, mat=None, gravity=N
 def inertia_only_peaks(cfg: Mapping[str, Any], diameters, tip_force=(0.0, 0.0)) -> np.ndarray:
     """Largest quasi-static eq. (8) stress (Pa) per member over the report grid at ``diameters`` (m) under the
     inertia loads alone (no gravity), plus a constant tip force ``tip_force`` (N, global x and y; none by default)."""
-    r = ked(mechanism(cfg), discretisation(cfg), np.asarray(diameters, dtype=float), material(cfg), np.radians(report_grid(cfg)),
-            "quasi-static", gravity=0.0, tip_force=tip_force)
+    r = ked(
+        mechanism(cfg),
+        discretisation(cfg),
+        np.asarray(diameters, dtype=float),
+        material(cfg),
+        np.radians(report_grid(cfg)),
+        "quasi-static",
+        gravity=0.0,
+        tip_force=tip_force,
+    )
     return r.stress.max(axis=0)
 
 
@@ -48,17 +56,25 @@ def problem(cfg: Mapping[str, Any], theta_deg: np.ndarray | None = None) -> Pena
     def stresses(x):
         return ked(mech, disc, x, mat, theta, "quasi-static", gravity=gravity).stress.max(axis=0)
 
-    return PenaltyProblem(stresses, member_lengths(cfg), allowable(cfg), float(cfg["optimization"]["reference_diameter_m"]["value"]),
-                          float(cfg["minimum_diameter_m"]))
+    return PenaltyProblem(
+        stresses,
+        member_lengths(cfg),
+        allowable(cfg),
+        float(cfg["optimization"]["reference_diameter_m"]["value"]),
+        float(cfg["minimum_diameter_m"]),
+    )
 
 
 def peak_indices(stress: np.ndarray, spread: int) -> set[int]:
-    """Indices of the report grid (periodic) within ``spread`` steps of each member's largest stress (stress: (n, 4))."""
+    """Indices of the report grid (periodic) within ``spread`` steps of each member's largest stress (stress: (n,
+    4))."""
     n = stress.shape[0]
     return {int((i + k) % n) for i in np.argmax(stress, axis=0) for k in range(-spread, spread + 1)}
 
 
-def optimise_on_report_grid(cfg: Mapping[str, Any], x0: np.ndarray, first: Callable, again: Callable) -> tuple[np.ndarray, list, dict[str, Any]]:
+def optimise_on_report_grid(
+    cfg: Mapping[str, Any], x0: np.ndarray, first: Callable, again: Callable
+) -> tuple[np.ndarray, list, dict[str, Any]]:
     """The optimum whose stress maxima are those of the report grid, by exchange of crank angles.
 
     The optimiser evaluates an active subset of the report grid: the coarse grid ``optimization.angle_step_deg``
@@ -90,8 +106,14 @@ def optimise_on_report_grid(cfg: Mapping[str, Any], x0: np.ndarray, first: Calla
         rounds += 1
         x, record = again(problem(cfg, fine[sorted(active)]), x)
         records.append(record)
-    info = {"exchange_rounds": rounds, "active_angles": len(active), "grid_angles": int(fine.size), "peaks_in_active": not new,
-            "stress": full.stresses(x), "constraints": full.constraints(x)}
+    info = {
+        "exchange_rounds": rounds,
+        "active_angles": len(active),
+        "grid_angles": int(fine.size),
+        "peaks_in_active": not new,
+        "stress": full.stresses(x),
+        "constraints": full.constraints(x),
+    }
     return x, records, info
 
 
@@ -101,8 +123,12 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
     opt = cfg["optimization"]
     x0 = np.array(cfg["initial_diameters_m"], dtype=float)
     r_last = opt["r0"] * opt["r_factor"] ** (opt["iterations"] - 1)
-    sumt_first = lambda prob, x: (lambda r: (r.x, r))(sumt(prob, x, opt["r0"], opt["r_factor"], opt["iterations"], opt["xtol_m"], opt["inner_maxiter"]))  # noqa: E731
-    sumt_again = lambda prob, x: (lambda r: (r.x, r))(sumt(prob, x, r_last, 1.0, 1, opt["xtol_m"], opt["inner_maxiter"]))  # noqa: E731
+    sumt_first = lambda prob, x: (lambda r: (r.x, r))(
+        sumt(prob, x, opt["r0"], opt["r_factor"], opt["iterations"], opt["xtol_m"], opt["inner_maxiter"])
+    )  # noqa: E731
+    sumt_again = lambda prob, x: (lambda r: (r.x, r))(
+        sumt(prob, x, r_last, 1.0, 1, opt["xtol_m"], opt["inner_maxiter"])
+    )  # noqa: E731
     x_opt, runs, info = optimise_on_report_grid(cfg, x0, sumt_first, sumt_again)
     run_slsqp = lambda prob, x: slsqp(prob, x, opt["slsqp_ftol"])  # noqa: E731
     xs, slsqp_runs, slsqp_info = optimise_on_report_grid(cfg, x0, run_slsqp, run_slsqp)
@@ -113,31 +139,104 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
     ds = xr.Dataset(
         {
             "r": ("iteration", np.array([e["r"] for e in h]), {"units": "1", "long_name": "penalty factor r(k)"}),
-            "exchange_round": ("iteration", np.array([e["round"] for e in h]), {"units": "1", "long_name": "exchange round of the crank angles (0: first run)"}),
-            "x": (("iteration", "member"), np.array([e["x"] for e in h]) * 1e3, {"units": "mm", "long_name": "diameters after iteration k"}),
-            **{p: ("iteration", np.array([e[p] for e in h]), {"units": "1", "long_name": f"objective part {p}"}) for p in ("SY", "SZ", "SG", "SH", "SS")},
-            "g": (("iteration", "constraint"), np.array([e["g"] for e in h]), {"units": "1", "long_name": "constraints g_1..g_8 (>= 0 feasible)"}),
+            "exchange_round": (
+                "iteration",
+                np.array([e["round"] for e in h]),
+                {"units": "1", "long_name": "exchange round of the crank angles (0: first run)"},
+            ),
+            "x": (
+                ("iteration", "member"),
+                np.array([e["x"] for e in h]) * 1e3,
+                {"units": "mm", "long_name": "diameters after iteration k"},
+            ),
+            **{
+                p: ("iteration", np.array([e[p] for e in h]), {"units": "1", "long_name": f"objective part {p}"})
+                for p in ("SY", "SZ", "SG", "SH", "SS")
+            },
+            "g": (
+                ("iteration", "constraint"),
+                np.array([e["g"] for e in h]),
+                {"units": "1", "long_name": "constraints g_1..g_8 (>= 0 feasible)"},
+            ),
             "d_opt": ("member", x_opt * 1e3, {"units": "mm", "long_name": "optimal diameters (SUMT)"}),
-            "d_slsqp": ("member", xs * 1e3, {"units": "mm", "long_name": "optimal diameters (SLSQP on SY + SZ, explicit constraints)"}),
-            "sumt_slsqp_difference": ((), float(np.abs(x_opt - xs).max() * 1e3), {"units": "mm", "long_name": "largest |SUMT - SLSQP| diameter difference"}),
-            "stress_opt": ("member", info["stress"] / 1e6, {"units": "MPa", "long_name": "largest stress per member at the SUMT optimum (report grid)"}),
-            "constraints_opt": ("constraint", info["constraints"], {"units": "1", "long_name": "constraints g_1..g_8 at the SUMT optimum on the report grid (>= 0 feasible)"}),
-            "stress_inertia_only_opt": ("member", inertia_only_peaks(cfg, x_opt) / 1e6, {
-                "units": "MPa", "long_name": "largest quasi-static stress per member at the SUMT optimum under the inertia loads alone"}),
-            "mass_opt": ((), bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
-                         {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"}),
-            "allowable": ((), prob.allowable / 1e6, {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"}),
-            "SS_opt": ((), prob.parts(x_opt, h[-1]["r"])["SS"], {"units": "1", "long_name": "SS(X*, r(k)) at the SUMT optimum, last r(k), report grid"}),
-            "evaluations": ((), sum(run.evaluations for run in runs), {"units": "1", "long_name": "objective evaluations (SUMT)"}),
+            "d_slsqp": (
+                "member",
+                xs * 1e3,
+                {"units": "mm", "long_name": "optimal diameters (SLSQP on SY + SZ, explicit constraints)"},
+            ),
+            "sumt_slsqp_difference": (
+                (),
+                float(np.abs(x_opt - xs).max() * 1e3),
+                {"units": "mm", "long_name": "largest |SUMT - SLSQP| diameter difference"},
+            ),
+            "stress_opt": (
+                "member",
+                info["stress"] / 1e6,
+                {"units": "MPa", "long_name": "largest stress per member at the SUMT optimum (report grid)"},
+            ),
+            "constraints_opt": (
+                "constraint",
+                info["constraints"],
+                {
+                    "units": "1",
+                    "long_name": "constraints g_1..g_8 at the SUMT optimum on the report grid (>= 0 feasible)",
+                },
+            ),
+            "stress_inertia_only_opt": (
+                "member",
+                inertia_only_peaks(cfg, x_opt) / 1e6,
+                {
+                    "units": "MPa",
+                    "long_name": (
+                        "largest quasi-static stress per member at the SUMT optimum under the inertia loads alone"
+                    ),
+                },
+            ),
+            "mass_opt": (
+                (),
+                bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
+                {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"},
+            ),
+            "allowable": (
+                (),
+                prob.allowable / 1e6,
+                {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"},
+            ),
+            "SS_opt": (
+                (),
+                prob.parts(x_opt, h[-1]["r"])["SS"],
+                {"units": "1", "long_name": "SS(X*, r(k)) at the SUMT optimum, last r(k), report grid"},
+            ),
+            "evaluations": (
+                (),
+                sum(run.evaluations for run in runs),
+                {"units": "1", "long_name": "objective evaluations (SUMT)"},
+            ),
         },
-        coords={"iteration": ("iteration", np.arange(len(h)), {"units": "1", "long_name": "outer iteration k"}), "member": member,
-                "constraint": ("constraint", np.arange(1, 9), {"units": "1", "long_name": "constraint index (1-4 diameter, 5-8 stress)"})},
+        coords={
+            "iteration": ("iteration", np.arange(len(h)), {"units": "1", "long_name": "outer iteration k"}),
+            "member": member,
+            "constraint": (
+                "constraint",
+                np.arange(1, 9),
+                {"units": "1", "long_name": "constraint index (1-4 diameter, 5-8 stress)"},
+            ),
+        },
     )
-    ds.attrs.update(title="Section optimisation (mixed penalty SUMT)", slsqp_success=str(info_s["success"]), slsqp_message=info_s["message"],
-                    slsqp_evaluations=sum(r["evaluations"] for r in slsqp_runs), reference_diameter_m=prob.reference_diameter,
-                    angle_step_deg=cfg["fe"]["angle_step_deg"], coarse_angle_step_deg=opt["angle_step_deg"],
-                    active_angles=info["active_angles"], grid_angles=info["grid_angles"], exchange_rounds=info["exchange_rounds"],
-                    peaks_in_active=int(info["peaks_in_active"]), slsqp_exchange_rounds=slsqp_info["exchange_rounds"])
+    ds.attrs.update(
+        title="Section optimisation (mixed penalty SUMT)",
+        slsqp_success=str(info_s["success"]),
+        slsqp_message=info_s["message"],
+        slsqp_evaluations=sum(r["evaluations"] for r in slsqp_runs),
+        reference_diameter_m=prob.reference_diameter,
+        angle_step_deg=cfg["fe"]["angle_step_deg"],
+        coarse_angle_step_deg=opt["angle_step_deg"],
+        active_angles=info["active_angles"],
+        grid_angles=info["grid_angles"],
+        exchange_rounds=info["exchange_rounds"],
+        peaks_in_active=int(info["peaks_in_active"]),
+        slsqp_exchange_rounds=slsqp_info["exchange_rounds"],
+    )
     return ds
 
 
@@ -161,7 +260,8 @@ SNAPSHOT_ANGLES_DEG = (0.0, 90.0, 180.0, 270.0)
 
 
 #: Linear (small-deflection) beam theory: an elastic tip deflection beyond this fraction of the arm length
-#: (the longest member) makes the neglected geometric terms, of order (deflection / length)^2, exceed 1 % of the response.
+#: (the longest member) makes the neglected geometric terms, of order (deflection / length)^2, exceed 1 % of the
+#: response.
 SMALL_DEFLECTION_LIMIT = 0.1
 
 
@@ -196,14 +296,24 @@ def newmark_step_study(cfg: Mapping[str, Any], diameters: np.ndarray) -> dict[st
     order = np.log(field_error[:-1] / field_error[1:]) / np.log(steps[:-1] / steps[1:])
     pipeline_step = cfg["fe"]["angle_step_deg"] / cfg["fe"]["substeps"]
     at_pipeline = float(np.exp(np.interp(np.log(pipeline_step), np.log(steps[::-1]), np.log(field_error[::-1]))))
-    return {"steps": steps, "peaks": peaks, "reference": ref_peak, "peak_error": peak_error, "field_error": field_error, "order": order,
-            "output_step": out_step, "pipeline_step": pipeline_step, "pipeline_error": at_pipeline}
+    return {
+        "steps": steps,
+        "peaks": peaks,
+        "reference": ref_peak,
+        "peak_error": peak_error,
+        "field_error": field_error,
+        "order": order,
+        "output_step": out_step,
+        "pipeline_step": pipeline_step,
+        "pipeline_error": at_pipeline,
+    }
 
 
 def damping_study(cfg: Mapping[str, Any], diameters: np.ndarray, allowable_mpa: float) -> dict[str, Any]:
-    """Dynamic peak stress (MPa) at ``diameters`` over the damping ratio's assumed range (evenly, ``fe.damping_study.points``),
-    and the damping ratio at which the peak equals ``allowable_mpa`` where the range holds one (Brent's method).
-    The revolutions grow as 1/damping below the nominal damping, so that the start transient decays alike."""
+    """Dynamic peak stress (MPa) at ``diameters`` over the damping ratio's assumed range (evenly,
+    ``fe.damping_study.points``), and the damping ratio at which the peak equals ``allowable_mpa`` where the range holds
+    one (Brent's method). The revolutions grow as 1/damping below the nominal damping, so that the start transient
+    decays alike."""
     from scipy.optimize import brentq
 
     fe = cfg["fe"]
@@ -215,7 +325,18 @@ def damping_study(cfg: Mapping[str, Any], diameters: np.ndarray, allowable_mpa: 
 
     def run(zeta):
         revolutions = max(int(fe["revolutions"]), int(np.ceil(fe["revolutions"] * nominal / zeta)))
-        r = ked(mech, disc, diameters, mat, theta, "dynamic", gravity=gravity, damping_ratio=zeta, revolutions=revolutions, substeps=fe["substeps"])
+        r = ked(
+            mech,
+            disc,
+            diameters,
+            mat,
+            theta,
+            "dynamic",
+            gravity=gravity,
+            damping_ratio=zeta,
+            revolutions=revolutions,
+            substeps=fe["substeps"],
+        )
         return float(r.stress.max() / 1e6), r.periodicity, revolutions
 
     ratios = np.linspace(lo, hi, int(study["points"]))
@@ -226,9 +347,17 @@ def damping_study(cfg: Mapping[str, Any], diameters: np.ndarray, allowable_mpa: 
     crossing = np.flatnonzero(np.sign(excess[:-1]) != np.sign(excess[1:]))
     if crossing.size:
         i = int(crossing[0])
-        threshold = float(brentq(lambda z: run(z)[0] - allowable_mpa, ratios[i], ratios[i + 1], xtol=float(study["threshold_xtol"])))
-    return {"ratios": ratios, "peaks": peaks, "periodicity": np.array([r[1] for r in runs]), "revolutions": np.array([r[2] for r in runs]),
-            "threshold": threshold, "crossings": int(crossing.size)}
+        threshold = float(
+            brentq(lambda z: run(z)[0] - allowable_mpa, ratios[i], ratios[i + 1], xtol=float(study["threshold_xtol"]))
+        )
+    return {
+        "ratios": ratios,
+        "peaks": peaks,
+        "periodicity": np.array([r[1] for r in runs]),
+        "revolutions": np.array([r[2] for r in runs]),
+        "threshold": threshold,
+        "crossings": int(crossing.size),
+    }
 
 
 def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
@@ -263,46 +392,172 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
         {
             "tip_x": ("crank_angle", path[:, 0], {"units": "m", "long_name": "planting-arm tip E, rigid path, x"}),
             "tip_y": ("crank_angle", path[:, 1], {"units": "m", "long_name": "planting-arm tip E, rigid path, y"}),
-            "joint_position": (("snapshot", "joint", "xy"), snapshot, {"units": "m", "long_name": "joints A, B, C, D, E at the snapshot crank angles"}),
+            "joint_position": (
+                ("snapshot", "joint", "xy"),
+                snapshot,
+                {"units": "m", "long_name": "joints A, B, C, D, E at the snapshot crank angles"},
+            ),
             "Ux": (dims3, tip[..., 0], {"units": "m", "long_name": "elastic displacement of the tip, x"}),
             "Uy": (dims3, tip[..., 1], {"units": "m", "long_name": "elastic displacement of the tip, y"}),
             "U_axial": (dims3, tip_ax, {"units": "m", "long_name": "elastic tip displacement along the arm"}),
             "U_transverse": (dims3, tip_tr, {"units": "m", "long_name": "elastic tip displacement across the arm"}),
-            "stress": ((*dims3, "member"), stress, {"units": "MPa", "long_name": "largest eq. (8) stress in the member"}),
-            "peak_stress": (("diameters", "solution"), stress.max(axis=(2, 3)), {"units": "MPa", "long_name": "largest stress over members and crank angles"}),
-            "diameter": (("diameters", "member"), np.array(list(sets.values())) * 1e3, {"units": "mm", "long_name": "member diameters"}),
-            "natural_frequency": (("diameters", "mode"), freqs, {"units": "rad s-1", "long_name": "lowest natural frequencies at crank angle 0"}),
-            "periodicity": ("diameters", periodicity, {"units": "1", "long_name": "dynamic: change of the tip response between the last two revolutions / its range"}),
+            "stress": (
+                (*dims3, "member"),
+                stress,
+                {"units": "MPa", "long_name": "largest eq. (8) stress in the member"},
+            ),
+            "peak_stress": (
+                ("diameters", "solution"),
+                stress.max(axis=(2, 3)),
+                {"units": "MPa", "long_name": "largest stress over members and crank angles"},
+            ),
+            "diameter": (
+                ("diameters", "member"),
+                np.array(list(sets.values())) * 1e3,
+                {"units": "mm", "long_name": "member diameters"},
+            ),
+            "natural_frequency": (
+                ("diameters", "mode"),
+                freqs,
+                {"units": "rad s-1", "long_name": "lowest natural frequencies at crank angle 0"},
+            ),
+            "periodicity": (
+                "diameters",
+                periodicity,
+                {
+                    "units": "1",
+                    "long_name": "dynamic: change of the tip response between the last two revolutions / its range",
+                },
+            ),
             "crank_speed": ((), omega, {"units": "rad s-1", "long_name": "crank speed"}),
-            "coordinates": ((), int(disc.mesh.dof_indices()[0]), {"units": "1", "long_name": "generalized coordinates of the mesh"}),
-            "rayleigh_alpha": ("diameters", rayleigh[:, 0], {"units": "s-1", "long_name": "Rayleigh damping C = alpha M + beta K: alpha (dynamic solution)"}),
-            "rayleigh_beta": ("diameters", rayleigh[:, 1], {"units": "s", "long_name": "Rayleigh damping C = alpha M + beta K: beta (dynamic solution)"}),
-            "damping_ratio": ((), float(cfg["fe"]["damping_ratio"]["value"]), {"units": "1", "long_name": "assumed damping ratio at the first two natural frequencies"}),
+            "coordinates": (
+                (),
+                int(disc.mesh.dof_indices()[0]),
+                {"units": "1", "long_name": "generalized coordinates of the mesh"},
+            ),
+            "rayleigh_alpha": (
+                "diameters",
+                rayleigh[:, 0],
+                {"units": "s-1", "long_name": "Rayleigh damping C = alpha M + beta K: alpha (dynamic solution)"},
+            ),
+            "rayleigh_beta": (
+                "diameters",
+                rayleigh[:, 1],
+                {"units": "s", "long_name": "Rayleigh damping C = alpha M + beta K: beta (dynamic solution)"},
+            ),
+            "damping_ratio": (
+                (),
+                float(cfg["fe"]["damping_ratio"]["value"]),
+                {"units": "1", "long_name": "assumed damping ratio at the first two natural frequencies"},
+            ),
             "allowable": ((), float(optim.allowable), {"units": "MPa", "long_name": "allowable stress"}),
-            "newmark_peak": ("newmark_step", newmark["peaks"], {"units": "MPa", "long_name": f"dynamic peak stress at our optimum, sampled every {newmark['output_step']:g} deg"}),
-            "newmark_reference_peak": ((), newmark["reference"], {"units": "MPa", "long_name": "the same with the reference step"}),
-            "newmark_peak_error": ("newmark_step", newmark["peak_error"], {"units": "1", "long_name": "relative error of the dynamic peak stress against the reference step"}),
-            "newmark_field_error": ("newmark_step", newmark["field_error"], {"units": "1", "long_name": "largest |stress - reference| over members and angles / reference peak (bounds the peak's error)"}),
-            "newmark_order": ("newmark_pair", newmark["order"], {"units": "1", "long_name": "observed order of the field error between neighbouring steps"}),
-            "newmark_pipeline_error": ((), newmark["pipeline_error"], {"units": "1", "long_name": "field error at the pipeline's step (bound of the peak's relative Newmark error)"}),
-            "newmark_pipeline_step": ((), newmark["pipeline_step"], {"units": "deg", "long_name": "the pipeline's Newmark step (fe.angle_step_deg / fe.substeps)"}),
-            "damping_peak": ("damping", damping["peaks"], {"units": "MPa", "long_name": "dynamic peak stress at our optimum (report grid)"}),
-            "damping_periodicity": ("damping", damping["periodicity"], {"units": "1", "long_name": "change of the tip response between the last two revolutions / its range"}),
-            "damping_revolutions": ("damping", damping["revolutions"], {"units": "1", "long_name": "Newmark revolutions (grow as 1/damping below the nominal)"}),
-            "damping_threshold": ((), damping["threshold"], {"units": "1", "long_name": "damping ratio at which the dynamic peak at our optimum equals the allowable",
-                                                        "nan_meaning": "no damping ratio in the assumed range brings the peak to the allowable"}),
+            "newmark_peak": (
+                "newmark_step",
+                newmark["peaks"],
+                {
+                    "units": "MPa",
+                    "long_name": f"dynamic peak stress at our optimum, sampled every {newmark['output_step']:g} deg",
+                },
+            ),
+            "newmark_reference_peak": (
+                (),
+                newmark["reference"],
+                {"units": "MPa", "long_name": "the same with the reference step"},
+            ),
+            "newmark_peak_error": (
+                "newmark_step",
+                newmark["peak_error"],
+                {"units": "1", "long_name": "relative error of the dynamic peak stress against the reference step"},
+            ),
+            "newmark_field_error": (
+                "newmark_step",
+                newmark["field_error"],
+                {
+                    "units": "1",
+                    "long_name": (
+                        "largest |stress - reference| over members and angles / reference peak (bounds the peak's"
+                        " error)"
+                    ),
+                },
+            ),
+            "newmark_order": (
+                "newmark_pair",
+                newmark["order"],
+                {"units": "1", "long_name": "observed order of the field error between neighbouring steps"},
+            ),
+            "newmark_pipeline_error": (
+                (),
+                newmark["pipeline_error"],
+                {
+                    "units": "1",
+                    "long_name": "field error at the pipeline's step (bound of the peak's relative Newmark error)",
+                },
+            ),
+            "newmark_pipeline_step": (
+                (),
+                newmark["pipeline_step"],
+                {"units": "deg", "long_name": "the pipeline's Newmark step (fe.angle_step_deg / fe.substeps)"},
+            ),
+            "damping_peak": (
+                "damping",
+                damping["peaks"],
+                {"units": "MPa", "long_name": "dynamic peak stress at our optimum (report grid)"},
+            ),
+            "damping_periodicity": (
+                "damping",
+                damping["periodicity"],
+                {"units": "1", "long_name": "change of the tip response between the last two revolutions / its range"},
+            ),
+            "damping_revolutions": (
+                "damping",
+                damping["revolutions"],
+                {"units": "1", "long_name": "Newmark revolutions (grow as 1/damping below the nominal)"},
+            ),
+            "damping_threshold": (
+                (),
+                damping["threshold"],
+                {
+                    "units": "1",
+                    "long_name": "damping ratio at which the dynamic peak at our optimum equals the allowable",
+                    "nan_meaning": "no damping ratio in the assumed range brings the peak to the allowable",
+                },
+            ),
         },
         coords={
-            "diameters": ("diameters", np.array(list(sets), dtype=object), {"units": "1", "long_name": "initial or our optimal diameters"}),
-            "solution": ("solution", np.array(solutions, dtype=object), {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"}),
+            "diameters": (
+                "diameters",
+                np.array(list(sets), dtype=object),
+                {"units": "1", "long_name": "initial or our optimal diameters"},
+            ),
+            "solution": (
+                "solution",
+                np.array(solutions, dtype=object),
+                {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"},
+            ),
             "crank_angle": ("crank_angle", theta_deg, {"units": "deg", "long_name": "crank angle"}),
-            "member": ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member (AB, BC, CD, BE)"}),
+            "member": (
+                "member",
+                np.array(MEMBERS, dtype=object),
+                {"units": "1", "long_name": "member (AB, BC, CD, BE)"},
+            ),
             "mode": ("mode", np.arange(1, 5), {"units": "1", "long_name": "mode number"}),
-            "snapshot": ("snapshot", np.array(SNAPSHOT_ANGLES_DEG), {"units": "deg", "long_name": "crank angle of the linkage drawing"}),
+            "snapshot": (
+                "snapshot",
+                np.array(SNAPSHOT_ANGLES_DEG),
+                {"units": "deg", "long_name": "crank angle of the linkage drawing"},
+            ),
             "joint": ("joint", np.array(list("ABCDE"), dtype=object), {"units": "1", "long_name": "joint"}),
             "xy": ("xy", np.array(["x", "y"], dtype=object), {"units": "1", "long_name": "coordinate"}),
-            "newmark_step": ("newmark_step", newmark["steps"], {"units": "deg", "long_name": "Newmark step (crank angle)"}),
-            "newmark_pair": ("newmark_pair", newmark["steps"][1:], {"units": "deg", "long_name": "finer step of the pair"}),
+            "newmark_step": (
+                "newmark_step",
+                newmark["steps"],
+                {"units": "deg", "long_name": "Newmark step (crank angle)"},
+            ),
+            "newmark_pair": (
+                "newmark_pair",
+                newmark["steps"][1:],
+                {"units": "deg", "long_name": "finer step of the pair"},
+            ),
             "damping": ("damping", damping["ratios"], {"units": "1", "long_name": "Rayleigh damping ratio"}),
         },
     )
@@ -310,13 +565,24 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
     deflection = float(np.hypot(tip[..., 0], tip[..., 1]).max() / cfg["geometry"]["arm_m"])
     ds.attrs.update(
         title="Kineto-elastodynamics of the transplanter",
-        validity_tip_deflection_over_arm=deflection, validity_deflection_limit=SMALL_DEFLECTION_LIMIT,
-        validity_warnings=(f"elastic tip deflection reaches {deflection:.3g} of the arm length (limit {SMALL_DEFLECTION_LIMIT:g}): "
-                           "outside small-deflection beam theory" if deflection > SMALL_DEFLECTION_LIMIT else ""),
+        validity_tip_deflection_over_arm=deflection,
+        validity_deflection_limit=SMALL_DEFLECTION_LIMIT,
+        validity_warnings=(
+            f"elastic tip deflection reaches {deflection:.3g} of the arm length (limit {SMALL_DEFLECTION_LIMIT:g}): "
+            "outside small-deflection beam theory"
+            if deflection > SMALL_DEFLECTION_LIMIT
+            else ""
+        ),
         first_frequency_over_crank_speed=ratio,
-        resonance_warning=(f"crank speed within a factor {warn:g} of the first natural frequency ({ratio:.2f})" if ratio < warn else "none"),
-        element=fe["element"], elements_per_member=str(fe["elements_per_member"]),
-        newmark_output_step_deg=newmark["output_step"], newmark_reference_step_deg=float(fe["newmark_study"]["reference_step_deg"]),
+        resonance_warning=(
+            f"crank speed within a factor {warn:g} of the first natural frequency ({ratio:.2f})"
+            if ratio < warn
+            else "none"
+        ),
+        element=fe["element"],
+        elements_per_member=str(fe["elements_per_member"]),
+        newmark_output_step_deg=newmark["output_step"],
+        newmark_reference_step_deg=float(fe["newmark_study"]["reference_step_deg"]),
         damping_threshold_crossings=damping["crossings"],
     )
     return ds
