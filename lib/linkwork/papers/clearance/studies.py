@@ -501,23 +501,25 @@ def _window_variables(runs: SceneRuns, window_ext: np.ndarray, fc: np.ndarray) -
     }
 
 
+def _names(values) -> np.ndarray:
+    """Labels as an object array (netCDF strings)."""
+    return np.array(values, dtype=object)
+
+
 def _scene_coords(runs: SceneRuns, n_max: int, t: np.ndarray, cutoffs_hz: np.ndarray) -> dict[str, tuple]:
     comps = [f"joint {j} {name}" for j in runs.joints
              for name in ("e_x / c", "e_y / c", "e_x' / (c omega)", "e_y' / (c omega)")]
 
-    def names(values):
-        return np.array(values, dtype=object)
-
     return {
-        "start": ("start", names([s["label"] for s in runs.starts]),
+        "start": ("start", _names([s["label"] for s in runs.starts]),
                   {"units": "1", "long_name": "initial state of the journals"}),
-        "check": ("check", names([f"rtol {c['rtol']:g}" for c in runs.checks]),
+        "check": ("check", _names([f"rtol {c['rtol']:g}" for c in runs.checks]),
                   {"units": "1", "long_name": "check integrator setting"}),
-        "component": ("component", names(comps), {"units": "1", "long_name": "section component"}),
-        "axis": ("axis", names(["x", "y"]), {"units": "1", "long_name": "fixed-frame axis"}),
+        "component": ("component", _names(comps), {"units": "1", "long_name": "section component"}),
+        "axis": ("axis", _names(["x", "y"]), {"units": "1", "long_name": "fixed-frame axis"}),
         "run_cycle": ("run_cycle", np.arange(n_max), {"units": "1", "long_name": "cycle from the start (0-based)"}),
-        "measure": ("measure", names(MEASURES), {"units": "1", "long_name": "deviation measure"}),
-        "quantity": ("quantity", names(QUANTITIES), {"units": "1", "long_name": "compared response"}),
+        "measure": ("measure", _names(MEASURES), {"units": "1", "long_name": "deviation measure"}),
+        "quantity": ("quantity", _names(QUANTITIES), {"units": "1", "long_name": "compared response"}),
         "time": ("time", t - t[0], {"units": "s", "long_name": "time from the start of the cycles shown"}),
         "joint": ("joint", np.array(JOINT_IDS),
                   {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
@@ -1114,24 +1116,21 @@ def _claims_coords(runs, variants: Sequence[str], ratio: float) -> dict[str, tup
     first = runs[(variants[0], COMPARED[0])]
     compared = comparisons(ratio)
 
-    def names(values):
-        return np.array(values, dtype=object)
-
     return {
-        "variant": ("variant", names(variants), {"units": "1", "long_name": "parameter variant"}),
-        "start": ("start", names([str(x) for x in first.start.values]),
+        "variant": ("variant", _names(variants), {"units": "1", "long_name": "parameter variant"}),
+        "start": ("start", _names([str(x) for x in first.start.values]),
                   {"units": "1", "long_name": "initial state of the journals (a scenario), the nominal first"}),
         "check": ("check", first.check.values, {"units": "1", "long_name": "check integrator setting (dry scenes)"}),
-        "quantity": ("quantity", names(QUANTITIES), {"units": "1", "long_name": "compared response"}),
-        "measure": ("measure", names(MEASURES), {"units": "1", "long_name": "deviation measure"}),
-        "scene": ("scene", names(COMPARED), {"units": "1", "long_name": "scene"}),
-        "run": ("run", names(_all_scenes(runs)), {"units": "1", "long_name": "scene run"}),
+        "quantity": ("quantity", _names(QUANTITIES), {"units": "1", "long_name": "compared response"}),
+        "measure": ("measure", _names(MEASURES), {"units": "1", "long_name": "deviation measure"}),
+        "scene": ("scene", _names(COMPARED), {"units": "1", "long_name": "scene"}),
+        "run": ("run", _names(_all_scenes(runs)), {"units": "1", "long_name": "scene run"}),
         "joint": ("joint", np.array(JOINT_IDS),
                   {"units": "1", "long_name": "joint 1 (crank-coupler), 2 (coupler-rocker)"}),
-        "claim": ("claim", names(CLAIMS), {"units": "1", "long_name": "claim"}),
-        "comparison": ("comparison", names([c[1] for c in compared]),
+        "claim": ("claim", _names(CLAIMS), {"units": "1", "long_name": "claim"}),
+        "comparison": ("comparison", _names([c[1] for c in compared]),
                        {"units": "1", "long_name": "ordering a claim is made of"}),
-        "comparison_claim": ("comparison", names([c[0] for c in compared]),
+        "comparison_claim": ("comparison", _names([c[0] for c in compared]),
                              {"units": "1", "long_name": "claim of the ordering"}),
         "ripple_cutoff": ("ripple_cutoff", first.ripple_cutoff.values, dict(first.ripple_cutoff.attrs)),
     }
