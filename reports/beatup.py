@@ -763,6 +763,9 @@ caption(
 #   corrected … − 2l₁l₄cos(θ1 − θ4) − 2l₁l₃cos(θ1 − θ3) (a line-break garble of the extraction or of the print).
 # * **(4)**: printed A₁ sin θ1 + B₁ cos θ1 = C₁;
 #   corrected A₁ sin **θ3** + B₁ cos **θ3** = C₁ (θ3 is the unknown; (5) solves for it).
+# * **The unnumbered equation before (7)** (the second derivative of (3)): printed
+#   0 = −l₃l₄θ3''cos(θ3−θ4) − l₃l₄θ3''sin(θ3−θ4) + l₁l₄θ1''cos(θ1−θ4) + …; corrected
+#   0 = −l₃l₄**θ3'²**cos(θ3−θ4) − l₃l₄θ3''sin(θ3−θ4) + l₁l₄**θ1'²**cos(θ1−θ4) + … (where the error of (7) starts).
 # * **(7)**: printed numerator (l₄/l₃)θ1''cos(θ1−θ4) − (l₄/l₁)θ1''cos(θ3−θ4) + …;
 #   corrected (l₄/l₃)**θ1'²**cos(θ1−θ4) − (l₄/l₁)**θ3'²**cos(θ3−θ4) + (θ1'−θ3')²cos(θ1−θ3).
 # * **Text before (12)**: printed "θ7 = 0"; corrected θ7' = 0 (θ7, the frame angle of DF, is constant and not zero).
@@ -785,7 +788,7 @@ for name in ("theta3_accel", "theta6_accel"):
 table(pd.DataFrame(rows_eq, columns=["quantity", "closed form", "max |difference|"]), {"max |difference|": "{:.2e}"})
 md(
     "The corrected closed forms agree with the chain solver to rounding error. Table 1 follows the corrected forms:"
-    f" the printed ones miss it by at least {float(fnd.printed_eqs_worse_factor):.0f} times more than the corrected"
+    f" the printed ones miss it by at least {float(fnd.printed_eqs_worse_factor):.1f} times more than the corrected"
     " ones do."
 )
 
