@@ -23,8 +23,7 @@ def project_copy() -> Iterator[tuple[Path, dict[str, str]]]:
     with tempfile.TemporaryDirectory() as tmp:
         root = Path(tmp)
         env = dict(
-            os.environ,
-            PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
+            os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
             PYTHONPATH=str(root / "lib"),
         )
         for name in COPIED:

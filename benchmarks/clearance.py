@@ -64,13 +64,7 @@ def baseline_run(rhs_py, n_diag, joints, y0, params, t, setting):
     was = np.zeros(len(joints), dtype=bool)
     fun = lambda tt, y: rhs_py(tt, y, params, latched, counts, diag)  # noqa: E731
     solver = RK45(
-        fun,
-        t[0],
-        y0,
-        t[-1],
-        rtol=setting["rtol"],
-        atol=setting["atol"],
-        max_step=setting["max_step_s"],
+        fun, t[0], y0, t[-1], rtol=setting["rtol"], atol=setting["atol"], max_step=setting["max_step_s"],
         first_step=setting["first_step_s"],
     )
     out = np.empty(t.size)

@@ -52,23 +52,9 @@ N_REDUCED = 5  # theta3, theta4, their rates, the driver's work
 
 #: The benchmark's own parameter layout (name, length): the four-bar's data the joint-coordinate sources read.
 LAYOUT = (
-    ("mass", 9),
-    ("ground", 1),
-    ("l", 3),
-    ("omega", 1),
-    ("phi0", 1),
-    ("gravity", 1),
-    ("clearance", 1),
-    ("r_journal", 1),
-    ("r_bearing", 1),
-    ("restitution", 1),
-    ("friction", 1),
-    ("v0", 1),
-    ("v1", 1),
-    ("floor", 1),
-    ("elastic_law", 1),
-    ("elastic_stiffness", 1),
-    ("elastic_exponent", 1),
+    ("mass", 9), ("ground", 1), ("l", 3), ("omega", 1), ("phi0", 1), ("gravity", 1), ("clearance", 1), ("r_journal", 1),
+    ("r_bearing", 1), ("restitution", 1), ("friction", 1), ("v0", 1), ("v1", 1), ("floor", 1), ("elastic_law", 1),
+    ("elastic_stiffness", 1), ("elastic_exponent", 1),
 )
 
 

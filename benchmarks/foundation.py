@@ -53,13 +53,7 @@ def main() -> None:
         run(sys.executable, "-m", "snakemake", "results/reports/stiffness.html", "--cores", "1")
         figures["stiffness_job_s"] = timed(
             lambda: run(
-                sys.executable,
-                "-m",
-                "snakemake",
-                "results/stiffness/stiffness.nc",
-                "--cores",
-                "1",
-                "--forcerun",
+                sys.executable, "-m", "snakemake", "results/stiffness/stiffness.nc", "--cores", "1", "--forcerun",
                 "stiffness",
             ),
             args.repeats,
@@ -70,18 +64,10 @@ def main() -> None:
         )
         figures["report_render_s"] = timed(
             lambda: run(
-                sys.executable,
-                "workflow/scripts/render_report.py",
-                "reports/stiffness.py",
-                "results/bench.html",
-                "--input",
-                "result=results/stiffness/stiffness.nc",
-                "--input",
-                "comparison=results/stiffness/comparison.csv",
-                "--input",
-                "findings=results/stiffness/findings.nc",
-                "--input",
-                "published=config/published/stiffness.yaml",
+                sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", "results/bench.html",
+                "--input", "result=results/stiffness/stiffness.nc", "--input",
+                "comparison=results/stiffness/comparison.csv", "--input", "findings=results/stiffness/findings.nc",
+                "--input", "published=config/published/stiffness.yaml",
             ),
             args.repeats,
         )

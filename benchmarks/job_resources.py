@@ -63,8 +63,7 @@ def main() -> None:
             f" {entry['max_wall_s']:6.1f} s"
         )
     write_figures(
-        "job_resources",
-        {"rules": dict(sorted(per_rule.items()))},
+        "job_resources", {"rules": dict(sorted(per_rule.items()))},
         __doc__.split("Method:", 1)[1].split("Figures go")[0],
     )
 

@@ -135,10 +135,8 @@ def main() -> None:
         sm("--forceall")
         split = compare(first, fingerprints(root))
         figures.update(
-            identical_files=len(split["identical"]),
-            compared_files=len(first),
-            differing=split["differing"] + split["missing"],
-            measured=split["measured"],
+            identical_files=len(split["identical"]), compared_files=len(first),
+            differing=split["differing"] + split["missing"], measured=split["measured"],
         )
         print(
             f"byte-identical reruns: {len(split['identical'])} of {len(first)} netCDF and HTML files identical",
@@ -167,8 +165,7 @@ def baseline(rev: str) -> dict[str, object]:
         archive = subprocess.run(["git", "archive", commit], cwd=PROJECT, check=True, capture_output=True).stdout
         subprocess.run(["tar", "-x"], cwd=root, input=archive, check=True)
         env = dict(
-            os.environ,
-            PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
+            os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}",
             PYTHONPATH=str(root / "lib"),
         )
         runs = []

@@ -61,29 +61,24 @@ def pipeline(f: dict) -> list[str]:
             _target(f["full_warm_s"], t["full_warm_s"]) + "; " + _target(f["full_warm_s"], FULL_REPRODUCTION_BOUND_S),
         ),
         (
-            "full reproduction, empty compile cache (as a fresh clone)",
-            f"{_s(f['full_cold_s'])} (1 run)",
+            "full reproduction, empty compile cache (as a fresh clone)", f"{_s(f['full_cold_s'])} (1 run)",
             _target(f["full_cold_s"], t["full_cold_s"]) + "; " + _target(f["full_cold_s"], FULL_REPRODUCTION_BOUND_S),
         ),
         (
-            "no-op `snakemake` (nothing to do)",
-            f"{_s(f['noop_s'])} ({_runs(f['noop_repeats'])})",
+            "no-op `snakemake` (nothing to do)", f"{_s(f['noop_s'])} ({_runs(f['noop_repeats'])})",
             _target(f["noop_s"], t["noop_s"]),
         ),
         (
             "no-op of a one-rule workflow (Snakemake's own floor here)",
-            f"{_s(f['noop_floor_s'])} ({_runs(f['noop_repeats'])})",
-            "",
+            f"{_s(f['noop_floor_s'])} ({_runs(f['noop_repeats'])})", "",
         ),
         (
             "edit `clearance.claims.close_to_ideal_ratio`, then `snakemake`",
-            f"{_s(f['claim_edit_s'])} ({_runs(f['edit_repeats'])})",
-            _target(f["claim_edit_s"], t["claim_edit_s"]),
+            f"{_s(f['claim_edit_s'])} ({_runs(f['edit_repeats'])})", _target(f["claim_edit_s"], t["claim_edit_s"]),
         ),
         (
             "one small job (`stiffness_compare`) end to end; beyond a no-op",
-            f"{_s(f['small_job_s'])}; {_s(f['job_overhead_s'])}",
-            "",
+            f"{_s(f['small_job_s'])}; {_s(f['job_overhead_s'])}", "",
         ),
     ]
     if "measured" in f:
@@ -111,8 +106,7 @@ def pipeline(f: dict) -> list[str]:
             1,
             (
                 f"the same, code of revision `{b['revision']}` (the baseline the benchmark was given)",
-                f"{_s(b['full_warm_s'])} (1 run); ours takes {f['full_warm_s'] / b['full_warm_s']:.2f} of it",
-                "",
+                f"{_s(b['full_warm_s'])} (1 run); ours takes {f['full_warm_s'] / b['full_warm_s']:.2f} of it", "",
             ),
         )
     out = [f"`python benchmarks/pipeline.py` on {_machine(f['machine'])}. Method: {f['method']}", "",
@@ -353,13 +347,11 @@ def slurm(f: dict) -> list[str]:
         ("full reproduction, local (`snakemake`), empty compile cache", _s(f["local_s"]) + " (1 run)", ""),
         (
             "the same on a single-node SLURM (`snakemake --profile profiles/slurm --cores 1`), empty compile cache",
-            _s(f["slurm_s"]) + " (1 run)",
-            "",
+            _s(f["slurm_s"]) + " (1 run)", "",
         ),
         ("SLURM over local", f"{f['ratio']:.2f}", _target(f["ratio"], f["ratio_target"], unit="")),
         (
-            "submissions (sbatch calls; an array counts once)",
-            str(f["submissions"]),
+            "submissions (sbatch calls; an array counts once)", str(f["submissions"]),
             _target(f["submissions"], f["submission_target"], unit=""),
         ),
         (

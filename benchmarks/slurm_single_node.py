@@ -66,8 +66,7 @@ def install() -> None:
         run(["apt-get", "update", "-qq"])
         run(
             ["apt-get", "install", "-y", "-qq", "slurm-wlm", "munge"],
-            env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"},
-            stdout=subprocess.DEVNULL,
+            env={**os.environ, "DEBIAN_FRONTEND": "noninteractive"}, stdout=subprocess.DEVNULL,
         )
     try:
         import snakemake_executor_plugin_slurm  # noqa: F401
@@ -75,14 +74,7 @@ def install() -> None:
         say("installing the slurm extra (snakemake-executor-plugin-slurm) ...")
         run(
             [
-                sys.executable,
-                "-m",
-                "pip",
-                "install",
-                "--quiet",
-                "-c",
-                str(PROJECT / "constraints.txt"),
-                "-e",
+                sys.executable, "-m", "pip", "install", "--quiet", "-c", str(PROJECT / "constraints.txt"), "-e",
                 f"{PROJECT}[slurm]",
             ]
         )
@@ -166,12 +158,8 @@ def single_node() -> Iterator[dict[str, str]]:
             MUNGE_SOCKET.parent.mkdir(parents=True, exist_ok=True)
             run(
                 [
-                    "munged",
-                    "--force",
-                    f"--key-file={key}",
-                    f"--socket={MUNGE_SOCKET}",
-                    f"--pid-file={folder / 'munged.pid'}",
-                    f"--log-file={folder / 'munged.log'}",
+                    "munged", "--force", f"--key-file={key}", f"--socket={MUNGE_SOCKET}",
+                    f"--pid-file={folder / 'munged.pid'}", f"--log-file={folder / 'munged.log'}",
                     f"--seed-file={folder / 'munged.seed'}",
                 ]
             )
@@ -260,9 +248,7 @@ def main() -> None:
             "LINKWORK_CACHE": str(work / "cache-slurm"),
         }
         cluster_s = timed(
-            [sys.executable, "-m", "snakemake", "--profile", "profiles/slurm", "--cores", "1"],
-            cluster,
-            env_cluster,
+            [sys.executable, "-m", "snakemake", "--profile", "profiles/slurm", "--cores", "1"], cluster, env_cluster,
             work / "slurm.log",
         )
     submissions = len(tally.read_text().splitlines())

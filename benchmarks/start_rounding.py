@@ -42,8 +42,7 @@ def _generic_starts() -> None:
     def offset_start(p, joints, eccentricity, rate):
         names = [fourbar.JOINT_NAMES[j] for j in joints]
         return assembly.start_state(
-            fourbar.linkage(p, joints, ("contact",)),
-            dict.fromkeys(names, tuple(eccentricity)),
+            fourbar.linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(eccentricity)),
             dict.fromkeys(names, tuple(rate)),
         )
 
@@ -98,8 +97,7 @@ def _start_gap(section) -> float:
                 ecc, rate = np.asarray(start["eccentricity"]) * c, np.asarray(start["rate"]) * c * w
                 names = [fourbar.JOINT_NAMES[j] for j in joints]
                 ours = assembly.start_state(
-                    fourbar.linkage(p, joints, ("contact",)),
-                    dict.fromkeys(names, tuple(ecc)),
+                    fourbar.linkage(p, joints, ("contact",)), dict.fromkeys(names, tuple(ecc)),
                     dict.fromkeys(names, tuple(rate)),
                 )
                 gap = max(gap, float(np.abs(fourbar.offset_start(p, joints, ecc, rate) - ours).max()))

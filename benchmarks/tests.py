@@ -37,15 +37,7 @@ def main() -> None:
             t0 = time.perf_counter()
             done = subprocess.run(
                 [
-                    sys.executable,
-                    "-m",
-                    "pytest",
-                    "-q",
-                    "-p",
-                    "no:cacheprovider",
-                    "-m",
-                    selection,
-                    "--deselect",
+                    sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-m", selection, "--deselect",
                     OWN_CHECK,
                 ],
                 cwd=PROJECT,

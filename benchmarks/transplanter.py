@@ -53,8 +53,7 @@ def main() -> None:
     for key, value in figures.items():
         print(f"{key}: {value:.3f} s", flush=True)
     write_figures(
-        "transplanter",
-        {**figures, "repeats": args.repeats, "targets": TARGETS},
+        "transplanter", {**figures, "repeats": args.repeats, "targets": TARGETS},
         __doc__.split("Method:", 1)[1].split("Figures go")[0],
     )
     if any(figures[k] > v for k, v in TARGETS.items()):

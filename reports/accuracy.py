@@ -89,13 +89,8 @@ caption(
 # %%
 rows = [
     (
-        in_words(m),
-        in_words(h["pipeline_setting"]),
-        h["pipeline_error"],
-        h["pipeline_s"],
-        in_words(h["best_other_setting"]),
-        h["best_other_error"],
-        h["best_other_time_ratio"],
+        in_words(m), in_words(h["pipeline_setting"]), h["pipeline_error"], h["pipeline_s"],
+        in_words(h["best_other_setting"]), h["best_other_error"], h["best_other_time_ratio"],
     )
     for m, h in timing["highlights"].items()
 ]
@@ -103,12 +98,7 @@ table(
     pd.DataFrame(
         rows,
         columns=[
-            "method",
-            "pipeline setting",
-            "its error",
-            "its time (s)",
-            "most accurate other setting",
-            "its error ",
+            "method", "pipeline setting", "its error", "its time (s)", "most accurate other setting", "its error ",
             "its time / pipeline's",
         ],
     ),

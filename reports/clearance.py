@@ -18,31 +18,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import (
-    answer,
-    assumed,
-    caption,
-    comparison_table,
-    design_text,
-    esc,
-    inputs,
-    load,
-    loaded,
-    md,
-    oat_table,
-    provenance,
-    show_log_log,
-    table,
+    answer, assumed, caption, comparison_table, design_text, esc, inputs, load, loaded, md, oat_table, provenance,
+    show_log_log, table,
 )
 
 from linkwork.papers.clearance import CITATION
 from linkwork.papers.clearance.words import (
-    CLAIM_WORDS,
-    MEASURE_WORDS,
-    QUANTITY_WORDS,
-    SCENE_WORDS,
-    VARIANT_WORDS,
-    in_words,
-    sample_in_words,
+    CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words,
 )
 
 md(f"**Paper.** {esc(CITATION)}")
@@ -73,12 +55,8 @@ scene_codes = [str(s) for s in claims.scene.values]
 panels = [(q, m) for q in claims.quantity.values for m in claims.measure.values]
 # per variant a row of panels and, under it, a row of boxes naming the orderings each claim needs on that measure
 fig, axes = plt.subplots(
-    2 * len(variants),
-    len(panels),
-    figsize=(3.2 * len(panels), 7.4 * len(variants)),
-    constrained_layout=True,
-    squeeze=False,
-    height_ratios=[3.2, 1.3] * len(variants),
+    2 * len(variants), len(panels), figsize=(3.2 * len(panels), 7.4 * len(variants)), constrained_layout=True,
+    squeeze=False, height_ratios=[3.2, 1.3] * len(variants),
 )
 for r, v in enumerate(
     sorted(variants, key=lambda v: v != fnd.attrs["defensible_model"])
@@ -92,14 +70,8 @@ for r, v in enumerate(
                 colour = "C1" if sc.startswith("dry") else "C2"
                 valid = bool(np.isfinite(half[k]))
                 ax.errorbar(
-                    [k + 0.15 * (n - (len(starts) - 1) / 2)],
-                    [mean[k]],
-                    yerr=[[half[k]], [half[k]]] if valid else None,
-                    fmt=START_MARK[st],
-                    ms=7,
-                    capsize=4,
-                    color=colour,
-                    mfc=colour if valid else "white",
+                    [k + 0.15 * (n - (len(starts) - 1) / 2)], [mean[k]], yerr=[[half[k]], [half[k]]] if valid else None,
+                    fmt=START_MARK[st], ms=7, capsize=4, color=colour, mfc=colour if valid else "white",
                     label=f"start: {st}" if k == 0 and c == 0 else None,
                 )
         ax.set_yscale("log")
@@ -131,14 +103,7 @@ for r, v in enumerate(
         box = axes[2 * r + 1, c]
         box.axis("off")
         box.text(
-            0.0,
-            1.0,
-            text,
-            transform=box.transAxes,
-            fontsize=6.5,
-            va="top",
-            ha="left",
-            wrap=True,
+            0.0, 1.0, text, transform=box.transAxes, fontsize=6.5, va="top", ha="left", wrap=True,
             bbox={"facecolor": "white", "edgecolor": "0.7"},
         )
 plt.show()
@@ -323,13 +288,8 @@ table(
     pd.DataFrame(
         rows,
         columns=[
-            "variant",
-            "start",
-            "input (config key)",
-            "ordering",
-            "difference over the range",
-            "claims decided otherwise",
-            "claims left undetermined",
+            "variant", "start", "input (config key)", "ordering", "difference over the range",
+            "claims decided otherwise", "claims left undetermined",
         ],
     ),
     caption=(
@@ -379,10 +339,7 @@ md(
 comp = (
     claims[
         [
-            "comparison_difference",
-            "comparison_statistical",
-            "comparison_numerical",
-            "comparison_outcome",
+            "comparison_difference", "comparison_statistical", "comparison_numerical", "comparison_outcome",
             "comparison_decided_by",
         ]
     ]
@@ -694,12 +651,7 @@ def poincare_map(v: str, first_component: int, xlabel: str, ylabel: str, circle:
             first, stop = int(run_.window_first.sel(start=st)), int(run_.window_stop.sel(start=st))
             ax.plot(sec[:first, col], sec[:first, col + 1], ".", ms=3, color=f"C{n}", alpha=0.25)
             ax.plot(
-                sec[first:stop, col],
-                sec[first:stop, col + 1],
-                START_MARK[st],
-                ms=6,
-                mfc="none",
-                color=f"C{n}",
+                sec[first:stop, col], sec[first:stop, col + 1], START_MARK[st], ms=6, mfc="none", color=f"C{n}",
                 label=f"start {st}",
             )
         if circle:
@@ -758,10 +710,7 @@ for col, cl in enumerate(sw.clearance_m.values):
             )
             if periodic:
                 ax.annotate(
-                    f"{int(at.state_period)}",
-                    (w, np.nanmax(pts)),
-                    textcoords="offset points",
-                    xytext=(3, 3),
+                    f"{int(at.state_period)}", (w, np.nanmax(pts)), textcoords="offset points", xytext=(3, 3),
                     fontsize=7,
                 )
         ax.set_title(f"clearance {cl * 1e6:.0f} µm", fontsize=9)
@@ -798,8 +747,7 @@ rows += [
     ("journal / bearing radius", f"{j['journal_radius_m'] * 1e3:g} / {j['bearing_radius_m'] * 1e3:g} mm", "decoded"),
     ("E, ν", f"{j['youngs_modulus_Pa'] / 1e9:g} GPa, {j['poisson']}", "decoded"),
     ("restitution, friction", f"{j['restitution']}, {j['friction']}", "decoded"),
-    ("viscosity", f"{lub_cfg['joints']['viscosity_Pa_s']} Pa·s", "decoded"),
-    ("contact law", j["contact_law"], "paper"),
+    ("viscosity", f"{lub_cfg['joints']['viscosity_Pa_s']} Pa·s", "decoded"), ("contact law", j["contact_law"], "paper"),
 ]
 rows += [
     (k.removeprefix("assumed.").replace("_", " "), f"{v['value']:g}", f"{v['status']}: {v['reason']}")
@@ -844,8 +792,7 @@ for v in variants:
     fig, axes = plt.subplots(2, 3, figsize=(15, 7), sharex=True, constrained_layout=True)
     for col, (jt, dry, lub) in enumerate(
         (
-            ("joint 1", "dry_1", "lubricated_1"),
-            ("joint 2", "dry_2", "lubricated_2"),
+            ("joint 1", "dry_1", "lubricated_1"), ("joint 2", "dry_2", "lubricated_2"),
             ("both joints", "dry_both", "lubricated_both"),
         )
     ):
@@ -888,8 +835,7 @@ for v in variants:
                 ax.plot(
                     x,
                     scenes[(v, f"{kind}_{joint}")][var].values - scenes[(v, f"{kind}_{joint}")][f"ideal_{var}"].values,
-                    color=colour,
-                    lw=0.7,
+                    color=colour, lw=0.7,
                     label="clearance at both joints" if joint == "both" else f"clearance at joint {joint}",
                 )
             ax.set_title(f"{v}: {kind}, {NAMES[var]} − ideal")
@@ -914,27 +860,13 @@ per_run = runs.drop_duplicates(["variant", "run"]).copy()
 per_run = per_run[per_run.run != "ideal"]
 show = per_run[
     [
-        "variant",
-        "run",
-        "summary_integrator",
-        "summary_steps",
-        "summary_max_drift",
-        "summary_sampling_over_contact_frequency",
-        "summary_n_contact",
-        "summary_n_friction",
-        "summary_n_lubrication",
+        "variant", "run", "summary_integrator", "summary_steps", "summary_max_drift",
+        "summary_sampling_over_contact_frequency", "summary_n_contact", "summary_n_friction", "summary_n_lubrication",
     ]
 ].copy()
 show.columns = [
-    "variant",
-    "scene",
-    "integrator",
-    "steps (every start and check)",
-    "max drift |Φ| (m)",
-    "sampling / contact frequency",
-    "contact evaluations",
-    "friction evaluations",
-    "lubrication evaluations",
+    "variant", "scene", "integrator", "steps (every start and check)", "max drift |Φ| (m)",
+    "sampling / contact frequency", "contact evaluations", "friction evaluations", "lubrication evaluations",
 ]
 table(
     worded(show),
@@ -966,24 +898,12 @@ md(
 # %%
 joints = runs[runs.summary_max_eccentricity_ratio.notna()][
     [
-        "variant",
-        "run",
-        "joint",
-        "summary_contact_label",
-        "summary_contact_value",
-        "summary_max_eccentricity_ratio",
-        "summary_max_contact_force",
-        "summary_max_film_force",
+        "variant", "run", "joint", "summary_contact_label", "summary_contact_value", "summary_max_eccentricity_ratio",
+        "summary_max_contact_force", "summary_max_film_force",
     ]
 ]
 joints.columns = [
-    "variant",
-    "scene",
-    "joint",
-    "deepest contact",
-    "value",
-    "max eccentricity / c",
-    "max dry contact force (N)",
+    "variant", "scene", "joint", "deepest contact", "value", "max eccentricity / c", "max dry contact force (N)",
     "max film force (N)",
 ]
 table(
@@ -1255,24 +1175,15 @@ for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
     for label in chosen:
         i = list(wp.setting.values).index(label)
         ax.plot(
-            float(wp.steps.sel(scene=scene).values[i]),
-            float(wp.error.sel(scene=scene).values[i]),
-            "k*",
-            ms=14,
+            float(wp.steps.sel(scene=scene).values[i]), float(wp.error.sel(scene=scene).values[i]), "k*", ms=14,
             label="pipeline setting",
         )
     ax.axhline(
-        max(float(wp.reference_error.sel(scene=scene)), 1e-16),
-        color="k",
-        ls=":",
-        lw=1,
+        max(float(wp.reference_error.sel(scene=scene)), 1e-16), color="k", ls=":", lw=1,
         label="the reference's own error",
     )
     ax.axhline(
-        float(wp.start_sensitivity.sel(scene=scene)),
-        color="k",
-        ls="--",
-        lw=1,
+        float(wp.start_sensitivity.sel(scene=scene)), color="k", ls="--", lw=1,
         label=f"start moved by {float(wp.attrs['start_perturbation_m']) * 1e9:g} nm",
     )
     ax.set_title(f"{SCENE_WORDS[str(scene)]} ({wp.attrs['variant']}, {wp.attrs['horizon_cycles']} cycle)")
@@ -1363,9 +1274,7 @@ if "crosscheck_ideal" in files:
     for v in xc.variant.values:
         for q, marker in zip(xc.quantity.values, ("o", "s")):
             ax.loglog(
-                xc.step.values,
-                xc.relative_difference.sel(variant=v, quantity=q).values,
-                marker + "-",
+                xc.step.values, xc.relative_difference.sel(variant=v, quantity=q).values, marker + "-",
                 label=f"{v}: {NAMES[str(q)]}",
             )
     ax.axhline(xc.attrs["agreement"], color="k", ls=":", lw=1, label="agreement bound (our choice)")
@@ -1420,12 +1329,8 @@ if "crosscheck_dry" in files:
             m, se = d["mean"].sel(quantity=q).values, d.standard_error.sel(quantity=q).values
             rows.append(
                 (
-                    v,
-                    SCENE_WORDS[sc],
-                    names[str(q)],
-                    *(f"{a:.4g} ± {b:.2g}" for a, b in zip(m, se)),
-                    f"{float(d.relative_difference.sel(quantity=q)):+.1%}",
-                    f"{float(d.margin.sel(quantity=q)):.3g}",
+                    v, SCENE_WORDS[sc], names[str(q)], *(f"{a:.4g} ± {b:.2g}" for a, b in zip(m, se)),
+                    f"{float(d.relative_difference.sel(quantity=q)):+.1%}", f"{float(d.margin.sel(quantity=q)):.3g}",
                     "agree" if bool(d.agree.sel(quantity=q)) else "differ",
                 )
             )
@@ -1434,13 +1339,8 @@ if "crosscheck_dry" in files:
         pd.DataFrame(
             rows,
             columns=[
-                "variant",
-                "scene",
-                "RMS deviation from ideal of",
-                *settings,
-                "Exudyn − linkwork (of the means)",
-                "margin",
-                "verdict",
+                "variant", "scene", "RMS deviation from ideal of", *settings, "Exudyn − linkwork (of the means)",
+                "margin", "verdict",
             ],
         ),
         {},
@@ -1458,11 +1358,7 @@ if "crosscheck_dry" in files:
             for k, (setting, colour) in enumerate(zip(d.setting.values, ("C0", "C1", "C2", "C3"))):
                 vals = d.cycle_rms_deviation.sel(quantity=q).values[k]
                 ax.plot(
-                    np.full(vals.size, i + (k - 1.5) * 0.12),
-                    vals,
-                    "o",
-                    ms=3,
-                    color=colour,
+                    np.full(vals.size, i + (k - 1.5) * 0.12), vals, "o", ms=3, color=colour,
                     label=setting if i == 0 else None,
                 )
         ax.set_xticks(range(len(keys)), [f"{v}\n{textwrap.fill(SCENE_WORDS[sc], 16)}" for v, sc in keys], fontsize=8)

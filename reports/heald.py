@@ -17,21 +17,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import (
-    answer,
-    assumed,
-    caption,
-    comparison_table,
-    consistent_sets_table,
-    design_text,
-    esc,
-    inputs,
-    loaded,
-    md,
-    oat_table,
-    provenance,
-    show_log_log,
-    table,
-    verdict_figure,
+    answer, assumed, caption, comparison_table, consistent_sets_table, design_text, esc, inputs, loaded, md, oat_table,
+    provenance, show_log_log, table, verdict_figure,
 )
 
 from linkwork.papers.heald import CITATION
@@ -56,13 +43,11 @@ answer(fnd)
 claims_drawn = [
     (
         "force_E_many_times_F",
-        f"force in E over force in F, smallest over the band (1); the paper: 'many times', read as ≥ {many:g}",
-        "log",
+        f"force in E over force in F, smallest over the band (1); the paper: 'many times', read as ≥ {many:g}", "log",
     ),
     (
         "forces_grow_with_frequency",
-        "fraction of the speed band over which both joint forces grow (1); the paper: they grow (all of it)",
-        "linear",
+        "fraction of the speed band over which both joint forces grow (1); the paper: they grow (all of it)", "linear",
     ),
     (
         "limit_41_89",
@@ -83,10 +68,7 @@ for ax, (cid, label, scale) in zip(axes, claims_drawn, strict=True):
         ax.axvspan(0.995, 1.005, color="0.85", lw=0, label="the paper's claim, as we read it")
     else:
         ax.axvspan(
-            limit - float(fnd.limit_band),
-            limit + float(fnd.limit_band),
-            color="0.85",
-            lw=0,
+            limit - float(fnd.limit_band), limit + float(fnd.limit_band), color="0.85", lw=0,
             label="the paper's claim, as we read it",
         )
     for m in models:
@@ -111,21 +93,13 @@ for ax, (cid, label, scale) in zip(axes, claims_drawn, strict=True):
             )
         for d, marker in zip(fnd.drive.values, ("o", "s"), strict=False):
             ax.plot(
-                float(fnd.value_by_drive.sel(model=m, claim=cid, drive=d)),
-                y,
-                marker,
-                mfc="k" if marker == "o" else "none",
-                mec="k",
-                ms=7,
+                float(fnd.value_by_drive.sel(model=m, claim=cid, drive=d)), y, marker,
+                mfc="k" if marker == "o" else "none", mec="k", ms=7,
                 label=f"assumed values, {drive_labels[str(d)]}" if m == models[0] else None,
             )
         ax.text(
-            1.01,
-            y,
-            " / ".join(dict.fromkeys(str(v) for v in rows_m.verdict)),
-            transform=ax.get_yaxis_transform(),
-            va="center",
-            fontsize=8,
+            1.01, y, " / ".join(dict.fromkeys(str(v) for v in rows_m.verdict)), transform=ax.get_yaxis_transform(),
+            va="center", fontsize=8,
         )
     ax.set_xscale(scale)
     ax.set_yticks([ys[m] for m in models], [model_names[m] for m in models])
@@ -259,8 +233,7 @@ for m in models:
         else ""
     ) + (f"Note: {'; '.join(cam_changed)}." if cam_changed else "")
     verdict_figure(
-        drawn.assign(quantity=[figure_labels[i] for i in drawn.id]),
-        f"Heald, model {m}: published claims against ours",
+        drawn.assign(quantity=[figure_labels[i] for i in drawn.id]), f"Heald, model {m}: published claims against ours",
         note=note,
     )
     inputs_table(
@@ -582,19 +555,13 @@ table(
     pd.DataFrame(
         [
             (
-                m,
-                freq_list("velocity_resonance", m),
-                freq_list("force_resonance", m),
-                zeta_list(m, "held"),
+                m, freq_list("velocity_resonance", m), freq_list("force_resonance", m), zeta_list(m, "held"),
                 zeta_list(m, "free"),
             )
             for m in models
         ],
         columns=[
-            "model",
-            "resonances, K = 0 (rad/s)",
-            "antiresonances, K → ∞ (rad/s)",
-            "damping of the resonances",
+            "model", "resonances, K = 0 (rad/s)", "antiresonances, K → ∞ (rad/s)", "damping of the resonances",
             "damping of the antiresonances",
         ],
     )
@@ -658,10 +625,7 @@ for m in models:
     s = ds.sel(model=m)
     flat = float(s.joint_force_change_vs_reaction_ratio) <= 1e-8
     axes[0].semilogx(
-        ds.reaction_ratio,
-        s.ratio_EF_min_vs_reaction_ratio,
-        "o-",
-        ms=3,
+        ds.reaction_ratio, s.ratio_EF_min_vs_reaction_ratio, "o-", ms=3,
         label=f"model {m}" + (" (independent of the assumed reactions)" if flat else ""),
     )
     axes[1].plot(ds.heald_mass, s.first_resonance_vs_heald_mass, "o-", ms=3, label=f"model {m}")
@@ -671,10 +635,7 @@ axes[0].set_xlabel("|R_E| / |R_F|")
 axes[0].set_ylabel("min |Q_E|/|Q_F| over the band")
 for ax in axes[1:]:
     ax.axhspan(
-        limit - float(fnd.limit_band),
-        limit + float(fnd.limit_band),
-        color="C3",
-        alpha=0.15,
+        limit - float(fnd.limit_band), limit + float(fnd.limit_band), color="C3", alpha=0.15,
         label=f"{limit:g} s⁻¹ ± {float(fnd.limit_band):.2g}",
     )
     ax.set_ylabel("lowest resonance (rad/s)")
@@ -713,10 +674,7 @@ cam = cfg["cam"]
 fig, axes = plt.subplots(1, 3, figsize=(15, 4), constrained_layout=True)
 axes[0].bar(ds.harmonic, ds.cam_harmonic_amplitude)
 axes[0].axhline(
-    float(ds.significant_harmonic),
-    color="C3",
-    ls=":",
-    lw=1,
+    float(ds.significant_harmonic), color="C3", ls=":", lw=1,
     label=f"significant: ≥ {float(ds.significant_harmonic):g} of the first (our reading)",
 )
 axes[0].set_yscale("log")
@@ -793,9 +751,7 @@ for m in models:
     for c in fnd.claim.values:
         rows.append(
             (
-                m,
-                claim_short[str(c)],
-                str(fnd.verdict_sine_nominal.sel(model=m, claim=c).values),
+                m, claim_short[str(c)], str(fnd.verdict_sine_nominal.sel(model=m, claim=c).values),
                 str(fnd.verdict_cam_nominal.sel(model=m, claim=c).values),
                 float(fnd.value_cam_nominal.sel(model=m, claim=c)),
                 str(fnd.verdict_cam_over_rise.sel(model=m, claim=c).values),
@@ -972,20 +928,11 @@ for i, case in enumerate(cases):
             speeds, sel[f"flight_{joint}"], ls, marker="o", color=f"C{i}", label=f"{case_label[case]}, joint {joint}"
         )
         axes[1].semilogy(
-            speeds,
-            sel[f"force_{joint}"],
-            ls,
-            marker="o",
-            color=f"C{i}",
+            speeds, sel[f"force_{joint}"], ls, marker="o", color=f"C{i}",
             label=f"{case_label[case]}, joint {joint}: clearance joint",
         )
         axes[1].semilogy(
-            speeds,
-            sel[f"chain_{joint}"],
-            ls,
-            marker="x",
-            color=f"C{i}",
-            alpha=0.5,
+            speeds, sel[f"chain_{joint}"], ls, marker="x", color=f"C{i}", alpha=0.5,
             label=f"{case_label[case]}, joint {joint}: model A's chain",
         )
 for ax in axes:
@@ -1023,13 +970,8 @@ table(
     pd.DataFrame(
         rows,
         columns=[
-            "case",
-            "speed (rev/min)",
-            "state",
-            "free flight, E / F (fraction of a cycle)",
-            "largest gap, E / F (µm)",
-            "largest contact force, E / F (N; in brackets: its sensitivity)",
-            "model A's chain: peak |Q_E| / |Q_F| (N)",
+            "case", "speed (rev/min)", "state", "free flight, E / F (fraction of a cycle)", "largest gap, E / F (µm)",
+            "largest contact force, E / F (N; in brackets: its sensitivity)", "model A's chain: peak |Q_E| / |Q_F| (N)",
         ],
     ),
     caption=(
@@ -1090,9 +1032,7 @@ def _reaches_band(c: str, d: str) -> bool:
 
 straddle = [
     (
-        case_label[c],
-        str(d),
-        float(contact.held_up_to_rpm.sel(case=c, drive=d)),
+        case_label[c], str(d), float(contact.held_up_to_rpm.sel(case=c, drive=d)),
         float(contact.first_lost_rpm.sel(case=c, drive=d)),
     )
     for c in cases

@@ -55,11 +55,8 @@ for ax, var, scale, unit, label in (
 axes[1].plot(ds.crank_angle_fine, ds.K_pinned_fine / 1e4, color="k", lw=2, label=FORM_NAMES["pinned"])
 axes[1].plot(ds.crank_angle, ds.K_pinned / 1e4, "o", color="k", ms=3)
 axes[0].text(
-    0.02,
-    0.03,
-    f"pinned mechanism: no linear stiffness (mobility {int(fnd.pinned_free_mobility)} with O' free)",
-    transform=axes[0].transAxes,
-    fontsize=8,
+    0.02, 0.03, f"pinned mechanism: no linear stiffness (mobility {int(fnd.pinned_free_mobility)} with O' free)",
+    transform=axes[0].transAxes, fontsize=8,
 )
 axes[0].plot(
     [pub["K_h_argmax"]["value"]], [pub["K_h_max"]["value"] / 1e6], "k^", ms=9, label="published maximum (at its angle)"
@@ -264,10 +261,7 @@ rows = pd.DataFrame(
             f"{g} {c}": wide[(k, a)].values
             for a, g in (("beta", "β"), ("gamma", "γ"))
             for k, c in (
-                ("published", "published"),
-                ("reproduced", "ours"),
-                ("deviation", "dev"),
-                ("verdict", "verdict"),
+                ("published", "published"), ("reproduced", "ours"), ("deviation", "dev"), ("verdict", "verdict"),
             )
         },
     }
@@ -338,13 +332,11 @@ not_drawn = ("Not drawn: the crank angles of the extremes (they must agree exact
              "see the table above) and the conclusion's two max/min thresholds (section 6).")
 verdict_figure(
     headline[headline.model == fnd.attrs["defensible_model"]],
-    "Stiffness, statics-consistent form: published numbers against ours",
-    note=not_drawn,
+    "Stiffness, statics-consistent form: published numbers against ours", note=not_drawn,
 )
 verdict_figure(
     headline[headline.model == fnd.attrs["paper_model"]],
-    "Stiffness, the paper's Tables 1–2: published numbers against ours",
-    note=not_drawn,
+    "Stiffness, the paper's Tables 1–2: published numbers against ours", note=not_drawn,
 )
 
 # %% [markdown]
@@ -556,23 +548,14 @@ md(
 stats = pd.DataFrame(
     [
         [
-            "pinned output (crank held)",
-            float(ds.K_pinned_min),
-            float(ds.K_pinned_argmin),
-            float(ds.K_pinned_max),
-            float(ds.K_pinned_argmax),
-            float(ds.K_pinned_mean),
-            float(ds.K_pinned_max_over_min),
+            "pinned output (crank held)", float(ds.K_pinned_min), float(ds.K_pinned_argmin), float(ds.K_pinned_max),
+            float(ds.K_pinned_argmax), float(ds.K_pinned_mean), float(ds.K_pinned_max_over_min),
         ],
         *[
             [
-                f"K_c, rigid frame ({form})",
-                float(ds.K_c_min.sel(form=form)),
-                float(ds.K_c_argmin.sel(form=form)),
-                float(ds.K_c_max.sel(form=form)),
-                float(ds.K_c_argmax.sel(form=form)),
-                float(ds.K_c_mean.sel(form=form)),
-                float(ds.K_c_max_over_min.sel(form=form)),
+                f"K_c, rigid frame ({form})", float(ds.K_c_min.sel(form=form)), float(ds.K_c_argmin.sel(form=form)),
+                float(ds.K_c_max.sel(form=form)), float(ds.K_c_argmax.sel(form=form)),
+                float(ds.K_c_mean.sel(form=form)), float(ds.K_c_max_over_min.sel(form=form)),
             ]
             for form in forms
         ],
@@ -594,8 +577,7 @@ table(
 parts = pd.DataFrame({"part of the pinned compliance": ds.pinned_part.values,
                       "smallest share": ds.pinned_share_min.values, "largest share": ds.pinned_share_max.values})
 table(
-    parts,
-    {"smallest share": "{:.2%}", "largest share": "{:.2%}"},
+    parts, {"smallest share": "{:.2%}", "largest share": "{:.2%}"},
     caption="Where the pinned output's rotation comes from, over the paper's frames",
 )
 ratio = pd.DataFrame(
@@ -606,8 +588,7 @@ ratio = pd.DataFrame(
     }
 )
 table(
-    ratio,
-    {"pinned output over K_c, smallest": "{:.2f}", "largest": "{:.2f}"},
+    ratio, {"pinned output over K_c, smallest": "{:.2f}", "largest": "{:.2f}"},
     caption="The pinned output stiffness over the rigid frame's K_c, frame by frame",
 )
 md(

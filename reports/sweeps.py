@@ -66,10 +66,7 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
         else {"vmin": 0.0, "cmap": "Greys"} if linear else {}
     )
     im = ax.pcolormesh(
-        np.arange(ds[xdim].size),
-        np.arange(ds[ydim].size),
-        data.values,
-        shading="nearest",
+        np.arange(ds[xdim].size), np.arange(ds[ydim].size), data.values, shading="nearest",
         **{"cmap": "RdBu_r", **scale},
     )
     ax.set_xticks(np.arange(ds[xdim].size), [fmt_axis(xdim, v) for v in ds[xdim].values])
@@ -78,12 +75,7 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
         for j in range(ds[xdim].size):
             shade = float(im.norm(data.values[i, j]))
             ax.text(
-                j,
-                i,
-                f"{data.values[i, j]:.3g}",
-                ha="center",
-                va="center",
-                fontsize=7,
+                j, i, f"{data.values[i, j]:.3g}", ha="center", va="center", fontsize=7,
                 color="w" if shade > (0.6 if linear else 0.8) or (shade < 0.2 and not linear) else "k",
             )
     rx = list(ds[xdim].values).index(ds.attrs[f"reference_{xdim}"])
@@ -92,13 +84,8 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
     threshold = float(ds.threshold_value.sel(output=var))
     if np.isfinite(threshold):
         ax.contour(
-            np.arange(ds[xdim].size),
-            np.arange(ds[ydim].size),
-            data.values,
-            levels=[threshold],
-            colors="k",
-            linewidths=2,
-            linestyles="--",
+            np.arange(ds[xdim].size), np.arange(ds[ydim].size), data.values, levels=[threshold], colors="k",
+            linewidths=2, linestyles="--",
         )
     ax.set_xlabel(AXIS_LABEL[xdim][0])
     ax.set_ylabel(AXIS_LABEL[ydim][0])
@@ -198,11 +185,7 @@ caption(
 # %%
 md(
     threshold_sentence(
-        cl,
-        "penetration_over_limit",
-        "clearance_m",
-        "crank_speed_rad_s",
-        "penetration beyond the sphere law's range",
+        cl, "penetration_over_limit", "clearance_m", "crank_speed_rad_s", "penetration beyond the sphere law's range",
         "penetration inside the sphere law's range",
     )
     + " Beyond the limit the contact arc is too wide for eq. (9)'s sphere law: the forces and the claims' measures"

@@ -37,30 +37,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import (
-    answer,
-    assumed,
-    caption,
-    comparison_table,
-    consistent_sets_table,
-    esc,
-    inputs,
-    loaded,
-    md,
-    oat_table,
-    provenance,
-    table,
-    verdict_figure,
+    answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, loaded, md, oat_table, provenance,
+    table, verdict_figure,
 )
 
 files, got = inputs(), loaded()
 ked, opt, pub_pt, acc, cmp, fnd, unc = (
-    got.result,
-    got.optim,
-    got.at_published,
-    got.accuracy,
-    got.comparison,
-    got.findings,
-    got.uncertainty,
+    got.result, got.optim, got.at_published, got.accuracy, got.comparison, got.findings, got.uncertainty,
 )
 cfg = json.loads(opt.attrs["config_json"])
 pub = {q["id"]: q["value"] for q in got.published["quantities"]}
@@ -84,17 +67,11 @@ fig, ax = plt.subplots(figsize=(8, 4.2), constrained_layout=True)
 members = [str(m) for m in fnd.member.values]
 xpos = np.arange(len(members))
 ax.bar(
-    xpos - 0.2,
-    fnd.inertia_stress_published,
-    0.4,
-    color="C1",
+    xpos - 0.2, fnd.inertia_stress_published, 0.4, color="C1",
     label="the paper's optimum (" + ", ".join(f"{v:.2f}" for v in pub_pt.published_diameter.values) + " mm)",
 )
 ax.bar(
-    xpos + 0.2,
-    fnd.inertia_stress_ours,
-    0.4,
-    color="C0",
+    xpos + 0.2, fnd.inertia_stress_ours, 0.4, color="C0",
     label="our optimum (" + ", ".join(f"{v:.2f}" for v in opt.d_opt.values) + " mm)",
 )
 ax.axhline(float(fnd.allowable), color="k", ls=":", label=f"allowable {float(fnd.allowable):.1f} MPa")
@@ -162,9 +139,7 @@ g = cfg["geometry"]
 rows = [
     ("crank speed n", cfg["crank_speed_rpm"], "r/min", "sourced (Sec. 2)"),
     (
-        "AB, BC, CD, BE",
-        ", ".join(f"{g[k] * 1e3:.1f}" for k in ("crank_m", "coupler_m", "rocker_m", "arm_m")),
-        "mm",
+        "AB, BC, CD, BE", ", ".join(f"{g[k] * 1e3:.1f}" for k in ("crank_m", "coupler_m", "rocker_m", "arm_m")), "mm",
         "sourced",
     ),
     ("pivot D", f"({g['pivot_D_m'][0]:.4f}, {g['pivot_D_m'][1]:.4f})", "m", "sourced"),
@@ -185,9 +160,7 @@ rows.append(
 )
 rows.append(
     (
-        "[x_S1]",
-        cfg["optimization"]["reference_diameter_m"]["value"],
-        "m",
+        "[x_S1]", cfg["optimization"]["reference_diameter_m"]["value"], "m",
         entries["optimization.reference_diameter_m"]["reason"],
     )
 )
@@ -268,9 +241,7 @@ for j, (label, data, diam) in enumerate(panels):
         axes[0, j].plot(data.crank_angle, s.Uy * 1e3, "C1" + ls, label=f"Uy {sol}")
         for m_i, member in enumerate(data.member.values):
             axes[1, j].plot(
-                data.crank_angle,
-                s.stress.sel(member=member),
-                f"C{m_i}" + ls,
+                data.crank_angle, s.stress.sel(member=member), f"C{m_i}" + ls,
                 label=f"{member} {sol}" if sol == "quasi-static" else None,
             )
     d = ", ".join(f"{v:.2f}" for v in diam)
@@ -377,29 +348,21 @@ md(
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), constrained_layout=True)
 ax = axes[0]
 ax.loglog(
-    ked.newmark_step,
-    ked.newmark_field_error,
-    "o-",
+    ked.newmark_step, ked.newmark_field_error, "o-",
     label="stress field: max |σ − σ_ref| / peak (bounds the peak's error)",
 )
 ax.loglog(ked.newmark_step, ked.newmark_peak_error, "s--", label="peak stress itself")
 ax.loglog(
-    ked.newmark_step,
-    float(ked.newmark_field_error[0]) * (ked.newmark_step / float(ked.newmark_step[0])) ** 2,
-    "k:",
-    lw=1,
-    label="slope 2",
+    ked.newmark_step, float(ked.newmark_field_error[0]) * (ked.newmark_step / float(ked.newmark_step[0])) ** 2, "k:",
+    lw=1, label="slope 2",
 )
 ax.axvline(
     float(ked.newmark_pipeline_step), color="C3", ls=":", label=f"pipeline step {float(ked.newmark_pipeline_step):g}°"
 )
 for h, p_ in zip(ked.newmark_pair.values, ked.newmark_order.values):
     ax.annotate(
-        f"order {p_:.2f}",
-        (h, float(ked.newmark_field_error.sel(newmark_step=h))),
-        textcoords="offset points",
-        xytext=(6, -12),
-        fontsize=8,
+        f"order {p_:.2f}", (h, float(ked.newmark_field_error.sel(newmark_step=h))), textcoords="offset points",
+        xytext=(6, -12), fontsize=8,
     )
 ax.set_xlabel("Newmark step (deg of crank angle)")
 ax.set_ylabel("relative error vs the reference step")
@@ -413,9 +376,7 @@ ax.axhline(float(fnd.optimum_quasi_static_peak), color="C2", ls="--", lw=1, labe
 ax.axvline(float(ked.damping_ratio) * 100, color="C3", ls=":", label=f"assumed ζ = {float(ked.damping_ratio):g}")
 if ked.attrs["damping_threshold_crossings"]:
     ax.axvline(
-        float(ked.damping_threshold) * 100,
-        color="C1",
-        ls="-.",
+        float(ked.damping_threshold) * 100, color="C1", ls="-.",
         label=f"threshold ζ = {float(ked.damping_threshold):.4f}",
     )
 ax.set_xlabel("damping ratio ζ (%)")
@@ -466,8 +427,7 @@ comparison_table(cmp[cmp.id == "SS"], caption="SS, to the paper's digits", digit
 comparison_table(cmp[cmp.unit == "m"].assign(unit="mm"), caption="tip deformation", scale=1e3)
 undrawn = cmp[(cmp.role == "headline") & cmp.reproduced.isna()]
 verdict_figure(
-    cmp[cmp.role == "headline"],
-    "Transplanter: published numbers against ours",
+    cmp[cmp.role == "headline"], "Transplanter: published numbers against ours",
     note=" ".join(f"{q} is not drawn: we have no value of it ({v})." for q, v in zip(undrawn.id, undrawn.verdict)),
 )
 
@@ -509,8 +469,7 @@ table(
 loads = pd.DataFrame(fnd.inferred_load.values, columns=[f"{m} (N)" for m in members])
 loads.insert(0, "tip force direction (deg from +x)", fnd.direction.values)
 table(
-    loads,
-    {"tip force direction (deg from +x)": "{:g}", **{c: "{:.2f}" for c in loads.columns[1:]}},
+    loads, {"tip force direction (deg from +x)": "{:g}", **{c: "{:.2f}" for c in loads.columns[1:]}},
     caption="smallest tip force on the arm that makes each printed diameter fully stressed (ours)",
 )
 md(
@@ -548,9 +507,7 @@ claims_rows = pd.DataFrame(
     [
         ("mass of the four bars (g)", float(fnd.mass_initial), float(fnd.mass_published), float(fnd.mass_ours)),
         (
-            "largest tip displacement (mm)",
-            float(fnd.distortion_initial) * 1e3,
-            float(fnd.distortion_published) * 1e3,
+            "largest tip displacement (mm)", float(fnd.distortion_initial) * 1e3, float(fnd.distortion_published) * 1e3,
             np.nan,
         ),
         ("peak stress (MPa)", float(fnd.stress_initial), float(base.stress_max), np.nan),
@@ -558,15 +515,13 @@ claims_rows = pd.DataFrame(
     columns=["quantity", f"initial {initial_mm} mm", "the paper's optimum", "our optimum"],
 )
 table(
-    claims_rows,
-    {c: "{:.2f}" for c in claims_rows.columns[1:]},
+    claims_rows, {c: "{:.2f}" for c in claims_rows.columns[1:]},
     caption=f"the claims' measures ({esc(compared)} solution, {gravity_word})",
 )
 sens = pd.DataFrame(fnd.elasticity.values, columns=[f"{m} diameter" for m in members])
 sens.insert(0, "response", [str(r) for r in fnd.response.values])
 table(
-    sens,
-    {c: "{:+.3f}" for c in sens.columns[1:]},
+    sens, {c: "{:+.3f}" for c in sens.columns[1:]},
     caption="per cent change of the response per per cent change of each diameter, at the paper's optimum",
 )
 e_stress = fnd.elasticity.sel(response="peak stress")

@@ -67,15 +67,8 @@ def evidence(fit, published):
     crank, printed, tol = printed_table(published)
     step = SECTION["grids"]["paper_step_deg"]
     rows = table1_evidence(
-        fit["columns"],
-        coarse_differences(fit["fitted"], step),
-        fit["error"],
-        crank,
-        printed,
-        tol,
-        step,
-        offset_model=fit["offset_columns"],
-        nominal_model=fit["nominal_columns"],
+        fit["columns"], coarse_differences(fit["fitted"], step), fit["error"], crank, printed, tol, step,
+        offset_model=fit["offset_columns"], nominal_model=fit["nominal_columns"],
         offset_moves=columns_moved_by(fit["offset_parameter"]),
     )
     return pd.DataFrame(rows)

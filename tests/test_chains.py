@@ -101,10 +101,8 @@ def random_chains(draw):
 HYPOTHESIS_FOUND = Network(
     ("n0", "n1"),
     (
-        Element("k0", "spring", "n0", "n1", 9999960.0),
-        Element("c0", "damper", "n0", "n1", 1.0),
-        Element("m0", "mass", "n0", GROUND, 0.109375),
-        Element("m1", "mass", "n1", GROUND, 0.1),
+        Element("k0", "spring", "n0", "n1", 9999960.0), Element("c0", "damper", "n0", "n1", 1.0),
+        Element("m0", "mass", "n0", GROUND, 0.109375), Element("m1", "mass", "n1", GROUND, 0.1),
         Element("anchor", "spring", "n1", GROUND, 1000.0),
     ),
     (),
@@ -137,10 +135,8 @@ def test_series_parallel_reduction_with_a_lever():
     k, m, eta = 2e5, 3.0, 2.5
     tree = Series((Element("k", "spring", "a", "b", k), Parallel((Element("m", "mass", "b", GROUND, m),))))
     net = Network(
-        ("a", "b", "c"),
-        (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)),
-        (Lever("l", "b", "c", eta),),
-        "a",
+        ("a", "b", "c"), (Element("k", "spring", "a", "b", k), Element("m", "mass", "c", GROUND, m)),
+        (Lever("l", "b", "c", eta),), "a",
     )
     from linkwork.engines.chains import Through
 

@@ -508,14 +508,9 @@ def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
     )
     text = ripples_text(findings)
     for part in (
-        "is undetermined",
-        "0.86 (decoded) and 0.96 (slender)",
-        "is 37 times it, and the error bar 38 times",
-        "above joint 1's in decoded (0.0007 against 3.6e-05",
-        "below joint 1's in slender (0.0006 against 0.002",
-        "factors of 0.54 and 0.33",
-        "points against the ordering",
-        "3.7e-06 (decoded) and 6.3e-06 (slender)",
+        "is undetermined", "0.86 (decoded) and 0.96 (slender)", "is 37 times it, and the error bar 38 times",
+        "above joint 1's in decoded (0.0007 against 3.6e-05", "below joint 1's in slender (0.0006 against 0.002",
+        "factors of 0.54 and 0.33", "points against the ordering", "3.7e-06 (decoded) and 6.3e-06 (slender)",
         "holds at 500, 2000 Hz and not at 150 Hz",
     ):
         assert part in text, (part, text)
@@ -600,11 +595,7 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
     import xarray as xr
 
     from linkwork.papers.clearance.findings import (
-        MEMORY_DECIDES,
-        NOMINAL_ONLY,
-        NOT_PROPAGATED,
-        memory_relabel,
-        nominal_only,
+        MEMORY_DECIDES, NOMINAL_ONLY, NOT_PROPAGATED, memory_relabel, nominal_only,
     )
 
     claims = xr.Dataset({"outcome_by_start": (("variant", "start", "claim"), np.array([[[0, -1], [1, 0]]]))},
@@ -643,10 +634,7 @@ def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
     import xarray as xr
 
     from linkwork.papers.clearance.findings import (
-        ALL_UNDETERMINED,
-        DECIDED_SAMPLES,
-        PARTLY_UNDETERMINED,
-        undetermined_ranges,
+        ALL_UNDETERMINED, DECIDED_SAMPLES, PARTLY_UNDETERMINED, undetermined_ranges,
     )
 
     outcome = np.array(

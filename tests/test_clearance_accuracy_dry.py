@@ -11,12 +11,7 @@ import pytest
 from conftest import load_yaml
 from linkwork.papers.clearance.fourbar import initial_state, integrate
 from linkwork.papers.clearance.accuracy import (
-    _setting,
-    contact_error,
-    eccentricity,
-    is_dry,
-    setting_label,
-    work_precision,
+    _setting, contact_error, eccentricity, is_dry, setting_label, work_precision,
 )
 from linkwork.papers.clearance.adapter import parameters, scene_effects
 from linkwork.papers.clearance.studies import cycle

@@ -267,12 +267,7 @@ def test_the_state_a_start_reaches_at_the_check_tolerance_is_compared_with_the_p
     found = settle(pipeline.step, 4, 60, 4, 1e-9, 3, 20, 0.95)
     assert found["period"] == 2
     same = reach_state(
-        lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7),
-        found,
-        {},
-        {"rtol": 1e-10},
-        st,
-        5,
+        lambda _c, **_: _Scripted(orbit2, [[10.5, 1.0], [12.5, 3.0]], transient=7), found, {}, {"rtol": 1e-10}, st, 5,
         0.95,
     )
     assert same["same"] == 1.0 and same["period"] == 2 and np.allclose(same["delta"], np.tile([0.5, 0.0], 3))

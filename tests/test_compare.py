@@ -6,14 +6,7 @@ import numpy as np
 import xarray as xr
 
 from linkwork.pipeline.compare import (
-    acceptance,
-    classify,
-    compare,
-    decided_by,
-    evaluate_measure,
-    expand_tables,
-    tolerance_of,
-    verdict_counts,
+    acceptance, classify, compare, decided_by, evaluate_measure, expand_tables, tolerance_of, verdict_counts,
 )
 
 DS = xr.Dataset(

@@ -86,8 +86,7 @@ def test_transplanter_bad_input(config, schema):
     [
         (("transplanter", "fe", "gravity_m_s2", "value"), 5.0, "not one of its choices"),
         (
-            ("transplanter", "fe", "gravity_m_s2", "choice_labels"),
-            ["gravity off", "gravity on", "gravity doubled"],
+            ("transplanter", "fe", "gravity_m_s2", "choice_labels"), ["gravity off", "gravity on", "gravity doubled"],
             "3 names for 2 choices",
         ),
         (("heald", "parameters", "M_P", "value"), 20.0, "outside its own range"),

@@ -230,12 +230,7 @@ def test_eq2_breaks_with_the_rod_mass_on_the_driven_node():
     |j w m K_2 / (1 + j w m K_2)| (a second route), it exceeds 10 near the chain's shifted antiresonance and tends to
     m / (m + sum of branch masses) at low frequency."""
     from linkwork.papers.heald.model import (
-        eq2_mobility,
-        eq2_node_mass_difference,
-        eq2_with_node_mass,
-        model_b_parameters,
-        node_mass,
-        reduced_masses,
+        eq2_mobility, eq2_node_mass_difference, eq2_with_node_mass, model_b_parameters, node_mass, reduced_masses,
     )
 
     u = {**P, "c_joint": 0.0, "c_O": 0.0}
@@ -338,14 +333,7 @@ def test_model_a_lowest_resonance_at_the_soft_heavy_corner_is_the_closed_form():
         if name.startswith(("m_", "M_")):
             corner[name] = entry["range"][1]
     corner.update(
-        reaction_E=10.0,
-        reaction_F=10.0,
-        clearance_E=3e-4,
-        clearance_F=3e-4,
-        k_n=2e7,
-        eta7=2.5,
-        eta8=2.5,
-        k_O=5e3,
+        reaction_E=10.0, reaction_F=10.0, clearance_E=3e-4, clearance_F=3e-4, k_n=2e7, eta7=2.5, eta8=2.5, k_O=5e3,
         M_P=12.0,
     )
     k_tau = float(vulfson_stiffness(10.0, 3e-4, 2e7))
@@ -396,11 +384,7 @@ def test_joint_damping_shrinks_the_cam_dips_of_model_b():
     for cj in (0.0, 500.0):
         q = {**P, "c_joint": cj}
         values, _ = cam_measures(
-            "B",
-            q,
-            harmonic_transfer("B", q, W, cam["harmonics"]),
-            c * 1e-4 / abs(c[0]),
-            cam["samples"],
+            "B", q, harmonic_transfer("B", q, W, cam["harmonics"]), c * 1e-4 / abs(c[0]), cam["samples"],
             cam["significant_harmonic"],
         )
         dips.append(values["largest_dip"])

@@ -102,11 +102,8 @@ def test_no_import_circle_in_the_library():
 
 #: The library's layers, lowest first: a module imports only from its own layer or the ones below it.
 LAYERS = (
-    ("linkwork", "linkwork.units", "linkwork.configformat", "linkwork.compilecache"),
-    ("linkwork.engines",),
-    ("linkwork.pipeline",),
-    ("linkwork.papers",),
-    ("linkwork.project",),
+    ("linkwork", "linkwork.units", "linkwork.configformat", "linkwork.compilecache"), ("linkwork.engines",),
+    ("linkwork.pipeline",), ("linkwork.papers",), ("linkwork.project",),
 )
 
 

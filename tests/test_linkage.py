@@ -53,9 +53,7 @@ def _chain() -> Chain:
         crank_tip="A",
         crank_length=0.1,
         dyads=(
-            Dyad("B", "A", "O4", 0.3, 0.2, -1),
-            Dyad("C", "O4", "B", 0.15, 0.25, 1),
-            Dyad("D", "C", "O6", 0.3, 0.2, 1),
+            Dyad("B", "A", "O4", 0.3, 0.2, -1), Dyad("C", "O4", "B", 0.15, 0.25, 1), Dyad("D", "C", "O6", 0.3, 0.2, 1),
         ),
     )
 
@@ -172,33 +170,24 @@ def _edit(path: str, value):
 BAD = [
     # (what, edit, the key named, words of the message)
     (
-        "a joint naming an unknown point",
-        ("joints.C.bearing", "link.X"),
-        "linkages.six_bar.joints.C.bearing",
+        "a joint naming an unknown point", ("joints.C.bearing", "link.X"), "linkages.six_bar.joints.C.bearing",
         "unknown point 'X'",
     ),
     (
-        "a joint naming an unknown body",
-        ("joints.C.bearing", "lever.C"),
-        "linkages.six_bar.joints.C.bearing",
+        "a joint naming an unknown body", ("joints.C.bearing", "lever.C"), "linkages.six_bar.joints.C.bearing",
         "unknown body 'lever'",
     ),
     (
-        "a joint missing: a free motion left",
-        ("joints.O6", None),
-        "linkages.six_bar.joints",
+        "a joint missing: a free motion left", ("joints.O6", None), "linkages.six_bar.joints",
         "2 free motions besides the driver",
     ),
     (
         "a body not connected to the ground",
         ("bodies.weight", {"mass_kg": 1.0, "inertia_kg_m2": 0.1, "points": {"P": [0.0, 0.0]}}),
-        "linkages.six_bar.bodies.weight",
-        "not connected to the ground",
+        "linkages.six_bar.bodies.weight", "not connected to the ground",
     ),
     (
-        "a driver on a body that is not grounded",
-        ("driver.body", "coupler"),
-        "linkages.six_bar.driver.body",
+        "a driver on a body that is not grounded", ("driver.body", "coupler"), "linkages.six_bar.driver.body",
         "not pinned to the ground",
     ),
     ("a linkage that cannot assemble", ("ground.O6", [0.3, 0.9]), "linkages.six_bar.driver", "does not assemble"),
@@ -223,8 +212,7 @@ BAD = [
     (
         "friction without contact",
         ("joints.D.clearance", {"journal_radius_m": 0.0099, "bearing_radius_m": 0.01, "effects": ["friction"]}),
-        "linkages.six_bar.joints.D.clearance.effects",
-        "friction needs contact",
+        "linkages.six_bar.joints.D.clearance.effects", "friction needs contact",
     ),
     (
         "a film cap beyond the clearance",
@@ -246,19 +234,15 @@ BAD = [
     (
         "a spring with a negative stiffness",
         ("springs", {"w": {"point": "link.C", "rest_m": [0.0, 0.0], "stiffness_N_m": [-1.0, 0.0]}}),
-        "linkages.six_bar.springs.w.stiffness_N_m",
-        "must not be negative",
+        "linkages.six_bar.springs.w.stiffness_N_m", "must not be negative",
     ),
     (
         "a spring on a ground point",
         ("springs", {"w": {"point": "ground.O2", "rest_m": [0.0, 0.0], "stiffness_N_m": [1.0, 0.0]}}),
-        "linkages.six_bar.springs.w.point",
-        "point of a body",
+        "linkages.six_bar.springs.w.point", "point of a body",
     ),
     (
-        "a rocking driver without its motion",
-        ("driver.rocking", True),
-        "linkages.six_bar.driver.cos_deg",
+        "a rocking driver without its motion", ("driver.rocking", True), "linkages.six_bar.driver.cos_deg",
         "needs its motion",
     ),
     ("an unknown output body", ("output", "sley"), "linkages.six_bar.output", "unknown body"),

@@ -362,9 +362,7 @@ def test_the_figure_check_stops_a_render_that_draws_outside_the_canvas(tmp_path,
     env = {**os.environ, "LINKWORK_CHECK_FIGURES": "1"}
     proc = subprocess.run(
         [
-            sys.executable,
-            str(PROJECT / "workflow/scripts/render_report.py"),
-            str(notebook),
+            sys.executable, str(PROJECT / "workflow/scripts/render_report.py"), str(notebook),
             str(tmp_path / "tiny.html"),
         ],
         env=env,
@@ -383,29 +381,24 @@ def test_the_figure_check_stops_a_render_that_draws_outside_the_canvas(tmp_path,
         )
 
 
+def labelled_section() -> dict:
+    """A config section with a labelled range and a labelled choice (a fresh copy per call)."""
+    return {
+        "fe": {
+            "damping_ratio": {"value": 0.02, "status": "assumed", "reason": "r", "range": [0.01, 0.05],
+                              "range_reason": "rr"},
+            "steps": 3,
+        },
+        "gravity": {"value": 0.0, "status": "assumed", "reason": "g", "choices": [0.0, 9.8],
+                    "choice_labels": ["off", "on"]},
+    }
+
+
 def test_values_only_strips_labels_but_keeps_what_a_rule_names():
     """A study receives values: a labelled entry keeps its value (and only the label fields a rule names)."""
     from linkwork.configformat import labelled_entries, values_only
 
-    section = {
-        "fe": {
-            "damping_ratio": {
-                "value": 0.02,
-                "status": "assumed",
-                "reason": "r",
-                "range": [0.01, 0.05],
-                "range_reason": "rr",
-            },
-            "steps": 3,
-        },
-        "gravity": {
-            "value": 0.0,
-            "status": "assumed",
-            "reason": "g",
-            "choices": [0.0, 9.8],
-            "choice_labels": ["off", "on"],
-        },
-    }
+    section = labelled_section()
     out = values_only(section)
     assert out == {"fe": {"damping_ratio": {"value": 0.02}, "steps": 3}, "gravity": {"value": 0.0}}
     assert values_only(section, keep=["fe.damping_ratio.range"])["fe"]["damping_ratio"] == {
@@ -424,25 +417,7 @@ def test_a_rules_params_change_with_a_reason_only_where_the_rule_names_it():
 
     from linkwork.configformat import DESIGN_FIELDS, narrow
 
-    section = {
-        "fe": {
-            "damping_ratio": {
-                "value": 0.02,
-                "status": "assumed",
-                "reason": "r",
-                "range": [0.01, 0.05],
-                "range_reason": "rr",
-            },
-            "steps": 3,
-        },
-        "gravity": {
-            "value": 0.0,
-            "status": "assumed",
-            "reason": "g",
-            "choices": [0.0, 9.8],
-            "choice_labels": ["off", "on"],
-        },
-    }
+    section = labelled_section()
     edited = copy.deepcopy(section)
     edited["fe"]["damping_ratio"]["reason"] = "another reason"
     edited["gravity"]["reason"] = "another reason"
@@ -497,11 +472,8 @@ def test_papers_are_found_by_their_packages_and_a_module_reading_them_depends_on
         " m.startswith('linkwork.papers.')))"
     )
     out = subprocess.run(
-        [sys.executable, "-c", probe],
-        env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")},
-        capture_output=True,
-        text=True,
-        check=True,
+        [sys.executable, "-c", probe], env={**os.environ, "PYTHONPATH": str(PROJECT / "lib")}, capture_output=True,
+        text=True, check=True,
     )
     assert out.stdout.strip() == "['linkwork.papers.stiffness']"
     lib = PROJECT / "lib"

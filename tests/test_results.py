@@ -187,9 +187,7 @@ def test_a_full_disk_is_one_line_naming_the_file_and_leaves_no_temporary(tmp_pat
 
         monkeypatch.setattr(Path, "write_text", full)
         write, name, reason = (
-            lambda: results.write_text("a,b\n1,2\n", tmp_path / "out.csv"),
-            "out.csv",
-            "No space left on device",
+            lambda: results.write_text("a,b\n1,2\n", tmp_path / "out.csv"), "out.csv", "No space left on device",
         )
     with pytest.raises(results.ResultWriteError) as info:
         write()

@@ -175,14 +175,7 @@ def test_settle_reads_only_the_rows_it_is_given_and_returns_every_row():
     )
     step, _ = _stepper(points, measures)
     first_only = settle(
-        step,
-        chunk=10,
-        max_cycles=n,
-        max_period=8,
-        section_tol=1e-3,
-        periods=3,
-        min_cycles=50,
-        confidence=0.95,
+        step, chunk=10, max_cycles=n, max_period=8, section_tol=1e-3, periods=3, min_cycles=50, confidence=0.95,
         rows=(0,),
     )
     assert read_all["status"] == CAP

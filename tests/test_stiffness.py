@@ -268,9 +268,7 @@ def test_pinned_stiffness_changes_with_each_part_as_its_formula_says():
 
     base = pinned_output_compliance(LINKAGE, SECTIONS, ALPHA)
     coupler = (
-        SECTIONS[0],
-        Section(SECTIONS[1].youngs_modulus, 2 * SECTIONS[1].area, SECTIONS[1].second_moment),
-        SECTIONS[2],
+        SECTIONS[0], Section(SECTIONS[1].youngs_modulus, 2 * SECTIONS[1].area, SECTIONS[1].second_moment), SECTIONS[2],
     )
     changed = pinned_output_compliance(LINKAGE, coupler, ALPHA)
     i = PINNED_PARTS.index("coupler axial")
@@ -509,18 +507,14 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     args = [a for k, v in inputs.items() for a in ("--input", f"{k}={v}")]
     proc = subprocess.run(
         [sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
-        env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"},
-        capture_output=True,
-        text=True,
-        timeout=600,
+        env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"}, capture_output=True, text=True, timeout=600,
     )
     assert proc.returncode == 0, proc.stderr[-3000:]
     page = out.read_text()
     assert "Traceback" not in page and 'vnd.jupyter.stderr" tabindex' not in page  # no warning or error printed
     body = page[page.index("<body"):]
     text = re.sub(
-        r"\s+",
-        " ",
+        r"\s+", " ",
         html.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<style.*?</style>|<script.*?</script>", "", body, flags=re.S))),
     )
     answer = re.sub(r"\s+", " ", fnd.attrs["answer"])

@@ -5,14 +5,7 @@ import numpy as np
 import pytest
 
 from linkwork.pipeline.sweeps import (
-    COLOUR_FLOOR_FACTOR,
-    batches,
-    crossings,
-    gather,
-    grid,
-    interpret,
-    points_dataset,
-    trend,
+    COLOUR_FLOOR_FACTOR, batches, crossings, gather, grid, interpret, points_dataset, trend,
 )
 
 from conftest import load_yaml
@@ -68,8 +61,7 @@ def test_interpret_states_crossings_and_a_colour_range_that_does_not_exaggerate(
     ]
     ds = gather(axes, [points_dataset(pts, values, {"r": ("1", "ratio"), "flat": ("N", "a 5 % change")})])
     out = interpret(
-        ds,
-        {"clearance_m": 2.1e-5, "reaction_ratio_EF": 2.0},
+        ds, {"clearance_m": 2.1e-5, "reaction_ratio_EF": 2.0},
         {"r": {"value": 3.0, "along": "reaction_ratio_EF", "label": "t"}},
     )
     assert out.attrs["reference_clearance_m"] == 2e-5

@@ -291,8 +291,7 @@ def _finding_inputs(peaks):
 @pytest.mark.parametrize(
     ("peaks", "status"),
     [
-        ([36.0, 37.0, 38.0], "unsafe at every damping"),
-        ([30.0, 31.0, 32.0], "safe at every damping"),
+        ([36.0, 37.0, 38.0], "unsafe at every damping"), ([30.0, 31.0, 32.0], "safe at every damping"),
         ([32.0, 34.0, 36.0], "the damping ratio decides"),
     ],
 )
@@ -336,19 +335,12 @@ def test_readme_prints_the_published_objective_to_its_digits():
     from linkwork.project.readme import _digits, _num, _num_like
 
     assert (_digits(21.9665), _digits(3460000.0), _digits(0.0034), _digits(41.89), _digits(0.1 + 0.2)) == (
-        6,
-        3,
-        2,
-        4,
-        0,
+        6, 3, 2, 4, 0,
     )
     assert _num_like(21.9665, 21.9665) == "21.9665"
     assert _num_like(21.96651234, 21.9665) == "21.9665"
     for value, published in (
-        (30.28645725, 31.09),
-        (2779919.774, 3460000.0),
-        (0.0035583820, 0.0034),
-        (0.30000000000000004, 0.1 + 0.2),
+        (30.28645725, 31.09), (2779919.774, 3460000.0), (0.0035583820, 0.0034), (0.30000000000000004, 0.1 + 0.2),
     ):
         assert _num_like(value, published) == _num(value)
     assert _num_like(float("nan"), 21.9665) == "–"
@@ -555,15 +547,8 @@ def test_the_answer_is_two_plain_sentences_with_the_numbers_of_the_results(stres
     assert len(re.findall(r"[.!?](\s|$)", text)) <= 2, text
     assert not re.search(r"\b[a-z]+_[a-z0-9_]+\b", text) and "{" not in text and "}" not in text, text
     for number in (
-        "0.3 and 8.0 MPa",
-        "33.6 MPa",
-        "4 mm bound",
-        "62.4 g",
-        "27.3 g",
-        "2.3 times",
-        "within 0.103 mm",
-        "penalty factor of 0.1",
-        "5.16 mm there against the printed 6.83",
+        "0.3 and 8.0 MPa", "33.6 MPa", "4 mm bound", "62.4 g", "27.3 g", "2.3 times", "within 0.103 mm",
+        "penalty factor of 0.1", "5.16 mm there against the printed 6.83",
     ):
         assert number in text, (number, text)
     assert "at the published optimum one matches, one deviates and two depend on the assumptions," in text, text

@@ -45,15 +45,7 @@ def test_design_choices_are_scenarios_never_sampled_values():
 
 
 def _toy_study(
-    fun,
-    names,
-    ranges,
-    published,
-    lhs_points=8,
-    corner_limit=0,
-    evaluations=200,
-    choices=None,
-    workers=1,
+    fun, names, ranges, published, lhs_points=8, corner_limit=0, evaluations=200, choices=None, workers=1,
     flat_rtol=1e-9,
 ):
     """A toy paper: inputs ``names`` in ``ranges`` (config section {name: labelled entry}), its results the
@@ -183,11 +175,8 @@ def test_batches_cover_every_sample_once():
 def test_labelled_inputs_are_the_ranged_entries():
     found = [i.path for i in labelled_inputs(SECTION["assumed"], "assumed.")]
     assert found == [
-        "assumed.joint_length_m.value",
-        "assumed.v0_m_s.value",
-        "assumed.v1_m_s.value",
-        "assumed.impact_velocity_floor_m_s.value",
-        "assumed.e0_m.value",
+        "assumed.joint_length_m.value", "assumed.v0_m_s.value", "assumed.v1_m_s.value",
+        "assumed.impact_velocity_floor_m_s.value", "assumed.e0_m.value",
     ]
 
 
@@ -256,11 +245,7 @@ def test_a_clearance_sample_is_judged_on_its_own_state_and_the_other_start_is_a_
     for k, name in enumerate(COMPARED):
         if name in lubricated:  # the direct route: the scene rerun at the moved film cap, from the nominal state
             direct = scene(
-                at,
-                "decoded",
-                name,
-                first_start_only=True,
-                check=False,
+                at, "decoded", name, first_start_only=True, check=False,
                 memory=nominal_runs[name].window_memory.values[0],
             )
             np.testing.assert_allclose(means.isel(scene=k).values, direct.judged_mean.values[0], rtol=1e-12)

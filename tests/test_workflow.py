@@ -89,11 +89,7 @@ def _env(root: Path, trace: Path | None = None) -> dict[str, str]:
 
 def snakemake(root: Path, *args: str, check: bool = True, trace: Path | None = None) -> subprocess.CompletedProcess:
     proc = subprocess.run(
-        [sys.executable, "-m", "snakemake", *args],
-        cwd=root,
-        env=_env(root, trace),
-        capture_output=True,
-        text=True,
+        [sys.executable, "-m", "snakemake", *args], cwd=root, env=_env(root, trace), capture_output=True, text=True,
         timeout=900,
     )
     if check and proc.returncode != 0:
@@ -269,12 +265,8 @@ def test_a_full_disk_stops_a_job_in_one_line_and_leaves_no_temporary(clone, tmp_
         ("results/stiffness/stiffness.nc", "(NetCDF: HDF error)"),
     ):
         proc = subprocess.run(
-            [sys.executable, "-m", "snakemake", "--cores", "1", "--force", target],
-            cwd=clone,
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=900,
+            [sys.executable, "-m", "snakemake", "--cores", "1", "--force", target], cwd=clone, env=env,
+            capture_output=True, text=True, timeout=900,
         )
         message = proc.stdout + proc.stderr
         lines = [
@@ -690,11 +682,7 @@ def test_unactivated_environment_runs_the_reports(clone):
     env = dict(os.environ, PATH="/usr/bin:/bin", PYTHONPATH=str(clone / "lib"))
     proc = subprocess.run(
         [
-            str(Path(sys.executable).parent / "snakemake"),
-            "--cores",
-            "1",
-            "--forcerun",
-            "report",
+            str(Path(sys.executable).parent / "snakemake"), "--cores", "1", "--forcerun", "report",
             "results/reports/stiffness.html",
         ],
         cwd=clone,

@@ -45,8 +45,7 @@ def _said(path: str, exc: BaseException) -> None:
     _SAID.add(path)
     print(
         f"linkwork: compile cache entry {path} was unreadable ({type(exc).__name__}); compiling it again",
-        file=sys.stderr,
-        flush=True,
+        file=sys.stderr, flush=True,
     )
 
 

@@ -138,11 +138,8 @@ def render(notebook: Path, output: Path, inputs: dict, template: Path) -> None:
     stable_ids(nb, notebook.name)
     nb.metadata["title"] = page_title(nb)  # nbconvert's page title (else "Notebook")
     exporter = HTMLExporter(
-        template_name=template.parent.name,
-        extra_template_basedirs=[str(template.resolve().parent.parent)],
-        exclude_input=True,
-        exclude_input_prompt=True,
-        exclude_output_prompt=True,
+        template_name=template.parent.name, extra_template_basedirs=[str(template.resolve().parent.parent)],
+        exclude_input=True, exclude_input_prompt=True, exclude_output_prompt=True,
     )
     html, _ = exporter.from_notebook_node(nb)
     from linkwork.pipeline.results import ResultWriteError, write_text
@@ -172,9 +169,7 @@ def _cli() -> None:
 if "snakemake" in globals():
     sm = snakemake  # noqa: F821
     render(
-        Path(sm.input.notebook),
-        Path(sm.output[0]),
-        {k: v for k, v in sm.input.items() if k not in SKIPPED},
+        Path(sm.input.notebook), Path(sm.output[0]), {k: v for k, v in sm.input.items() if k not in SKIPPED},
         Path(sm.input.template),
     )
     from linkwork.pipeline.results import finish_job

@@ -333,17 +333,8 @@ def newmark_history(
     same operations in the same order as the loop in numpy, so the same numbers to the bit
     (tests/test_fem.py checks both)."""
     return _newmark_compiled(
-        step_inverse,
-        k,
-        c,
-        f,
-        np.asarray(u0, dtype=float),
-        np.asarray(v0, dtype=float),
-        np.asarray(a0, dtype=float),
-        float(dt),
-        int(steps),
-        float(beta),
-        float(gamma),
+        step_inverse, k, c, f, np.asarray(u0, dtype=float), np.asarray(v0, dtype=float), np.asarray(a0, dtype=float),
+        float(dt), int(steps), float(beta), float(gamma),
     )
 
 

@@ -36,18 +36,14 @@ def summary_variables(
     return {
         "wp_method": (DIM, np.array(methods, dtype=object), {"units": "1", "long_name": "numerical method"}),
         "wp_setting": (
-            DIM,
-            np.array(list(settings), dtype=object),
-            {"units": "1", "long_name": "setting of that point"},
+            DIM, np.array(list(settings), dtype=object), {"units": "1", "long_name": "setting of that point"},
         ),
         "wp_error": (
-            DIM,
-            np.asarray(errors, dtype=float),
+            DIM, np.asarray(errors, dtype=float),
             {"units": "1", "long_name": "relative error against the method's reference"},
         ),
         "wp_pipeline": (
-            DIM,
-            np.array([int(s in chosen) for s in settings]),
+            DIM, np.array([int(s in chosen) for s in settings]),
             {"units": "1", "long_name": "1 for the setting the pipeline uses"},
         ),
     }
@@ -58,10 +54,7 @@ def collect(studies: Sequence[xr.Dataset], timings: Sequence[Mapping[str, Any]])
     methods, settings, errors, pipeline, seconds = [], [], [], [], {}
     for study, times in zip(studies, timings, strict=True):
         for m, s, e, p in zip(
-            study.wp_method.values,
-            study.wp_setting.values,
-            study.wp_error.values,
-            study.wp_pipeline.values,
+            study.wp_method.values, study.wp_setting.values, study.wp_error.values, study.wp_pipeline.values,
             strict=True,
         ):
             methods.append(str(m))

@@ -29,14 +29,10 @@ def assumptions(cfg: Mapping[str, Any]):
     return xr.Dataset(
         {
             "value": (
-                "entry",
-                column(lambda e: str(e["value"])),
-                {**text, "long_name": "value (SI; a choice: its name)"},
+                "entry", column(lambda e: str(e["value"])), {**text, "long_name": "value (SI; a choice: its name)"},
             ),
             "status": (
-                "entry",
-                column(lambda e: str(e["status"])),
-                {**text, "long_name": "sourced, inferred or assumed"},
+                "entry", column(lambda e: str(e["status"])), {**text, "long_name": "sourced, inferred or assumed"},
             ),
             "reason": ("entry", column(lambda e: str(e["reason"])), {**text, "long_name": "why this value"}),
             "range": (
@@ -51,13 +47,11 @@ def assumptions(cfg: Mapping[str, Any]):
                 {**text, "long_name": "plausible range, or the alternatives of a choice ('' if none)"},
             ),
             "range_reason": (
-                "entry",
-                column(lambda e: str(e.get("range_reason", ""))),
+                "entry", column(lambda e: str(e.get("range_reason", ""))),
                 {**text, "long_name": "why that range ('' if none)"},
             ),
             "entry_json": (
-                "entry",
-                column(lambda e: json.dumps(e, sort_keys=True)),
+                "entry", column(lambda e: json.dumps(e, sort_keys=True)),
                 {**text, "long_name": "the whole entry as JSON"},
             ),
         },

@@ -55,14 +55,8 @@ import pandas as pd
 import xarray as xr
 
 VERDICTS = (
-    "matches",
-    "matches as printed",
-    "depends on assumptions",
-    "not reconciled",
-    "undetermined (numerics)",
-    "deviates as printed",
-    "deviates",
-    "not reproducible",
+    "matches", "matches as printed", "depends on assumptions", "not reconciled", "undetermined (numerics)",
+    "deviates as printed", "deviates", "not reproducible",
 )
 #: Each class in a few plain words, for legends and the index.
 VERDICT_MEANING = {
@@ -94,28 +88,9 @@ VERDICT_COLOURS = {
 }
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
-    "model",
-    "scenario",
-    "id",
-    "role",
-    "quantity",
-    "where",
-    "published",
-    "relation",
-    "unit",
-    "tolerance",
-    "tolerance_source",
-    "reproduced",
-    "deviation",
-    "relative_deviation",
-    "numerical_error",
-    "numerical_source",
-    "input_low",
-    "input_high",
-    "input_source",
-    "decided_by",
-    "in_consistent_set",
-    "verdict",
+    "model", "scenario", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance",
+    "tolerance_source", "reproduced", "deviation", "relative_deviation", "numerical_error", "numerical_source",
+    "input_low", "input_high", "input_source", "decided_by", "in_consistent_set", "verdict",
 ]
 
 
@@ -452,25 +427,21 @@ def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
     return xr.Dataset(
         {
             "verdict_count": (
-                ("count_model", "count_scenario", "role", "verdict"),
-                counts,
+                ("count_model", "count_scenario", "role", "verdict"), counts,
                 {"units": "1", "long_name": "comparison rows per model, scenario, role and verdict class"},
             )
         },
         coords={
             "count_model": (
-                "count_model",
-                np.array(models, dtype=object),
+                "count_model", np.array(models, dtype=object),
                 {"units": "1", "long_name": "model variant of the comparison block"},
             ),
             "count_scenario": (
-                "count_scenario",
-                np.array(scens, dtype=object),
+                "count_scenario", np.array(scens, dtype=object),
                 {"units": "1", "long_name": "named scenario ('' : the paper's single reading)"},
             ),
             "role": (
-                "role",
-                np.array(ROLES, dtype=object),
+                "role", np.array(ROLES, dtype=object),
                 {"units": "1", "long_name": "headline claim or table cell (a trivial check)"},
             ),
             "verdict": ("verdict", np.array(VERDICTS, dtype=object), {"units": "1", "long_name": "verdict class"}),

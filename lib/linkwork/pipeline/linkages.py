@@ -46,55 +46,39 @@ def _dataset(linkage, cfg, t, ideal, diags, run) -> xr.Dataset:
     per = np.array([diags[:, 4 + 6 * k : 10 + 6 * k] for k in range(len(clearance))]).reshape(len(clearance), t.size, 6)
     data = {
         "driver_angle": (
-            "time",
-            np.degrees(linkage.driver.angle(t)[0]),
-            {"units": "deg", "long_name": "driver angle (unwrapped)"},
+            "time", np.degrees(linkage.driver.angle(t)[0]), {"units": "deg", "long_name": "driver angle (unwrapped)"},
         ),
         "ideal_output_acceleration": (
-            "time",
-            ideal["output_acceleration"],
+            "time", ideal["output_acceleration"],
             {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, every joint ideal"},
         ),
         "ideal_driver_torque": (
-            "time",
-            ideal["driver_torque"],
-            {"units": "N m", "long_name": "driver torque, every joint ideal"},
+            "time", ideal["driver_torque"], {"units": "N m", "long_name": "driver torque, every joint ideal"},
         ),
         "ideal_joint_force": (
-            ("joint", "time"),
-            np.array([ideal[f"force_{j}"] for j in ideal_joints]),
+            ("joint", "time"), np.array([ideal[f"force_{j}"] for j in ideal_joints]),
             {"units": "N", "long_name": "joint reaction force magnitude, every joint ideal"},
         ),
         "output_acceleration": (
-            "time",
-            diags[:, 0],
+            "time", diags[:, 0],
             {"units": "rad/s^2", "long_name": f"{linkage.output}'s angular acceleration, with the joints' effects"},
         ),
         "driver_torque": (
-            "time",
-            diags[:, 1],
-            {"units": "N m", "long_name": "driver torque, with the joints' effects"},
+            "time", diags[:, 1], {"units": "N m", "long_name": "driver torque, with the joints' effects"},
         ),
         "energy": ("time", diags[:, 2], {"units": "J", "long_name": "kinetic + gravity + contact potential energy"}),
         "constraint_drift": (
-            "time",
-            diags[:, 3],
-            {"units": "m", "long_name": "norm of the constraint violation (Baumgarte-stabilised)"},
+            "time", diags[:, 3], {"units": "m", "long_name": "norm of the constraint violation (Baumgarte-stabilised)"},
         ),
         "eccentricity": (
-            ("clearance_joint", "time"),
-            per[:, :, 0],
-            {"units": "m", "long_name": "journal centre to bearing centre"},
+            ("clearance_joint", "time"), per[:, :, 0], {"units": "m", "long_name": "journal centre to bearing centre"},
         ),
         "penetration": (
-            ("clearance_joint", "time"),
-            per[:, :, 1],
+            ("clearance_joint", "time"), per[:, :, 1],
             {"units": "m", "long_name": "eccentricity minus the radial clearance (> 0: in contact)"},
         ),
         "contact_force": (
-            ("clearance_joint", "time"),
-            per[:, :, 3],
-            {"units": "N", "long_name": "dry normal contact force"},
+            ("clearance_joint", "time"), per[:, :, 3], {"units": "N", "long_name": "dry normal contact force"},
         ),
         "film_force": (("clearance_joint", "time"), per[:, :, 4], {"units": "N", "long_name": "film radial force"}),
     }

@@ -38,10 +38,7 @@ def git_commit(path: str | os.PathLike[str] = ".") -> str:
             ["git", "rev-parse", "HEAD"], cwd=path, capture_output=True, text=True, check=True
         ).stdout.strip()
         dirty = subprocess.run(
-            ["git", "status", "--porcelain", "--untracked-files=no"],
-            cwd=path,
-            capture_output=True,
-            text=True,
+            ["git", "status", "--porcelain", "--untracked-files=no"], cwd=path, capture_output=True, text=True,
             check=True,
         ).stdout.strip()
     except (OSError, subprocess.CalledProcessError):

@@ -255,10 +255,7 @@ def refine(ds: Any, cfg: Mapping[str, Any], published: Mapping[str, Any], inputs
             continue
         low[n], high[n], low_at[n], high_at[n] = part["low"], part["high"], part["low_at"], part["high_at"]
         matched_best[n], in_set[n], count[n], candidates[n] = (
-            part["matched_best"],
-            part["in_set"],
-            part["count"],
-            part["candidates"],
+            part["matched_best"], part["in_set"], part["count"], part["candidates"],
         )
         best_at[n], evaluations[n] = part["best_at"], part["evaluations"]
     return _with_search(
@@ -391,13 +388,11 @@ def _with_search(
     """The study Dataset with the searches' results (see ``refine``)."""
     out = ds.copy()
     out["low"] = (
-        ("scenario", "quantity"),
-        low,
+        ("scenario", "quantity"), low,
         {**ds.low.attrs, "long_name": "smallest value over the assumed inputs' box (bounded search from the samples)"},
     )
     out["high"] = (
-        ("scenario", "quantity"),
-        high,
+        ("scenario", "quantity"), high,
         {**ds.high.attrs, "long_name": "largest value over the assumed inputs' box (bounded search from the samples)"},
     )
     out["low_at"] = (
@@ -420,39 +415,32 @@ def _with_search(
     )
     nan = {"nan_meaning": "not a candidate (a table cell, not reproducible, or a robust deviation)"}
     out["matched_in_best_set"] = (
-        ("scenario", "quantity"),
-        matched_best,
+        ("scenario", "quantity"), matched_best,
         {"units": "1", "long_name": "1 if the row matches under the scenario's best consistent assumption set", **nan},
     )
     out["in_consistent_set"] = (
-        ("scenario", "quantity"),
-        in_set,
+        ("scenario", "quantity"), in_set,
         {"units": "1", "long_name": "1 if the row matches in some consistent set of as many rows as the best", **nan},
     )
     out["consistent_count"] = (
-        ("scenario", "row_model"),
-        count,
+        ("scenario", "row_model"), count,
         {"units": "1", "long_name": "rows matched at once under the best consistent assumption set"},
     )
     out["consistent_candidates"] = (
-        ("scenario", "row_model"),
-        candidates,
+        ("scenario", "row_model"), candidates,
         {"units": "1", "long_name": "headline rows that are not robust deviations"},
     )
     out["consistent_at"] = (
-        ("scenario", "row_model", "input"),
-        best_at,
+        ("scenario", "row_model", "input"), best_at,
         {"units": "SI of the input", "long_name": "the best consistent assumption set"},
     )
     out["evaluations"] = (
-        ("scenario",),
-        evaluations,
+        ("scenario",), evaluations,
         {"units": "1", "long_name": "distinct model evaluations per scenario (samples and searches)"},
     )
     out = out.assign_coords(
         row_model=(
-            "row_model",
-            np.array(models, dtype=object),
+            "row_model", np.array(models, dtype=object),
             {"units": "1", "long_name": "model variant of the compared rows"},
         )
     )

@@ -66,8 +66,7 @@ def points_dataset(
 
     data = {
         k: (
-            "point",
-            [v[k] for v in values],
+            "point", [v[k] for v in values],
             {"units": spec[0], "long_name": spec[1], **({"nan_meaning": spec[2]} if len(spec) > 2 else {})},
         )
         for k, spec in outputs.items()
@@ -220,9 +219,7 @@ def interpret(
         for k, axis in enumerate((a, b)):
             t = trend(v if axis == a else v.T)
             change_low[o, k], change_high[o, k], monotone[o, k] = (
-                t["change_low"],
-                t["change_high"],
-                t["monotone_fraction"],
+                t["change_low"], t["change_high"], t["monotone_fraction"],
             )
         ref_value[o] = v[ia, ib]
         if name in scatter:
@@ -230,9 +227,7 @@ def interpret(
             for k, axis in enumerate((a, b)):
                 r = resolved_trend(v, sv) if axis == a else resolved_trend(v.T, sv.T)
                 res_up[o, k], res_down[o, k], res_steps[o, k] = (
-                    r["resolved_up"],
-                    r["resolved_down"],
-                    r["resolved_steps"],
+                    r["resolved_up"], r["resolved_down"], r["resolved_steps"],
                 )
                 classes[o, k] = TREND_CLASSES[trend_class(r["resolved_up"], r["resolved_down"])]
             rel = sv / np.abs(v)
@@ -297,38 +292,29 @@ def interpret(
                 },
             ),
             "trend_monotone_fraction": (
-                ("output", "axis"),
-                monotone,
+                ("output", "axis"), monotone,
                 {"units": "1", "long_name": "fraction of grid lines along the axis on which the output is monotone"},
             ),
             "reference_value": (
-                "output",
-                ref_value,
-                {"units": "SI of the output", "long_name": "output at the reference point"},
+                "output", ref_value, {"units": "SI of the output", "long_name": "output at the reference point"},
             ),
             "relative_span": (
-                "output",
-                span,
-                {"units": "1", "long_name": "(max - min) over the grid / value at the reference point"},
+                "output", span, {"units": "1", "long_name": "(max - min) over the grid / value at the reference point"},
             ),
             "colour_low": (
-                "output",
-                c_low,
+                "output", c_low,
                 {"units": "SI of the output", "long_name": "lower end of the colour range (log scale)", **no_log},
             ),
             "colour_high": (
-                "output",
-                c_high,
+                "output", c_high,
                 {"units": "SI of the output", "long_name": "upper end of the colour range (log scale)", **no_log},
             ),
             "threshold_value": (
-                "output",
-                t_value,
+                "output", t_value,
                 {"units": "SI of the output", "long_name": "claim threshold of the output", **thresh_nan},
             ),
             "threshold_holds_fraction": (
-                "output",
-                t_holds,
+                "output", t_holds,
                 {"units": "1", "long_name": "fraction of grid cells at or above the threshold", **thresh_nan},
             ),
             "trend_resolved_up_fraction": (
@@ -379,18 +365,15 @@ def interpret(
                 },
             ),
             "relative_scatter_reference": (
-                "output",
-                rel_ref,
+                "output", rel_ref,
                 {"units": "1", "long_name": "cycle spread / output at the reference point", **scatter_nan},
             ),
             "relative_scatter_low": (
-                "output",
-                rel_low,
+                "output", rel_low,
                 {"units": "1", "long_name": "smallest cycle spread / output over the grid", **scatter_nan},
             ),
             "relative_scatter_high": (
-                "output",
-                rel_high,
+                "output", rel_high,
                 {"units": "1", "long_name": "largest cycle spread / output over the grid", **scatter_nan},
             ),
         }
@@ -400,8 +383,7 @@ def interpret(
         output=("output", np.array(outputs, dtype=object), {"units": "1", "long_name": "sweep output"}),
         axis=("axis", np.array([a, b], dtype=object), {"units": "1", "long_name": "sweep axis"}),
         threshold_label=(
-            "output",
-            np.array(labels, dtype=object),
+            "output", np.array(labels, dtype=object),
             {"units": "1", "long_name": "what the threshold is ('' for none)"},
         ),
     )

@@ -96,12 +96,7 @@ def labelled_inputs(section: Mapping[str, Any], prefix: str = "") -> Iterator[In
                 reason = str(value.get("range_reason", value.get("reason", "")))
                 if "choices" in value:
                     yield Input(
-                        path + ".value",
-                        value["value"],
-                        float("nan"),
-                        float("nan"),
-                        reason,
-                        tuple(value["choices"]),
+                        path + ".value", value["value"], float("nan"), float("nan"), reason, tuple(value["choices"]),
                         labels=tuple(value.get("choice_labels", ())),
                     )
                 else:
@@ -245,40 +240,32 @@ def evaluated_dataset(
     return xr.Dataset(
         {
             "value": (
-                ("sample", "quantity"),
-                values,
+                ("sample", "quantity"), values,
                 {"units": "unit of the published quantity", "long_name": "our value at the sample", **NOT_REPRODUCIBLE},
             ),
             "input_value": (
-                ("sample", "input"),
-                inputs_at,
+                ("sample", "input"), inputs_at,
                 {"units": "SI of the input", "long_name": "value of each uncertain continuous input at the sample"},
             ),
         },
         coords={
             "sample": (
-                "sample",
-                np.array([s.label for s in chosen], dtype=object),
-                {"units": "1", "long_name": "sample"},
+                "sample", np.array([s.label for s in chosen], dtype=object), {"units": "1", "long_name": "sample"},
             ),
             "moved": (
-                "sample",
-                np.array([s.moved for s in chosen], dtype=object),
+                "sample", np.array([s.moved for s in chosen], dtype=object),
                 {"units": "1", "long_name": "input moved alone ('' if several)"},
             ),
             "sample_scenario": (
-                "sample",
-                np.array([s.scenario for s in chosen], dtype=object),
+                "sample", np.array([s.scenario for s in chosen], dtype=object),
                 {"units": "1", "long_name": "scenario of the sample"},
             ),
             "quantity": (
-                "quantity",
-                np.array([f"{m}|{q}" for m, q in keys], dtype=object),
+                "quantity", np.array([f"{m}|{q}" for m, q in keys], dtype=object),
                 {"units": "1", "long_name": "model|published quantity id"},
             ),
             "input": (
-                "input",
-                np.array([i.path for i in ranged], dtype=object),
+                "input", np.array([i.path for i in ranged], dtype=object),
                 {"units": "1", "long_name": "uncertain input (key path)"},
             ),
         },
@@ -292,12 +279,7 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
     import xarray as xr
 
     ds = xr.concat(
-        batches_,
-        dim="sample",
-        data_vars="all",
-        coords="different",
-        compat="equals",
-        join="exact",
+        batches_, dim="sample", data_vars="all", coords="different", compat="equals", join="exact",
         combine_attrs="override",
     )
     if "sample_scenario" not in ds:
@@ -325,58 +307,47 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
     out = xr.Dataset(
         {
             "nominal": (
-                ("scenario", "quantity"),
-                nominal,
+                ("scenario", "quantity"), nominal,
                 {"units": unit, "long_name": "our value at the nominal inputs of the scenario", **NOT_REPRODUCIBLE},
             ),
             "low": (
-                ("scenario", "quantity"),
-                low,
+                ("scenario", "quantity"), low,
                 {"units": unit, "long_name": "smallest value over the assumed inputs' box", **NOT_REPRODUCIBLE},
             ),
             "high": (
-                ("scenario", "quantity"),
-                high,
+                ("scenario", "quantity"), high,
                 {"units": unit, "long_name": "largest value over the assumed inputs' box", **NOT_REPRODUCIBLE},
             ),
             "oat_low": (
-                ("scenario", "input", "quantity"),
-                oat_low,
+                ("scenario", "input", "quantity"), oat_low,
                 {"units": unit, "long_name": "smallest value moving this input alone", **NOT_REPRODUCIBLE},
             ),
             "oat_high": (
-                ("scenario", "input", "quantity"),
-                oat_high,
+                ("scenario", "input", "quantity"), oat_high,
                 {"units": unit, "long_name": "largest value moving this input alone", **NOT_REPRODUCIBLE},
             ),
             "input_low": (
-                "input",
-                [i.low for i in ranged],
+                "input", [i.low for i in ranged],
                 {"units": "SI of the input", "long_name": "lower end of the input's range"},
             ),
             "input_high": (
-                "input",
-                [i.high for i in ranged],
+                "input", [i.high for i in ranged],
                 {"units": "SI of the input", "long_name": "upper end of the input's range"},
             ),
             "input_nominal": (
-                "input",
-                np.array([str(i.nominal) for i in ranged], dtype=object),
+                "input", np.array([str(i.nominal) for i in ranged], dtype=object),
                 {"units": "SI of the input", "long_name": "nominal value"},
             ),
             "input_range": (
-                "input",
-                np.array([i.describe() for i in ranged], dtype=object),
+                "input", np.array([i.describe() for i in ranged], dtype=object),
                 {"units": "SI of the input", "long_name": "range"},
             ),
             "input_reason": (
-                "input",
-                np.array([i.reason for i in ranged], dtype=object),
+                "input", np.array([i.reason for i in ranged], dtype=object),
                 {"units": "1", "long_name": "why this range"},
             ),
             "input_kind": (
-                "input",
-                np.array([i.kind for i in ranged], dtype=object),
+                "input", np.array([i.kind for i in ranged], dtype=object),
                 {"units": "1", "long_name": "assumed (a plausible range) or rounding (the last printed digit)"},
             ),
             "scenario_choice": (
@@ -388,8 +359,7 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
                 {"units": "1", "long_name": "the value each choice takes in the scenario"},
             ),
             "choice_reason": (
-                "choice",
-                np.array([a.reason for a in axes], dtype=object),
+                "choice", np.array([a.reason for a in axes], dtype=object),
                 {"units": "1", "long_name": "why the choice is open"},
             ),
             "samples": (
@@ -406,18 +376,15 @@ def summary(batches_: Sequence[Any], inputs: Sequence[Input]):
         coords={
             "quantity": ds.quantity,
             "input": (
-                "input",
-                np.array([i.path for i in ranged], dtype=object),
+                "input", np.array([i.path for i in ranged], dtype=object),
                 {"units": "1", "long_name": "uncertain input (key path)"},
             ),
             "scenario": (
-                "scenario",
-                np.array([s.label for s in scens], dtype=object),
+                "scenario", np.array([s.label for s in scens], dtype=object),
                 {"units": "1", "long_name": "named scenario (discrete choices), nominal first"},
             ),
             "choice": (
-                "choice",
-                np.array([a.path for a in axes], dtype=object),
+                "choice", np.array([a.path for a in axes], dtype=object),
                 {"units": "1", "long_name": "discrete choice (key path)"},
             ),
             "sample": ds.sample,

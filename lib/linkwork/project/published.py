@@ -96,8 +96,7 @@ def rule_problems(paper: str, data: Mapping[str, Any], path: Path, variables: fr
                 column = table["columns"][name]
                 named.append(
                     (
-                        f"{where}.rows.{r}",
-                        f"{table['id']}.{name}@{row[0]:g}",
+                        f"{where}.rows.{r}", f"{table['id']}.{name}@{row[0]:g}",
                         column if isinstance(column, str) else column["variable"],
                     )
                 )

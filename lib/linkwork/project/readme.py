@@ -91,9 +91,7 @@ def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
     }
     for row in rows.itertuples():
         cells = [
-            row.quantity,
-            _published(row),
-            _num_like(row.reproduced, row.published),
+            row.quantity, _published(row), _num_like(row.reproduced, row.published),
             _range(row.input_low, row.input_high, row.input_source),
         ]
         cells += [indexed[b].loc[row.id, "verdict"] if row.id in indexed[b].index else "–" for b in blocks]

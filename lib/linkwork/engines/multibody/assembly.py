@@ -191,13 +191,8 @@ def assemble(
         from scipy.optimize import least_squares
 
         fit = least_squares(
-            lambda x: constraints(linkage, x[None], tt, closed)[0][0],
-            q0,
-            method="lm",
-            jac=lambda x: constraints(linkage, x[None], tt, closed)[1][0],
-            xtol=1e-15,
-            ftol=1e-15,
-            gtol=1e-15,
+            lambda x: constraints(linkage, x[None], tt, closed)[0][0], q0, method="lm",
+            jac=lambda x: constraints(linkage, x[None], tt, closed)[1][0], xtol=1e-15, ftol=1e-15, gtol=1e-15,
         )
         q, ok = _newton(linkage, fit.x[None], tt, closed, None, settings)
     if not ok[0] or np.max(np.abs(constraints(linkage, q, tt, closed)[0])) > 1e3 * settings.tolerance * max(

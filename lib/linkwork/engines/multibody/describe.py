@@ -43,29 +43,14 @@ import numpy as np
 from .assembly import AssemblySettings, follow_turn
 from ...units import STANDARD_GRAVITY
 from .linkage import (
-    CONTACT_LAWS,
-    ELASTIC_LAWS,
-    GROUND,
-    JOINT_EFFECTS,
-    Body,
-    Clearance,
-    Driver,
-    Joint,
-    Linkage,
-    LinkageError,
-    Spring,
+    CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError, Spring,
 )
 
 #: Clearance keys every clearance joint reads, and those each effect adds.
 CLEARANCE_KEYS = ("journal_radius_m", "bearing_radius_m", "effects")
 EFFECT_KEYS = {
     "contact": (
-        "youngs_modulus_Pa",
-        "poisson",
-        "restitution",
-        "contact_law",
-        "elastic_law",
-        "impact_velocity_floor_m_s",
+        "youngs_modulus_Pa", "poisson", "restitution", "contact_law", "elastic_law", "impact_velocity_floor_m_s",
     ),
     "friction": ("friction", "v0_m_s", "v1_m_s"),
     "lubrication": ("viscosity_Pa_s", "length_m", "e0_m"),
@@ -113,9 +98,7 @@ def _bodies(key: str, spec: Mapping[str, Any]) -> tuple[Body, ...]:
         if name == GROUND:
             raise LinkageError(k, f"'{GROUND}' is the fixed frame, not a body")
         _only(
-            k,
-            _mapping(k, b),
-            ("mass_kg", "inertia_kg_m2", "points", "angle_guess_deg"),
+            k, _mapping(k, b), ("mass_kg", "inertia_kg_m2", "points", "angle_guess_deg"),
             ("mass_kg", "inertia_kg_m2", "points"),
         )
         points = {str(p): _xy(f"{k}.points.{p}", xy) for p, xy in _mapping(f"{k}.points", b["points"]).items()}
@@ -243,9 +226,7 @@ def _joints(key: str, spec: Mapping[str, Any], bodies, ground) -> tuple[Joint, .
 
 def _driver(key: str, spec: Mapping[str, Any], bodies, joints) -> Driver:
     _only(
-        key,
-        _mapping(key, spec),
-        ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg", "rocking"),
+        key, _mapping(key, spec), ("body", "speed_rad_s", "start_angle_deg", "cos_deg", "sin_deg", "rocking"),
         ("body", "speed_rad_s", "start_angle_deg"),
     )
     body = spec["body"]
@@ -282,9 +263,7 @@ def _springs(key: str, spec: Mapping[str, Any] | None, bodies, ground) -> tuple[
     for name, sp in _mapping(key, spec).items():
         k = f"{key}.{name}"
         _only(
-            k,
-            _mapping(k, sp),
-            ("point", "rest_m", "stiffness_N_m", "damping_N_s_m"),
+            k, _mapping(k, sp), ("point", "rest_m", "stiffness_N_m", "damping_N_s_m"),
             ("point", "rest_m", "stiffness_N_m"),
         )
         point = _ref(f"{k}.point", sp["point"], bodies, ground)

@@ -92,8 +92,7 @@ def _build(linkage: Linkage, gravity: bool):
         rest = mbs.AddMarker(ii.MarkerBodyPosition(bodyNumber=ground, localPosition=[*spring.rest, 0.0]))
         mbs.AddObject(
             ii.ObjectConnectorCartesianSpringDamper(
-                markerNumbers=[rest, marker(spring.point)],
-                stiffness=[*spring.stiffness, 0.0],
+                markerNumbers=[rest, marker(spring.point)], stiffness=[*spring.stiffness, 0.0],
                 damping=[*spring.damping, 0.0],
             )
         )

@@ -275,14 +275,7 @@ class Linkage:
         """The same linkage with the named joints' clearances replaced (None: the joint made ideal)."""
         joints = tuple(Joint(j.name, j.journal, j.bearing, updates.get(j.name, j.clearance)) for j in self.joints)
         return Linkage(
-            self.bodies,
-            self.ground,
-            joints,
-            self.driver,
-            self.output,
-            self.gravity,
-            self.baumgarte,
-            self.names,
+            self.bodies, self.ground, joints, self.driver, self.output, self.gravity, self.baumgarte, self.names,
             self.springs,
         )
 

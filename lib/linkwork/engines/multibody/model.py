@@ -44,23 +44,8 @@ DIAG_FIXED = 4  # output body's angular acceleration, driver torque, energy, con
 DIAG_PER_JOINT = 6  # e, delta, delta', dry normal force, film radial force, film tangential force
 #: A clearance joint's packed values, in order (``pack``): its journal and bearing points, then its properties.
 CLEARANCE_VALUES = (
-    "jx",
-    "jy",
-    "bx",
-    "by",
-    "clearance",
-    "r_journal",
-    "r_bearing",
-    "restitution",
-    "friction",
-    "v0",
-    "v1",
-    "film",
-    "eps_limit",
-    "floor",
-    "elastic_law",
-    "elastic_stiffness",
-    "elastic_exponent",
+    "jx", "jy", "bx", "by", "clearance", "r_journal", "r_bearing", "restitution", "friction", "v0", "v1", "film",
+    "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent",
 )
 
 
@@ -93,11 +78,8 @@ def _clearance_values(linkage: Linkage, joint) -> list[float]:
     v.update(clearance=c.clearance, r_journal=c.journal_radius, r_bearing=c.bearing_radius)
     if "contact" in fx:
         v.update(
-            restitution=c.restitution,
-            floor=c.impact_velocity_floor,
-            elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
-            elastic_stiffness=c.elastic_stiffness,
-            elastic_exponent=c.elastic_exponent,
+            restitution=c.restitution, floor=c.impact_velocity_floor, elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
+            elastic_stiffness=c.elastic_stiffness, elastic_exponent=c.elastic_exponent,
         )
     if "friction" in fx:
         v.update(friction=c.friction, v0=c.v0, v1=c.v1)

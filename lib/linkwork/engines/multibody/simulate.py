@@ -67,46 +67,22 @@ class Run:
             )
         elif method in ("dopri5", "dop853"):
             ys, diags, steps, rejected, self.h = getattr(self.module, method)(
-                self.y,
-                self.t,
-                t_out,
-                self.params,
-                self.latched,
-                self.counts,
-                integ["rtol"],
-                integ["atol"],
-                self.h,
-                integ["max_step_s"],
-                self.was,
+                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
+                integ["max_step_s"], self.was,
             )
         elif method == "ndf":
             saved = self.latched.copy(), self.was.copy(), self.counts.copy()
             try:
                 ys, diags, steps, rejected, self.h = self.module.ndf(
-                    self.y,
-                    self.t,
-                    t_out,
-                    self.params,
-                    self.latched,
-                    self.counts,
-                    integ["rtol"],
-                    integ["atol"],
-                    self.h,
-                    integ["max_step_s"],
-                    self.was,
+                    self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
+                    integ["max_step_s"], self.was,
                 )
             except (
                 RuntimeError
             ):  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
                 self.latched[:], self.was[:], self.counts[:] = saved
                 ys, diags, steps, rejected = _scipy(
-                    self.module,
-                    self.y,
-                    t_out,
-                    self.params,
-                    self.latched,
-                    self.counts,
-                    {**integ, "method": "bdf"},
+                    self.module, self.y, t_out, self.params, self.latched, self.counts, {**integ, "method": "bdf"},
                     self.was,
                 )
                 self.fallbacks += 1
@@ -154,15 +130,8 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
         implicit = {"jac": jac} if integrator["method"] in ("bdf", "radau", "lsoda") else {}
         solver = solver_cls(
-            fun,
-            t_out[0],
-            y0,
-            t_out[-1],
-            rtol=integrator["rtol"],
-            atol=integrator["atol"],
-            max_step=integrator["max_step_s"],
-            first_step=integrator.get("first_step_s"),
-            **implicit,
+            fun, t_out[0], y0, t_out[-1], rtol=integrator["rtol"], atol=integrator["atol"],
+            max_step=integrator["max_step_s"], first_step=integrator.get("first_step_s"), **implicit,
         )
         steps = 0
         while solver.status == "running":

@@ -62,20 +62,16 @@ def accuracy(section: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
         },
         coords={
             "derivative": (
-                "derivative",
-                np.array(["theta6_rate", "theta6_accel"], dtype=object),
+                "derivative", np.array(["theta6_rate", "theta6_accel"], dtype=object),
                 {"units": "1", "long_name": "which derivative"},
             ),
             "fd_step": (
-                "fd_step",
-                np.degrees(steps),
-                {"units": "deg", "long_name": "finite-difference step in crank angle"},
+                "fd_step", np.degrees(steps), {"units": "deg", "long_name": "finite-difference step in crank angle"},
             ),
         },
     )
     ds.attrs.update(
-        title="Analytic vs finite-difference derivatives (beat-up six-bar)",
-        grid_step_deg=acc["grid_step_deg"],
+        title="Analytic vs finite-difference derivatives (beat-up six-bar)", grid_step_deg=acc["grid_step_deg"],
         repeats=acc["repeats"],
     )
     timings = {

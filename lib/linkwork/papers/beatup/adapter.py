@@ -30,9 +30,7 @@ def four_bar_beatup(fourbar: Mapping[str, Any], arm_to_crank: float | None = Non
     ratio = labelled(fourbar["arm_to_crank"]) if arm_to_crank is None else float(arm_to_crank)
     crank = labelled(fourbar["crank_m"])
     return FourBarBeatup(
-        crank=crank,
-        arm=ratio * crank,
-        sword_radius=labelled(fourbar["sword_radius_m"]),
+        crank=crank, arm=ratio * crank, sword_radius=labelled(fourbar["sword_radius_m"]),
         offset=labelled(fourbar["offset_m"]),
     )
 

@@ -12,34 +12,17 @@ import xarray as xr
 
 from ...pipeline.compare import compare as compare_one
 from ...pipeline.compare import tolerance_of
-from ...pipeline.compare import (
-    compare_datasets,
-    count_text,
-    counts_dataset,
-    expand_tables,
-    findings_attrs,
-    scalar,
-)
+from ...pipeline.compare import (compare_datasets, count_text, counts_dataset, expand_tables, findings_attrs, scalar)
 from ...units import DEG_PER_RAD
 from .adapter import crank_sense, rounding_half_units, sense_labels, six_bar
 from .model import (
-    CRANK_SENSES,
-    ParameterFit,
-    SleyMotion,
-    coarse_central_difference,
-    dead_centres,
-    fit_table_angles,
-    sley_motion,
+    CRANK_SENSES, ParameterFit, SleyMotion, coarse_central_difference, dead_centres, fit_table_angles, sley_motion,
     with_parameters,
 )
 
 CLASSES = (
-    "matches the fitted model",
-    "printed cell inconsistent",
-    "inconclusive",
-    "marginal",
-    "matches the refit with the offset parameter unbounded",
-    "matches only the printed parameters",
+    "matches the fitted model", "printed cell inconsistent", "inconclusive", "marginal",
+    "matches the refit with the offset parameter unbounded", "matches only the printed parameters",
     "beyond the fitted model",
 )
 MOTION_UNITS = {
@@ -201,14 +184,10 @@ def evidence_dataset(rows: list[dict[str, Any]]) -> xr.Dataset:
     for k in ("printed_column_fd", "our_coarse_fd"):
         data[k][2]["nan_meaning"] = "computed only for a cell that does not match the fitted model"
     data["column"] = (
-        "cell",
-        df["column"].to_numpy(dtype=object),
-        {"units": "1", "long_name": "Table 1 column (our variable name)"},
+        "cell", df["column"].to_numpy(dtype=object), {"units": "1", "long_name": "Table 1 column (our variable name)"},
     )
     data["cell_class"] = (
-        "cell",
-        df["class"].to_numpy(dtype=object),
-        {"units": "1", "long_name": "why the cell matches or not"},
+        "cell", df["class"].to_numpy(dtype=object), {"units": "1", "long_name": "why the cell matches or not"},
     )
     return xr.Dataset(data, coords={"cell": ("cell", np.arange(len(df)), {"units": "1", "long_name": "Table 1 cell"})})
 
@@ -323,8 +302,7 @@ def table1_fit(
     display_units = [_display(n)[0] for n in names]
     data = {
         "fit_printed_value": (
-            "fit_parameter",
-            [joint.start[i] * _display(n)[1] for i, n in enumerate(names)],
+            "fit_parameter", [joint.start[i] * _display(n)[1] for i, n in enumerate(names)],
             {"units": "mm or deg (fit_parameter_unit)", "long_name": "printed value"},
         ),
         "fit_half_width": (
@@ -336,13 +314,11 @@ def table1_fit(
             },
         ),
         "fit_value": (
-            "fit_parameter",
-            [joint.value[i] * _display(n)[1] for i, n in enumerate(names)],
+            "fit_parameter", [joint.value[i] * _display(n)[1] for i, n in enumerate(names)],
             {"units": "mm or deg (fit_parameter_unit)", "long_name": "joint fit within rounding"},
         ),
         "fit_parameter_unit": (
-            "fit_parameter",
-            np.array(display_units, dtype=object),
+            "fit_parameter", np.array(display_units, dtype=object),
             {"units": "1", "long_name": "unit of the parameter's values"},
         ),
         "fit_shift": (
@@ -355,24 +331,17 @@ def table1_fit(
             },
         ),
         "fit_theta3_mean_offset": (
-            "fit_case",
-            mean3,
-            {"units": "deg", "long_name": "mean of printed theta3 - model over the 24 rows"},
+            "fit_case", mean3, {"units": "deg", "long_name": "mean of printed theta3 - model over the 24 rows"},
         ),
         "fit_theta6_mean_offset": (
-            "fit_case",
-            mean6,
-            {"units": "deg", "long_name": "mean of printed theta6 - model over the 24 rows"},
+            "fit_case", mean6, {"units": "deg", "long_name": "mean of printed theta6 - model over the 24 rows"},
         ),
         "fit_rms": ("fit_case", rms, {"units": "deg", "long_name": "rms of printed - model over the 48 angles"}),
         "fit_angles_within_printing": (
-            "fit_case",
-            n_match,
-            {"units": "1", "long_name": "angle cells within half a unit of the printed digit"},
+            "fit_case", n_match, {"units": "1", "long_name": "angle cells within half a unit of the printed digit"},
         ),
         "fit_theta6_same_sign": (
-            "fit_case",
-            same_sign,
+            "fit_case", same_sign,
             {"units": "1", "long_name": "theta6 rows whose printed - model has the majority sign"},
         ),
         "fit_explains_offset": (
@@ -386,8 +355,7 @@ def table1_fit(
             },
         ),
         "fit_condition": scalar(
-            free.condition,
-            "1",
+            free.condition, "1",
             "condition number of the Jacobian of the joint fit without bounds (in rounding half-widths)",
         ),
         "fit_at_bound": scalar(
@@ -395,30 +363,25 @@ def table1_fit(
         ),
         "fit_numerical_error_theta6": scalar(error["theta6"], "deg", "our numerical error of the fitted theta6 column"),
         "fit_numerical_error_max": scalar(
-            max(error.values()),
-            "unit of the column",
+            max(error.values()), "unit of the column",
             "largest numerical error of the fitted model over Table 1's columns",
         ),
         "offset_shift": scalar(
-            alone_shift[best],
-            "1",
+            alone_shift[best], "1",
             f"change of {best_name} alone that removes the theta6 offset, in rounding half-widths",
         ),
         "offset_change": scalar(
-            alone[best_name].value[0] * factor - alone[best_name].start[0] * factor,
-            unit,
+            alone[best_name].value[0] * factor - alone[best_name].start[0] * factor, unit,
             f"change of {best_name} alone that removes the theta6 offset",
         ),
     }
     coords = {
         "fit_parameter": (
-            "fit_parameter",
-            np.array(names, dtype=object),
+            "fit_parameter", np.array(names, dtype=object),
             {"units": "1", "long_name": "fitted printed parameter (SixBar field)"},
         ),
         "fit_case": (
-            "fit_case",
-            np.array(list(cases), dtype=object),
+            "fit_case", np.array(list(cases), dtype=object),
             {"units": "1", "long_name": "which parameters are fitted, and how"},
         ),
     }
@@ -490,50 +453,39 @@ def sense_comparison(published: Mapping[str, Any], sixbar: xr.Dataset, errors: M
     return {
         "data": {
             "sense_value": (
-                ("sense_quantity", "crank_sense"),
-                value,
+                ("sense_quantity", "crank_sense"), value,
                 {"units": "deg", "long_name": "our value in each crank sense (printed parameters)"},
             ),
             "sense_distance": (
-                ("sense_quantity", "crank_sense"),
-                np.abs(value - published_value[:, None]),
+                ("sense_quantity", "crank_sense"), np.abs(value - published_value[:, None]),
                 {"units": "deg", "long_name": "|ours - published| in each crank sense"},
             ),
             "sense_verdict": (
-                ("sense_quantity", "crank_sense"),
-                verdict,
+                ("sense_quantity", "crank_sense"), verdict,
                 {"units": "1", "long_name": "verdict in each crank sense (printed parameters)"},
             ),
             "sense_tolerance": (
-                "sense_quantity",
-                np.array([tolerance_of(q) for q in entries]),
+                "sense_quantity", np.array([tolerance_of(q) for q in entries]),
                 {"units": "deg", "long_name": "published tolerance"},
             ),
             "sense_peaks_hold": (
-                "crank_sense",
-                np.array(peaks_hold, dtype=int),
+                "crank_sense", np.array(peaks_hold, dtype=int),
                 {"units": "1", "long_name": "1 if both velocity peaks match in this sense"},
             ),
             "sense_claims_matched": (
-                "crank_sense",
-                np.array([int((verdict[:, j] == "matches").sum()) for j in range(len(senses))]),
+                "crank_sense", np.array([int((verdict[:, j] == "matches").sum()) for j in range(len(senses))]),
                 {"units": "1", "long_name": "sense-dependent claims that match in this sense"},
             ),
         },
         "coords": {
             "sense_quantity": (
-                "sense_quantity",
-                np.array(ids, dtype=object),
-                {"units": "1", "long_name": "published id"},
+                "sense_quantity", np.array(ids, dtype=object), {"units": "1", "long_name": "published id"},
             ),
             "crank_sense": (
-                "crank_sense",
-                np.array(senses, dtype=object),
-                {"units": "1", "long_name": "sense the crank turns in"},
+                "crank_sense", np.array(senses, dtype=object), {"units": "1", "long_name": "sense the crank turns in"},
             ),
             "crank_sense_label": (
-                "crank_sense",
-                np.array([labels[s] for s in senses], dtype=object),
+                "crank_sense", np.array([labels[s] for s in senses], dtype=object),
                 {"units": "1", "long_name": "readable name"},
             ),
         },
@@ -553,13 +505,10 @@ def window_constraints(window: xr.Dataset, sixbar_window: float, fourbar_window:
     return {
         "sw_for_printed_sixbar_window": scalar(sw, "mm", "S_w at which our six-bar window equals the printed one"),
         "fourbar_window_at_that_sw": (
-            "arm_to_crank",
-            w4_at,
-            {"units": "deg", "long_name": "four-bar window at that S_w, per L/R"},
+            "arm_to_crank", w4_at, {"units": "deg", "long_name": "four-bar window at that S_w, per L/R"},
         ),
         "fourbar_window_band": (
-            (),
-            float(band),
+            (), float(band),
             {"units": "deg", "long_name": "band around the printed four-bar window", "tolerance_source": "our reading"},
         ),
         "arm_to_crank_in_band_min": scalar(
@@ -622,21 +571,17 @@ def fitted_headline_notes(fit: Mapping[str, Any], numerics: Mapping[str, Any], p
     return {
         "data": {
             "fitted_note_value": (
-                "fitted_note_id",
-                values,
+                "fitted_note_id", values,
                 {"units": "deg", "long_name": "headline number at the joint fit of Table 1 (a note, not a verdict)"},
             ),
             "fitted_note_within": (
-                "fitted_note_id",
-                within.astype(int),
+                "fitted_note_id", within.astype(int),
                 {"units": "1", "long_name": "1 if within the published tolerance plus our numerical error"},
             ),
         },
         "coords": {
             "fitted_note_id": (
-                "fitted_note_id",
-                np.array(ids, dtype=object),
-                {"units": "1", "long_name": "published id"},
+                "fitted_note_id", np.array(ids, dtype=object), {"units": "1", "long_name": "published id"},
             )
         },
     }
@@ -655,23 +600,14 @@ def compare(
     crank_deg, printed, tolerance = printed_table(published)
     fit = table1_fit(cfg, crank_deg, printed, tolerance)
     headline = compare_datasets(
-        {**published, "tables": []},
-        [sixbar, window],
-        errors={"": numerical_errors(published, sixbar)},
+        {**published, "tables": []}, [sixbar, window], errors={"": numerical_errors(published, sixbar)},
         uncertainty=uncertainty,
     )
     table = pd.concat([headline, compare_table1(published, crank_deg, fit)], ignore_index=True)
     rows = table1_evidence(
-        fit["columns"],
-        coarse_differences(fit["fitted"], cfg["grids"]["paper_step_deg"]),
-        fit["error"],
-        crank_deg,
-        printed,
-        tolerance,
-        cfg["grids"]["paper_step_deg"],
-        offset_model=fit["offset_columns"],
-        nominal_model=fit["nominal_columns"],
-        offset_moves=columns_moved_by(fit["offset_parameter"]),
+        fit["columns"], coarse_differences(fit["fitted"], cfg["grids"]["paper_step_deg"]), fit["error"], crank_deg,
+        printed, tolerance, cfg["grids"]["paper_step_deg"], offset_model=fit["offset_columns"],
+        nominal_model=fit["nominal_columns"], offset_moves=columns_moved_by(fit["offset_parameter"]),
     )
     evidence = evidence_dataset(rows)
     classes = [str(c) for c in evidence.cell_class.values]
@@ -688,8 +624,7 @@ def compare(
         **notes["data"],
         **fitted_notes["data"],
         "class_count": (
-            "cell_class_name",
-            [classes.count(c) for c in CLASSES],
+            "cell_class_name", [classes.count(c) for c in CLASSES],
             {"units": "1", "long_name": "Table 1 cells per class"},
         ),
         "table1_matches": scalar(
@@ -716,9 +651,7 @@ def compare(
     )
     data.update(
         window_constraints(
-            window,
-            pub["window_sixbar"]["value"],
-            pub["window_fourbar"]["value"],
+            window, pub["window_sixbar"]["value"], pub["window_fourbar"]["value"],
             cfg["comparison"]["fourbar_window_band_deg"],
         )
     )
@@ -729,9 +662,7 @@ def compare(
             **notes["coords"],
             **fitted_notes["coords"],
             "cell_class_name": (
-                "cell_class_name",
-                np.array(CLASSES, dtype=object),
-                {"units": "1", "long_name": "Table 1 cell class"},
+                "cell_class_name", np.array(CLASSES, dtype=object), {"units": "1", "long_name": "Table 1 cell class"},
             ),
             "arm_to_crank": ("arm_to_crank", window.arm_to_crank.values, {"units": "1", "long_name": "four-bar L/R"}),
         },

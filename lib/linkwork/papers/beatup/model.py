@@ -220,12 +220,7 @@ def dead_centres(mechanism: SixBar, scan_points: int = 3601, xtol: float = 1.0e-
     front, back = (roots[int(np.argmax(angles))], roots[int(np.argmin(angles))])
     forward = float(np.mod(back - front, TWO_PI))
     return DeadCentres(
-        front,
-        back,
-        float(angles.max()),
-        float(angles.min()),
-        float(angles.max() - angles.min()),
-        forward,
+        front, back, float(angles.max()), float(angles.min()), float(angles.max() - angles.min()), forward,
         TWO_PI - forward,
     )
 

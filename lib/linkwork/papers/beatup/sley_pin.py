@@ -33,11 +33,8 @@ from .model import CRANK_SENSES, dead_centres
 
 #: The bodies of the six-bar: (name, its two named points, the chain's point names, the chain link giving its angle).
 BODIES = (
-    ("crank", ("A", "B"), "A-B"),
-    ("coupler", ("B", "C"), "B-C"),
-    ("rocker", ("D", "C"), "D-C"),
-    ("link", ("C", "E"), "C-E"),
-    ("sley", ("F", "E"), "F-E"),
+    ("crank", ("A", "B"), "A-B"), ("coupler", ("B", "C"), "B-C"), ("rocker", ("D", "C"), "D-C"),
+    ("link", ("C", "E"), "C-E"), ("sley", ("F", "E"), "F-E"),
 )
 
 
@@ -70,18 +67,9 @@ def _pin(sp: Mapping[str, Any]) -> Clearance:
     p = sp["pin"]
     r = labelled(p["journal_radius_m"])
     return Clearance(
-        r,
-        r + labelled(p["radial_clearance_m"]),
-        ("contact", "friction"),
-        (p["youngs_modulus_Pa"],) * 2,
-        (p["poisson"],) * 2,
-        labelled(p["restitution"]),
-        "lankarani-nikravesh",
-        "hertz-sphere",
-        labelled(p["friction"]),
-        p["v0_m_s"],
-        p["v1_m_s"],
-        impact_velocity_floor=p["impact_velocity_floor_m_s"],
+        r, r + labelled(p["radial_clearance_m"]), ("contact", "friction"), (p["youngs_modulus_Pa"],) * 2,
+        (p["poisson"],) * 2, labelled(p["restitution"]), "lankarani-nikravesh", "hertz-sphere", labelled(p["friction"]),
+        p["v0_m_s"], p["v1_m_s"], impact_velocity_floor=p["impact_velocity_floor_m_s"],
     )
 
 
@@ -133,14 +121,8 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
     st = sp["states"]
     runner = _Turns(pin_lk, sp["gravity"], sp["integrator"], ideal, windows, per, y0=assembly.start_state(pin_lk))
     found = settle(
-        runner.step,
-        st["chunk_cycles"],
-        st["max_cycles"],
-        st["max_period"],
-        st["section_tolerance"],
-        st["periods"],
-        st["min_cycles"],
-        0.95,
+        runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
+        st["min_cycles"], 0.95,
     )
     first, stop = found["window"]
     judged = np.array(runner.turns[max(first, stop - sp["kept_turns"]):stop])
@@ -165,19 +147,7 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
               (judged_all[:, after].max(), from_front[after][np.argmax(judged_all[:, after].max(axis=0))])]
     turn_peak_at["halves"] = halves
     return _dataset(
-        sp,
-        from_front,
-        ideal,
-        judged,
-        fb_acc,
-        fixed,
-        turn_peak_at,
-        found,
-        measures,
-        numerical,
-        runner,
-        omega,
-        n_check,
+        sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check,
         swings,
     )
 
@@ -194,19 +164,7 @@ def _signed(angle_deg: float) -> float:
 
 
 def _dataset(
-    sp,
-    from_front,
-    ideal,
-    judged,
-    fb_acc,
-    fixed,
-    turn_peak_at,
-    found,
-    measures,
-    numerical,
-    runner,
-    omega,
-    n_check,
+    sp, from_front, ideal, judged, fb_acc, fixed, turn_peak_at, found, measures, numerical, runner, omega, n_check,
     swings,
 ) -> xr.Dataset:
     pen, force = np.array(runner.contact).T
@@ -222,8 +180,7 @@ def _dataset(
     mech = ("mechanism", "window")
     data = {
         "sley_acceleration_ideal": (
-            "crank_angle",
-            ideal,
+            "crank_angle", ideal,
             {"units": "rad/s^2", "long_name": "sley angular acceleration, six-bar with an ideal pin"},
         ),
         "sley_acceleration_pin": (
@@ -259,13 +216,11 @@ def _dataset(
             },
         ),
         "pin_peak_in_window_low": (
-            "window",
-            measures[:, :nw].min(axis=0),
+            "window", measures[:, :nw].min(axis=0),
             {"units": "rad/s^2", "long_name": "clearance scene: the smallest of the judged turns' peaks in the window"},
         ),
         "pin_peak_in_window_high": (
-            "window",
-            measures[:, :nw].max(axis=0),
+            "window", measures[:, :nw].max(axis=0),
             {"units": "rad/s^2", "long_name": "clearance scene: the largest of the judged turns' peaks in the window"},
         ),
         "pin_peak_in_window_spread": (
@@ -288,8 +243,7 @@ def _dataset(
             },
         ),
         "pin_over_ideal_in_window": (
-            "window",
-            window_peaks[1] / window_peaks[0],
+            "window", window_peaks[1] / window_peaks[0],
             {"units": "1", "long_name": "the clearance scene's mean peak in the window over the ideal six-bar's"},
         ),
         "turn_peak": (
@@ -304,8 +258,7 @@ def _dataset(
             },
         ),
         "turn_peak_at": (
-            "mechanism",
-            np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]),
+            "mechanism", np.array([_signed(turn_peak_at[k]) for k in ("ideal", "pin", "fourbar")]),
             {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"},
         ),
         "pin_half_turn_peak": (
@@ -320,8 +273,7 @@ def _dataset(
             },
         ),
         "pin_half_turn_peak_at": (
-            "half_turn",
-            np.array([_signed(h[1]) for h in turn_peak_at["halves"]]),
+            "half_turn", np.array([_signed(h[1]) for h in turn_peak_at["halves"]]),
             {"units": "deg", "long_name": "crank angle of that largest |acceleration| from the front dead centre"},
         ),
         "pin_peak_by_turn": (
@@ -343,9 +295,7 @@ def _dataset(
             },
         ),
         "swing": (
-            "linkage",
-            np.degrees(swings),
-            {"units": "deg", "long_name": "sley (sword) swing between its dead centres"},
+            "linkage", np.degrees(swings), {"units": "deg", "long_name": "sley (sword) swing between its dead centres"},
         ),
         "ideal_turn_peak_per_swing": (
             "linkage",
@@ -377,23 +327,18 @@ def _dataset(
             },
         ),
         "judged_turns": (
-            (),
-            int(measures.shape[0]),
-            {"units": "1", "long_name": "turns the clearance scene is judged on"},
+            (), int(measures.shape[0]), {"units": "1", "long_name": "turns the clearance scene is judged on"},
         ),
         "max_penetration": (
-            (),
-            float(pen[first:stop].max()),
+            (), float(pen[first:stop].max()),
             {"units": "m", "long_name": "largest penetration at the sley pin over the judged turns"},
         ),
         "max_contact_force": (
-            (),
-            float(force[first:stop].max()),
+            (), float(force[first:stop].max()),
             {"units": "N", "long_name": "largest dry contact force at the sley pin over the judged turns"},
         ),
         "state_period": (
-            (),
-            int(found["period"]),
+            (), int(found["period"]),
             {"units": "1", "long_name": "period of the settled state in turns (0: not periodic)"},
         ),
         "state_transient": ((), int(found["transient"]), {"units": "1", "long_name": "turns before the judged window"}),
@@ -402,35 +347,28 @@ def _dataset(
     }
     coords = {
         "crank_angle": (
-            "crank_angle",
-            about,
+            "crank_angle", about,
             {"units": "deg", "long_name": "crank angle from the front dead centre (negative: before it)"},
         ),
         "judged_turn": (
-            "judged_turn",
-            np.arange(stop - judged.shape[0], stop),
+            "judged_turn", np.arange(stop - judged.shape[0], stop),
             {"units": "1", "long_name": "turn from the start (the last judged turns)"},
         ),
         "mechanism": (
-            "mechanism",
-            ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"],
+            "mechanism", ["six-bar, ideal pin", "six-bar, clearance at the sley pin", "four-bar"],
             {"units": "1", "long_name": "mechanism"},
         ),
         "window": (
-            "window",
-            np.asarray(sp["windows_deg"], dtype=float),
+            "window", np.asarray(sp["windows_deg"], dtype=float),
             {"units": "deg", "long_name": "half-width of the window of crank angle about the front dead centre"},
         ),
         "linkage": ("linkage", ["six-bar", "four-bar"], {"units": "1", "long_name": "beat-up linkage"}),
         "half_turn": (
-            "half_turn",
-            ["before the front dead centre", "after the front dead centre"],
+            "half_turn", ["before the front dead centre", "after the front dead centre"],
             {"units": "1", "long_name": "half of the crank turn"},
         ),
         "turn_judged": (
-            "turn_judged",
-            np.arange(first, stop),
-            {"units": "1", "long_name": "judged turn, from the start"},
+            "turn_judged", np.arange(first, stop), {"units": "1", "long_name": "judged turn, from the start"},
         ),
     }
     attrs = {

@@ -118,9 +118,7 @@ def motion(section: Mapping[str, Any]) -> tuple[xr.Dataset, Any, Any]:
     coords = {
         "crank_angle": ("crank_angle", paper_deg, {"units": "deg", "long_name": "crank angle theta1 (paper grid)"}),
         "crank_angle_fine": (
-            "crank_angle_fine",
-            fine_deg,
-            {"units": "deg", "long_name": "crank angle theta1 (fine grid)"},
+            "crank_angle_fine", fine_deg, {"units": "deg", "long_name": "crank angle theta1 (fine grid)"},
         ),
     }
     sense = crank_sense(section["sixbar"])
@@ -149,14 +147,12 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
             value = getattr(cf, name)
             label = "as printed (eqs. 7, 13)" if printed else "paper's closed forms, corrected"
             data[f"{name}_{tag}"] = xr.DataArray(
-                value * DEG if unit == "deg" else value,
-                dims="crank_angle",
+                value * DEG if unit == "deg" else value, dims="crank_angle",
                 attrs={"units": unit, "long_name": f"{long_name}, {label}"},
             )
     step = np.radians(section["numerics"]["fd_step_deg"])
     for name, value in zip(
-        ("theta3_rate", "theta3_accel", "theta6_rate", "theta6_accel"),
-        fd_rates(mech, np.radians(paper_deg), step),
+        ("theta3_rate", "theta3_accel", "theta6_rate", "theta6_accel"), fd_rates(mech, np.radians(paper_deg), step),
         strict=True,
     ):
         unit, long_name = MOTION_VARS[name]
@@ -178,10 +174,8 @@ def sixbar(section: Mapping[str, Any]) -> xr.Dataset:
         )
     ds = base.assign(data)
     ds.attrs.update(
-        title="GN721 six-bar beating-up mechanism: sley motion",
-        fd_step_deg=section["numerics"]["fd_step_deg"],
-        scan_points=section["numerics"]["scan_points"],
-        root_xtol_rad=section["numerics"]["root_xtol_rad"],
+        title="GN721 six-bar beating-up mechanism: sley motion", fd_step_deg=section["numerics"]["fd_step_deg"],
+        scan_points=section["numerics"]["scan_points"], root_xtol_rad=section["numerics"]["root_xtol_rad"],
     )
     return ds
 
@@ -220,13 +214,11 @@ def window(section: Mapping[str, Any]) -> xr.Dataset:
 
     data = {
         "reed_sixbar": xr.DataArray(
-            shifted(s6, front6) * 1e3,
-            dims="angle_from_front",
+            shifted(s6, front6) * 1e3, dims="angle_from_front",
             attrs={"units": "mm", "long_name": "reed displacement from the front, scaled six-bar"},
         ),
         "reed_fourbar": xr.DataArray(
-            shifted(s4, front4) * 1e3,
-            dims="angle_from_front",
+            shifted(s4, front4) * 1e3, dims="angle_from_front",
             attrs={"units": "mm", "long_name": "reed displacement from the front, four-bar"},
         ),
         "reed_radius_sixbar": _scalar(r6 * 1e3, "mm", "cloth-fell radius on the six-bar sword giving the stroke"),
@@ -255,8 +247,7 @@ def window(section: Mapping[str, Any]) -> xr.Dataset:
         "angle_from_front": phi,
         "arm_to_crank": ("arm_to_crank", ratios, {"units": "1", "long_name": "four-bar connecting arm / crank L/R"}),
         "weft_clearance": (
-            "weft_clearance",
-            sw_grid * 1e3,
+            "weft_clearance", sw_grid * 1e3,
             {"units": "mm", "long_name": "S_w, reed distance from the front that lets the weft carrier pass"},
         ),
     }
@@ -264,8 +255,7 @@ def window(section: Mapping[str, Any]) -> xr.Dataset:
         six_windows * DEG, dims="weft_clearance", attrs={"units": "deg", "long_name": "six-bar window vs S_w"}
     )
     data["window_fourbar_sweep"] = xr.DataArray(
-        four_windows * DEG,
-        dims=("arm_to_crank", "weft_clearance"),
+        four_windows * DEG, dims=("arm_to_crank", "weft_clearance"),
         attrs={"units": "deg", "long_name": "four-bar window vs L/R and S_w"},
     )
     return xr.Dataset(data, coords=coords, attrs={"title": "Six-bar vs four-bar weft window"})

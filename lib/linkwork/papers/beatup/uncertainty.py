@@ -18,11 +18,8 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     """Each printed parameter within half a unit of its last printed digit."""
     return [
         Input(
-            f"sixbar.{key}",
-            float(cfg["sixbar"][key]),
-            float(cfg["sixbar"][key]) - half,
-            float(cfg["sixbar"][key]) + half,
-            "printed to the last digit given; half a unit either side",
+            f"sixbar.{key}", float(cfg["sixbar"][key]), float(cfg["sixbar"][key]) - half,
+            float(cfg["sixbar"][key]) + half, "printed to the last digit given; half a unit either side",
             kind="rounding",
         )
         for key, half in cfg["printed_rounding"].items()
@@ -45,9 +42,6 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], published: Mapping[st
     """Rule study: every batch, with each headline value's extremes over the rounding box (bounded searches)."""
     ins = inputs(cfg)
     return gathered(
-        ins,
-        batches,
-        "Beat-up: rounding of the printed parameters, propagated",
-        searcher(cfg, published, ins, results),
+        ins, batches, "Beat-up: rounding of the printed parameters, propagated", searcher(cfg, published, ins, results),
         workers,
     )

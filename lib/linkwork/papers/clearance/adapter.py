@@ -35,10 +35,7 @@ LINKAGE_KEYS = ("ground_m", "crank_speed_rad_s", *(f"bodies.{b}.{k}" for b in BO
 WINDOW_KEYS = ("numerics.points_per_cycle", "numerics.record_cycles")
 #: What a scene with clearance joints reads to find its states and judge the claims' measures on them.
 SETTLE_KEYS = (
-    "states",
-    "statistics.batch_cycles",
-    "statistics.confidence",
-    "claims.ripple_cutoff_hz",
+    "states", "statistics.batch_cycles", "statistics.confidence", "claims.ripple_cutoff_hz",
     "claims.ripple_cutoff_sensitivity_hz",
 )
 #: What a scene with clearance joints reads besides its effects.
@@ -107,11 +104,8 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
     if "contact" in effects:
         j = cfg["joints"]
         values.update(
-            youngs_modulus=(j["youngs_modulus_Pa"],) * 2,
-            poisson=(j["poisson"],) * 2,
-            restitution=j["restitution"],
-            impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"],
-            contact_law=j["contact_law"],
+            youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
+            impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"],
             elastic_law=j["elastic_law"],
         )
         if "assumed.joint_length_m" in ELASTIC_LAW_KEYS[j["elastic_law"]]:

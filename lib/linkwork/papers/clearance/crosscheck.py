@@ -66,18 +66,15 @@ def ideal(cfg: Mapping[str, Any]) -> xr.Dataset:
     return xr.Dataset(
         {
             "relative_difference": (
-                ("variant", "quantity", "step"),
-                diff,
+                ("variant", "quantity", "step"), diff,
                 {"units": "1", "long_name": "max |Exudyn - linkwork| / max |linkwork|"},
             ),
             "observed_order": (
-                ("variant", "quantity", "refinement"),
-                orders,
+                ("variant", "quantity", "refinement"), orders,
                 {"units": "1", "long_name": "observed order of the difference between successive steps"},
             ),
             "exudyn_wall_s": (
-                ("variant", "step"),
-                wall,
+                ("variant", "step"), wall,
                 {"units": "s", "long_name": "Exudyn's solver wall time (time.perf_counter, one run)"},
             ),
             "agree": (
@@ -90,8 +87,7 @@ def ideal(cfg: Mapping[str, Any]) -> xr.Dataset:
             ),
             "all_agree": ((), bool(agree.all()), {"units": "1", "long_name": "every variant and quantity agrees"}),
             "finest_difference": (
-                (),
-                float(diff[..., -1].max()),
+                (), float(diff[..., -1].max()),
                 {"units": "1", "long_name": "largest relative difference at the finest step"},
             ),
             "order_low": ((), float(orders.min()), {"units": "1", "long_name": "smallest observed order"}),
@@ -100,15 +96,11 @@ def ideal(cfg: Mapping[str, Any]) -> xr.Dataset:
         coords={
             "variant": ("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "quantity": (
-                "quantity",
-                np.array(QUANTITIES, dtype=object),
-                {"units": "1", "long_name": "compared response"},
+                "quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"},
             ),
             "step": ("step", steps, {"units": "s", "long_name": "Exudyn's fixed time step"}),
             "refinement": (
-                "refinement",
-                np.arange(1, steps.size),
-                {"units": "1", "long_name": "from step i-1 to step i"},
+                "refinement", np.arange(1, steps.size), {"units": "1", "long_name": "from step i-1 to step i"},
             ),
         },
         attrs={
@@ -177,18 +169,15 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
     return xr.Dataset(
         {
             "cycle_rms_deviation": (
-                ("setting", "quantity", "cycle"),
-                measures,
+                ("setting", "quantity", "cycle"), measures,
                 {"units": "SI of the quantity", "long_name": "RMS of (scene - ideal) over each recorded cycle"},
             ),
             "mean": (
-                ("setting", "quantity"),
-                mean,
+                ("setting", "quantity"), mean,
                 {"units": "SI of the quantity", "long_name": "mean over the recorded cycles"},
             ),
             "standard_error": (
-                ("setting", "quantity"),
-                se,
+                ("setting", "quantity"), se,
                 {"units": "SI of the quantity", "long_name": "standard error of the mean over the cycles"},
             ),
             "relative_difference": (
@@ -210,8 +199,7 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
                 },
             ),
             "agree": (
-                ("quantity",),
-                np.abs(theirs - ours) <= margin,
+                ("quantity",), np.abs(theirs - ours) <= margin,
                 {"units": "1", "long_name": "difference of the means within the numerical margin"},
             ),
             "wall_s": (
@@ -226,14 +214,11 @@ def dry(cfg: Mapping[str, Any], variant: str, scene: str) -> xr.Dataset:
         },
         coords={
             "setting": (
-                "setting",
-                np.array(settings, dtype=object),
+                "setting", np.array(settings, dtype=object),
                 {"units": "1", "long_name": "engine and numerical setting"},
             ),
             "quantity": (
-                "quantity",
-                np.array(QUANTITIES, dtype=object),
-                {"units": "1", "long_name": "compared response"},
+                "quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"},
             ),
             "cycle": ("cycle", np.arange(1, cycles + 1), {"units": "1", "long_name": "recorded cycle"}),
         },
@@ -288,12 +273,7 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     for k, step in enumerate(steps):
         run, seconds = run_and_time(
             lambda step=step: exudyn_run(
-                p,
-                joints,
-                float(t[-1]),
-                float(step),
-                cfg["crosscheck"]["newton_tolerance"],
-                float(t[1] - t[0]),
+                p, joints, float(t[-1]), float(step), cfg["crosscheck"]["newton_tolerance"], float(t[1] - t[0]),
                 progress_s=float("inf"),
             ),
             wp["repeats"],
@@ -360,13 +340,11 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
                 },
             ),
             "time_s": (
-                ("setting",),
-                times,
+                ("setting",), times,
                 {"units": "s", "long_name": f"wall time, {timings['method']}", "nan_meaning": "not run"},
             ),
             "exudyn_error": (
-                ("exudyn_step",),
-                ex_error,
+                ("exudyn_step",), ex_error,
                 {"units": "1", "long_name": "the same error for Exudyn (its own model: exact constraints)"},
             ),
             "exudyn_time_s": (
@@ -392,19 +370,15 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
         },
         coords={
             "setting": (
-                "setting",
-                np.array(labels, dtype=object),
-                {"units": "1", "long_name": "integrator and tolerance"},
+                "setting", np.array(labels, dtype=object), {"units": "1", "long_name": "integrator and tolerance"},
             ),
             "exudyn_step": ("exudyn_step", steps, {"units": "s", "long_name": "Exudyn's fixed step"}),
             "compared_method": (
-                "compared_method",
-                np.array(compared, dtype=object),
+                "compared_method", np.array(compared, dtype=object),
                 {"units": "1", "long_name": "compared method (not `method`: sel's keyword)"},
             ),
             "dopri5_setting": (
-                "dopri5_setting",
-                np.array([labels[i] for i in own], dtype=object),
+                "dopri5_setting", np.array([labels[i] for i in own], dtype=object),
                 {"units": "1", "long_name": "linkwork's dopri5 setting"},
             ),
         },
@@ -448,18 +422,15 @@ def dry_summary(cfg: Mapping[str, Any], dry: Sequence[xr.Dataset]) -> xr.Dataset
     return xr.Dataset(
         {
             "order_holds": (
-                ("variant", "quantity", "engine"),
-                holds,
+                ("variant", "quantity", "engine"), holds,
                 {"units": "1", "long_name": "the claimed order of dry_1, dry_2, dry_both holds on the means"},
             ),
             "all_agree": (
-                (),
-                all(bool(d.agree.all()) for d in dry),
+                (), all(bool(d.agree.all()) for d in dry),
                 {"units": "1", "long_name": "every dry comparison within its margin"},
             ),
             "exudyn_change": (
-                (),
-                exudyn_change,
+                (), exudyn_change,
                 {"units": "1", "long_name": "largest relative change of Exudyn's mean between its two steps"},
             ),
             "linkwork_change": (
@@ -474,9 +445,7 @@ def dry_summary(cfg: Mapping[str, Any], dry: Sequence[xr.Dataset]) -> xr.Dataset
         coords={
             "variant": ("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "quantity": (
-                "quantity",
-                np.array(QUANTITIES, dtype=object),
-                {"units": "1", "long_name": "compared response"},
+                "quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"},
             ),
             "engine": ("engine", np.array(["linkwork", "Exudyn"], dtype=object), {"units": "1", "long_name": "engine"}),
         },

@@ -152,9 +152,7 @@ def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> 
         elif (outcomes == -1).any() and "undetermined" in str(row.verdict):
             decided = int((outcomes != -1).sum())
             out.loc[i, ["input_low", "input_high", "input_source"]] = [
-                np.nan,
-                np.nan,
-                f"{PARTLY_UNDETERMINED} {decided} of {outcomes.size} samples only",
+                np.nan, np.nan, f"{PARTLY_UNDETERMINED} {decided} of {outcomes.size} samples only",
             ]
         elif (
             (outcomes == -1).any()
@@ -248,9 +246,7 @@ def physics(
     return xr.Dataset(
         {
             "dry_penetration_max": (
-                v,
-                dry.values,
-                {"units": "1", "long_name": "deepest dry penetration over the radial clearance"},
+                v, dry.values, {"units": "1", "long_name": "deepest dry penetration over the radial clearance"},
             ),
             "physically_consistent": (
                 v,
@@ -264,25 +260,17 @@ def physics(
                 },
             ),
             "dry_torque_max": (
-                v,
-                torque.values,
-                {"units": "N m", "long_name": "largest |crank torque| in a dry scene"},
+                v, torque.values, {"units": "N m", "long_name": "largest |crank torque| in a dry scene"},
             ),
             "ideal_torque_max": (
-                v,
-                ideal_torque.values,
-                {"units": "N m", "long_name": "largest |crank torque| of the ideal linkage"},
+                v, ideal_torque.values, {"units": "N m", "long_name": "largest |crank torque| of the ideal linkage"},
             ),
             "crank_mass": ((), float(claims.attrs["crank_mass_kg"]), {"units": "kg", "long_name": "crank mass"}),
             "lubricated_eccentricity_max": (
-                v,
-                ecc.values,
-                {"units": "1", "long_name": "largest eccentricity ratio |e|/c in a lubricated scene"},
+                v, ecc.values, {"units": "1", "long_name": "largest eccentricity ratio |e|/c in a lubricated scene"},
             ),
             "lubricated_2_eccentricity_max": (
-                v,
-                ecc2.values,
-                {"units": "1", "long_name": "largest eccentricity ratio |e|/c in lubricated_2"},
+                v, ecc2.values, {"units": "1", "long_name": "largest eccentricity ratio |e|/c in lubricated_2"},
             ),
             "film_cap": (
                 v,
@@ -293,14 +281,11 @@ def physics(
                 },
             ),
             "beyond_film_cap": (
-                v,
-                (ecc2.values > cap.values).astype(int),
+                v, (ecc2.values > cap.values).astype(int),
                 {"units": "1", "long_name": "1 if lubricated_2 runs beyond the film cap"},
             ),
             "film_cap_at_e0_high": (
-                v,
-                cap_high,
-                {"units": "1", "long_name": "film cap 1 - e0/c at the largest e0 of its range"},
+                v, cap_high, {"units": "1", "long_name": "film cap 1 - e0/c at the largest e0 of its range"},
             ),
             "beyond_film_cap_at_e0_high": (
                 v,
@@ -315,8 +300,7 @@ def physics(
             **(
                 {
                     "beyond_film_cap_fraction": (
-                        ("variant", "scene"),
-                        full.values,
+                        ("variant", "scene"), full.values,
                         {"units": "1", "long_name": "fraction of the recorded time beyond the film cap (nominal e0)"},
                     )
                 }
@@ -348,17 +332,13 @@ def physics(
                 },
             ),
             "stray_evaluations": (
-                v,
-                stray,
-                {"units": "1", "long_name": "evaluations of an effect in a scene that does not name it"},
+                v, stray, {"units": "1", "long_name": "evaluations of an effect in a scene that does not name it"},
             ),
         },
         coords={
             "variant": ("variant", claims.variant.values, {"units": "1", "long_name": "parameter variant"}),
             "scene": (
-                "scene",
-                np.array(LUBRICATED_SCENES, dtype=object),
-                {"units": "1", "long_name": "lubricated scene"},
+                "scene", np.array(LUBRICATED_SCENES, dtype=object), {"units": "1", "long_name": "lubricated scene"},
             ),
         },
     )
@@ -420,28 +400,23 @@ def law_sensitivity(
     out = xr.Dataset(
         {
             "law_outcome_sphere": (
-                vsc,
-                nominal,
+                vsc, nominal,
                 {"units": "1", "long_name": "claim under eq. (9)'s sphere law: 1 holds, 0 fails, -1 undetermined"},
             ),
             "law_outcome_other": (
-                vsc,
-                under,
+                vsc, under,
                 {"units": "1", "long_name": f"claim under the {other_law} law: 1 holds, 0 fails, -1 undetermined"},
             ),
             "law_survives": (
-                vsc,
-                survives,
+                vsc, survives,
                 {"units": "1", "long_name": "1 if the claim's outcome is the same under both elastic laws"},
             ),
             "law_difference_other": (
-                ("variant", "start", "comparison"),
-                diff,
+                ("variant", "start", "comparison"), diff,
                 {"units": "SI of the quantity", "long_name": f"difference of each ordering under the {other_law} law"},
             ),
             "sphere_law_valid": (
-                "variant",
-                valid,
+                "variant", valid,
                 {"units": "1", "long_name": "1 if the deepest dry penetration stays inside the sphere law's validity"},
             ),
             "verdict_counted": (
@@ -468,8 +443,7 @@ def law_sensitivity(
                 },
             ),
             "memory_own_rms": (
-                ("variant", "swapped_scene", "start"),
-                own,
+                ("variant", "swapped_scene", "start"), own,
                 {"units": "rad s-2", "long_name": "RMS rocker-acceleration deviation on each start's own state"},
             ),
             "memory_explains": (
@@ -487,34 +461,24 @@ def law_sensitivity(
         coords={
             "variant": ("variant", np.array(variants, dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "start": (
-                "start",
-                np.array(starts, dtype=object),
-                {"units": "1", "long_name": "initial state of the journals"},
+                "start", np.array(starts, dtype=object), {"units": "1", "long_name": "initial state of the journals"},
             ),
             "claim": ("claim", claims.claim.values, {"units": "1", "long_name": "claim"}),
             "comparison": (
-                "comparison",
-                claims.comparison.values,
-                {"units": "1", "long_name": "ordering a claim is made of"},
+                "comparison", claims.comparison.values, {"units": "1", "long_name": "ordering a claim is made of"},
             ),
             "swapped_scene": (
-                "swapped_scene",
-                np.array(swapped, dtype=object),
-                {"units": "1", "long_name": "dry scene"},
+                "swapped_scene", np.array(swapped, dtype=object), {"units": "1", "long_name": "dry scene"},
             ),
             "direction": (
-                "direction",
-                laws[0].direction.values,
+                "direction", laws[0].direction.values,
                 {"units": "1", "long_name": "whose state, whose latched velocities"},
             ),
         },
     )
     out.attrs.update(
-        sphere_law_condition=sphere.condition,
-        sphere_law_limit_over_clearance=limit,
-        other_law=other_law,
-        other_law_condition=other.condition,
-        other_law_valid=int(other.limits["clearance_in_range"]),
+        sphere_law_condition=sphere.condition, sphere_law_limit_over_clearance=limit, other_law=other_law,
+        other_law_condition=other.condition, other_law_valid=int(other.limits["clearance_in_range"]),
     )
     return out
 
@@ -701,8 +665,7 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "claim3_ripples_outcome": (
-                vs,
-                ripple_outcome,
+                vs, ripple_outcome,
                 {"units": "1", "long_name": "claim 3's ripple orderings together: 1 hold, 0 fail, -1 undetermined"},
             ),
             "ripple_check_ratio": (
@@ -724,8 +687,7 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "ripple_error_ratio": (
-                vs,
-                (error / measure).transpose(*vs).values,
+                vs, (error / measure).transpose(*vs).values,
                 {"units": "1", "long_name": "numerical error bar of joint 2 lubricated's ripple, over the ripple"},
             ),
             "ripple_tight_above": (
@@ -740,13 +702,11 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "ripple_tight_joint_1": (
-                vs,
-                tight.sel(scene="lubricated_1").transpose(*vs).values,
+                vs, tight.sel(scene="lubricated_1").transpose(*vs).values,
                 {"units": "rad s-2", "long_name": "joint 1 lubricated's ripple at the tightest check tolerance"},
             ),
             "ripple_tight_joint_2": (
-                vs,
-                tight.sel(scene="lubricated_2").transpose(*vs).values,
+                vs, tight.sel(scene="lubricated_2").transpose(*vs).values,
                 {"units": "rad s-2", "long_name": "joint 2 lubricated's ripple at the tightest check tolerance"},
             ),
             "ripple_tight_change": (
@@ -786,8 +746,7 @@ def claim3_parts(claims: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "ripple_cutoff_holds": (
-                ("variant", "ripple_cutoff"),
-                cut_holds.transpose("variant", "ripple_cutoff").values.astype(int),
+                ("variant", "ripple_cutoff"), cut_holds.transpose("variant", "ripple_cutoff").values.astype(int),
                 {"units": "1", "long_name": "1 if the ripple orderings hold on each scene's last turn at this cutoff"},
             ),
         },

@@ -60,21 +60,9 @@ class FourBarParameters:
     def joint(self, effects=("contact", "friction", "lubrication")) -> Clearance:
         """The clearance of either joint with the given effects (the paper gives one set for both)."""
         return Clearance(
-            self.journal_radius,
-            self.bearing_radius,
-            tuple(e for e in effects if e != "gravity"),
-            self.youngs_modulus,
-            self.poisson,
-            self.restitution,
-            self.contact_law,
-            self.elastic_law,
-            self.friction,
-            self.v0,
-            self.v1,
-            self.viscosity,
-            self.joint_length,
-            self.e0,
-            self.impact_velocity_floor,
+            self.journal_radius, self.bearing_radius, tuple(e for e in effects if e != "gravity"), self.youngs_modulus,
+            self.poisson, self.restitution, self.contact_law, self.elastic_law, self.friction, self.v0, self.v1,
+            self.viscosity, self.joint_length, self.e0, self.impact_velocity_floor,
         )
 
     @property
@@ -130,13 +118,8 @@ def linkage(p: FourBarParameters, joints=(), effects=()) -> Linkage:
     moving = tuple(Joint(JOINT_NAMES[j], *pins[j], p.joint(effects) if j in joints else None) for j in order)
     ground = (Joint("O2", ("crank", "O"), ("ground", "O2")), Joint("O4", ("rocker", "O"), ("ground", "O4")))
     return Linkage(
-        bodies,
-        {"O2": (0.0, 0.0), "O4": (p.ground, 0.0)},
-        (*ground, *moving),
-        Driver("crank", p.crank_speed, phi0),
-        output="rocker",
-        gravity=p.gravity,
-        baumgarte=p.baumgarte_alpha,
+        bodies, {"O2": (0.0, 0.0), "O4": (p.ground, 0.0)}, (*ground, *moving), Driver("crank", p.crank_speed, phi0),
+        output="rocker", gravity=p.gravity, baumgarte=p.baumgarte_alpha,
     )
 
 
@@ -302,9 +285,7 @@ def joint_points(p: FourBarParameters) -> dict[int, tuple[int, tuple[float, floa
     for j, name in JOINT_NAMES.items():
         joint = next(x for x in lk.joints if x.name == name)
         out[j] = (
-            lk.body_index(joint.journal[0]),
-            lk.point(joint.journal),
-            lk.body_index(joint.bearing[0]),
+            lk.body_index(joint.journal[0]), lk.point(joint.journal), lk.body_index(joint.bearing[0]),
             lk.point(joint.bearing),
         )
     return out

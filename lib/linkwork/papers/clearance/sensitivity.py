@@ -46,10 +46,7 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
     runs = {str(r.attrs["scene"]): r for r in nominal}
     starts = [str(x) for x in next(iter(runs.values())).start.values]
     ds = batch(
-        cfg,
-        [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}],
-        variant,
-        nominal=nominal,
+        cfg, [{"label": f"elastic law {law}", "values": {"joints.elastic_law": law}}], variant, nominal=nominal,
         all_starts=True,
     )
     names = [n for n in SWAPPED if n in runs]
@@ -63,11 +60,7 @@ def model_sensitivity(cfg: Mapping[str, Any], variant: str, law: str, nominal: S
             latched[k, :, :nj] = memories[:2, latched_slice(nj)]
             for direction, (to, donor) in enumerate(((1, 0), (0, 1))):  # start 2 with start 1's memory, and the reverse
                 run = scene(
-                    cfg,
-                    variant,
-                    name,
-                    first_start_only=True,
-                    check=False,
+                    cfg, variant, name, first_start_only=True, check=False,
                     memory=swapped_memory(memories[to], memories[donor], nj),
                 )
                 swap[k, direction] = run.judged_mean.values[0]

@@ -98,9 +98,7 @@ class CycleRunner:
                 np.array(
                     [
                         [
-                            np.nanmax(diags[:, c[0]]),
-                            np.nanmax(diags[:, c[1]]),
-                            np.nanmax(diags[:, c[2]]),
+                            np.nanmax(diags[:, c[0]]), np.nanmax(diags[:, c[1]]), np.nanmax(diags[:, c[2]]),
                             np.nanmax(np.abs(diags[:, c[3]])),
                         ]
                         for c in cols
@@ -147,15 +145,8 @@ def peak_refinement(x: np.ndarray) -> float:
 def settle_start(runner: CycleRunner, st: Mapping[str, Any], confidence: float) -> dict[str, Any]:
     """Settle one start (``st``: the ``states`` settings) and return ``engines.states.settle``'s record."""
     return settle(
-        runner.step,
-        st["chunk_cycles"],
-        st["max_cycles"],
-        st["max_period"],
-        st["section_tolerance"],
-        st["periods"],
-        st["min_cycles"],
-        confidence,
-        rows=SETTLE_ROWS,
+        runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
+        st["min_cycles"], confidence, rows=SETTLE_ROWS,
     )
 
 
@@ -220,9 +211,7 @@ def check_state(
     deltas = np.full((len(checks), measures.shape[1]), np.nan)
     means = np.full((len(checks), measures.shape[1]), np.nan)
     kept, periods, distances = (
-        np.full(len(checks), np.nan),
-        np.zeros(len(checks), dtype=int),
-        np.full(len(checks), np.nan),
+        np.full(len(checks), np.nan), np.zeros(len(checks), dtype=int), np.full(len(checks), np.nan),
     )
     orbit = found["points"][stop - period : stop] if period != NOT_PERIODIC else None
     restart = stop - period if period != NOT_PERIODIC else first

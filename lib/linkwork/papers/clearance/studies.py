@@ -121,31 +121,22 @@ def _ideal_scene(p, variant: str, scene: str, effects, per: int, shown: int) -> 
         {
             "crank_angle": (dims, theta, {"units": "deg", "long_name": "crank angle (unwrapped)"}),
             "rocker_acceleration": (
-                dims,
-                ideal["rocker_acceleration"],
-                {"units": "rad s-2", "long_name": "rocker angular acceleration"},
+                dims, ideal["rocker_acceleration"], {"units": "rad s-2", "long_name": "rocker angular acceleration"},
             ),
             "crank_torque": (dims, ideal["crank_torque"], {"units": "N m", "long_name": "crank driving torque"}),
             "energy": (dims, ideal["energy"], {"units": "J", "long_name": "mechanical energy (kinetic + gravity)"}),
             "ideal_joint_force_A": (dims, ideal["force_A"], {"units": "N", "long_name": "reaction in joint 1 (A)"}),
             "ideal_joint_force_B": (dims, ideal["force_B"], {"units": "N", "long_name": "reaction in joint 2 (B)"}),
             "recorded_max_abs_torque": (
-                (),
-                float(np.abs(ideal["crank_torque"]).max()),
+                (), float(np.abs(ideal["crank_torque"]).max()),
                 {"units": "N m", "long_name": "largest |crank driving torque|"},
             ),
         },
         coords={"time": ("time", t, {"units": "s", "long_name": "time from the dead point"})},
     )
     ds.attrs.update(
-        title=f"Four-bar with ideal joints: {variant}",
-        scene=scene,
-        variant=variant,
-        effects=",".join(effects),
-        clearance_joints="",
-        integrator="none (inverse dynamics)",
-        steps=0,
-        crank_mass_kg=p.masses[0],
+        title=f"Four-bar with ideal joints: {variant}", scene=scene, variant=variant, effects=",".join(effects),
+        clearance_joints="", integrator="none (inverse dynamics)", steps=0, crank_mass_kg=p.masses[0],
         shown_cycles=shown,
     )
     return ds
@@ -164,15 +155,7 @@ def _dynamic_scene(
 
     def make_runner(integrator, memory=None, y0=None):
         return CycleRunner(
-            p,
-            joints,
-            effects,
-            integrator,
-            ideal_cycle,
-            per,
-            shown,
-            cfg["claims"]["ripple_cutoff_hz"],
-            y0=y0,
+            p, joints, effects, integrator, ideal_cycle, per, shown, cfg["claims"]["ripple_cutoff_hz"], y0=y0,
             memory=memory,
         )
 
@@ -189,12 +172,7 @@ def _dynamic_scene(
         if checks and not from_memory:  # the start once more from its initial state at the first check integrator
             reached.append(
                 reach_state(
-                    make_runner,
-                    f,
-                    {"y0": start_state(p, joints, start)},
-                    checks[0],
-                    st,
-                    stats["batch_cycles"],
+                    make_runner, f, {"y0": start_state(p, joints, start)}, checks[0], st, stats["batch_cycles"],
                     stats["confidence"],
                 )
             )
@@ -558,8 +536,7 @@ def _scene_attrs(p, cfg, variant: str, scene: str, runs: SceneRuns, per: int, sh
         ndf_fallbacks=int(sum(r.run.fallbacks for r in runners)),
         evaluations_contact=int(counts[0]), evaluations_friction=int(counts[1]),
         evaluations_lubrication=int(counts[2]), evaluations_gravity=int(counts[3]),
-        crank_mass_kg=p.masses[0], shown_cycles=shown,
-        hertz_stiffness=p.hertz_stiffness, clearance=p.clearance,
+        crank_mass_kg=p.masses[0], shown_cycles=shown, hertz_stiffness=p.hertz_stiffness, clearance=p.clearance,
         sampling_rate_hz=sampling, sampling_over_contact_frequency=over_contact,
         settle_rule=_settle_rule(cfg["states"], cfg["statistics"]["confidence"]),
         ripple_cutoff_hz=float(cfg["claims"]["ripple_cutoff_hz"]), ripple_harmonic=int(runners[0].harmonic),
@@ -650,10 +627,7 @@ def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[floa
         for dry, lub in zip(DRY, LUBRICATED, strict=True):
             out.append(
                 (
-                    "lubrication_close",
-                    f"rms {quantity}: {lub} < {ratio:g} x {dry}",
-                    "rms",
-                    quantity,
+                    "lubrication_close", f"rms {quantity}: {lub} < {ratio:g} x {dry}", "rms", quantity,
                     ((ratio, dry), (-1.0, lub)),
                 )
             )
@@ -663,11 +637,8 @@ def comparisons(ratio: float) -> list[tuple[str, str, str, str, tuple[tuple[floa
     for joint_2 in ("lubricated_2", "lubricated_both"):  # joint 2 lubricated, alone (Fig. 6) and with joint 1 (Fig. 7)
         out.append(
             (
-                "lubrication_close",
-                f"ripple rocker_acceleration: {joint_2} > lubricated_1",
-                "ripple",
-                "rocker_acceleration",
-                ((1.0, joint_2), (-1.0, "lubricated_1")),
+                "lubrication_close", f"ripple rocker_acceleration: {joint_2} > lubricated_1", "ripple",
+                "rocker_acceleration", ((1.0, joint_2), (-1.0, "lubricated_1")),
             )
         )
     return out
@@ -740,17 +711,8 @@ def _scene_summary(
     out = {
         k: np.full(shape, np.nan)
         for k in (
-            "steps",
-            "max_drift",
-            "n_contact",
-            "n_friction",
-            "n_lubrication",
-            "ideal_force_A",
-            "ideal_force_B",
-            "film_cap",
-            "hertz_stiffness",
-            "max_abs_torque",
-            "beyond_film_cap_fraction",
+            "steps", "max_drift", "n_contact", "n_friction", "n_lubrication", "ideal_force_A", "ideal_force_B",
+            "film_cap", "hertz_stiffness", "max_abs_torque", "beyond_film_cap_fraction",
             "sampling_over_contact_frequency",
         )
     }
@@ -760,10 +722,7 @@ def _scene_summary(
         {
             k: np.full(jshape, np.nan)
             for k in (
-                "max_penetration_ratio",
-                "max_eccentricity_ratio",
-                "max_contact_force",
-                "max_film_force",
+                "max_penetration_ratio", "max_eccentricity_ratio", "max_contact_force", "max_film_force",
                 "contact_value",
             )
         }

@@ -76,15 +76,8 @@ def sweep_point(cfg: Mapping[str, Any], point: Mapping[str, float], spec: Mappin
         p, np.arange(ppc + 1) * period / ppc, "gravity" in effects
     )  # one cycle: the ideal response is periodic
     runner = CycleRunner(
-        p,
-        joints,
-        effects,
-        cfg["integrators"][integrator_kind(cfg["scenes"][name])],
-        ideal,
-        ppc,
-        1,
-        cfg["claims"]["ripple_cutoff_hz"],
-        y0=start_state(p, joints, cfg["states"]["starts"][0]),
+        p, joints, effects, cfg["integrators"][integrator_kind(cfg["scenes"][name])], ideal, ppc, 1,
+        cfg["claims"]["ripple_cutoff_hz"], y0=start_state(p, joints, cfg["states"]["starts"][0]),
     )
     found = settle_start(runner, cfg["states"], cfg["statistics"]["confidence"])
     first, stop = found["window"]
@@ -159,8 +152,7 @@ SWEEP_OUTPUTS = {
     },
     **{
         f"section_rate_{k}": (
-            "1",
-            f"joint 1's e_x' / (c omega) at the dead point, judged turn {k + 1} of the last {SECTION_POINTS}",
+            "1", f"joint 1's e_x' / (c omega) at the dead point, judged turn {k + 1} of the last {SECTION_POINTS}",
             "the state was judged on fewer turns",
         )
         for k in range(SECTION_POINTS)
@@ -196,9 +188,7 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset]) -> xr.Dataset
     ds = interpret(grid_ds.drop_vars(states), cfg["reference"], THRESHOLDS, scatter=scatter).merge(grid_ds[states])
     periodic = grid_ds.state_periodic.values == 1
     ds["periodic_points"] = (
-        (),
-        int(periodic.sum()),
-        {"units": "1", "long_name": "grid points whose state is a periodic orbit"},
+        (), int(periodic.sum()), {"units": "1", "long_name": "grid points whose state is a periodic orbit"},
     )
     ds["grid_points"] = ((), int(periodic.size), {"units": "1", "long_name": "grid points"})
     ds.attrs["periods_found"] = ", ".join(

@@ -35,12 +35,7 @@ def inputs(cfg: Mapping[str, Any]) -> list[Input]:
     start = (
         [
             Input(
-                START,
-                labels[0],
-                float("nan"),
-                float("nan"),
-                START_REASON,
-                labels,
+                START, labels[0], float("nan"), float("nan"), START_REASON, labels,
                 labels=tuple(f"start {x}" for x in labels),
             )
         ]
@@ -105,8 +100,7 @@ def batch(
     )
     return ds.assign_coords(
         start=(
-            "start",
-            np.array(starts, dtype=object),
+            "start", np.array(starts, dtype=object),
             {"units": "1", "long_name": "the start whose nominal state the sample continues"},
         )
     )
@@ -148,11 +142,7 @@ def batch_at(
             else:
                 run, at = (
                     scene(
-                        local,
-                        variant,
-                        name,
-                        first_start_only=True,
-                        check=False,
+                        local, variant, name, first_start_only=True, check=False,
                         memory=base.window_memory.values[start],
                     ),
                     0,
@@ -185,8 +175,7 @@ def batch_at(
                 },
             ),
             "state_status": (
-                ("sample", "variant", "scene"),
-                status,
+                ("sample", "variant", "scene"), status,
                 {"units": "1", "long_name": "how the sample's state was found ('' where not moved)"},
             ),
             "held": (
@@ -205,20 +194,14 @@ def batch_at(
             "variant": ("variant", np.array([variant], dtype=object), {"units": "1", "long_name": "parameter variant"}),
             "measure": ("measure", np.array(MEASURES, dtype=object), {"units": "1", "long_name": "deviation measure"}),
             "quantity": (
-                "quantity",
-                np.array(QUANTITIES, dtype=object),
-                {"units": "1", "long_name": "compared response"},
+                "quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"},
             ),
             "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
             "statistic": (
-                "statistic",
-                np.array(SAMPLE_STATISTICS, dtype=object),
-                {"units": "1", "long_name": "statistic"},
+                "statistic", np.array(SAMPLE_STATISTICS, dtype=object), {"units": "1", "long_name": "statistic"},
             ),
             "state_field": (
-                "state_field",
-                np.array(SAMPLE_STATE, dtype=object),
-                {"units": "1", "long_name": "state field"},
+                "state_field", np.array(SAMPLE_STATE, dtype=object), {"units": "1", "long_name": "state field"},
             ),
         },
         attrs={
@@ -245,11 +228,8 @@ def sample_judgement(
     stats = read(
         np.stack(
             [
-                first.mean_deviation.values,
-                first.ci_half_width.values,
-                first.standard_error.values,
-                first.ci_dof.values,
-                first.judged_cycles.values,
+                first.mean_deviation.values, first.ci_half_width.values, first.standard_error.values,
+                first.ci_dof.values, first.judged_cycles.values,
             ],
             axis=-1,
         )
@@ -369,8 +349,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
         },
     )
     ds["sample_claim_outcome"] = (
-        ("sample", "variant", "claim"),
-        np.array(outcomes, dtype=int),
+        ("sample", "variant", "claim"), np.array(outcomes, dtype=int),
         {"units": "1", "long_name": "the claim at the sample: 1 holds, 0 fails, -1 undetermined (within its margins)"},
     )
     oat_dims = ("scenario", "input", "variant")
@@ -425,8 +404,7 @@ def gather(cfg: Mapping[str, Any], batches: Sequence[Any], claims: Any, publishe
         },
     )
     ds["oat_orderings"] = (
-        (),
-        int(np.sum(np.isfinite(lo))),
+        (), int(np.sum(np.isfinite(lo))),
         {"units": "1", "long_name": "(scenario, input, variant, ordering) sets propagated"},
     )
     ds = ds.assign_coords(

@@ -76,8 +76,7 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
                 attrs={"units": "1", "long_name": "fewest studied points with a peak error below 0.1 %"},
             ),
             "peak_error": xr.DataArray(
-                np.array(errors),
-                dims="grid_points",
+                np.array(errors), dims="grid_points",
                 attrs={"units": "1", "long_name": f"relative error of the peak |{acc['quantity']}| on a uniform grid"},
             ),
             "reference_peak": xr.DataArray(
@@ -92,19 +91,14 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
         },
         coords={
             "grid_points": (
-                "grid_points",
-                np.array(acc["points"]),
+                "grid_points", np.array(acc["points"]),
                 {"units": "1", "long_name": "points of the uniform frequency grid"},
             )
         },
     )
     ds.attrs.update(
-        title="Frequency-grid resolution vs error in a resonance peak (heald)",
-        model=model,
-        quantity=acc["quantity"],
-        reference_xtol_rad_s=acc["reference_xtol_rad_s"],
-        repeats=acc["repeats"],
-        band_rad_s=[lo, hi],
+        title="Frequency-grid resolution vs error in a resonance peak (heald)", model=model, quantity=acc["quantity"],
+        reference_xtol_rad_s=acc["reference_xtol_rad_s"], repeats=acc["repeats"], band_rad_s=[lo, hi],
     )
     timings = {
         "method": f"median of {acc['repeats']} runs after a warm-up, time.perf_counter",

@@ -99,14 +99,8 @@ def pin(cfg: Mapping[str, Any], clearance: float) -> Clearance:
     pn = cfg["pin"]
     r = labelled(pn["journal_radius_m"])
     return Clearance(
-        r,
-        r + clearance,
-        ("contact",),
-        (pn["youngs_modulus_Pa"],) * 2,
-        (pn["poisson"],) * 2,
-        labelled(pn["restitution"]),
-        "lankarani-nikravesh",
-        "hertz-sphere",
+        r, r + clearance, ("contact",), (pn["youngs_modulus_Pa"],) * 2, (pn["poisson"],) * 2,
+        labelled(pn["restitution"]), "lankarani-nikravesh", "hertz-sphere",
         impact_velocity_floor=pn["impact_velocity_floor_m_s"],
     )
 
@@ -210,15 +204,8 @@ def _settled(lk: Linkage, cfg, per: int) -> dict[str, Any]:
     st = cfg["states"]
     runner = _Cycles(lk, cfg["gravity"], cfg["integrator"], per, y0=assembly.start_state(lk))
     found = settle(
-        runner.step,
-        st["chunk_cycles"],
-        st["max_cycles"],
-        st["max_period"],
-        st["section_tolerance"],
-        st["periods"],
-        st["min_cycles"],
-        0.95,
-        rows=(4, 5),
+        runner.step, st["chunk_cycles"], st["max_cycles"], st["max_period"], st["section_tolerance"], st["periods"],
+        st["min_cycles"], 0.95, rows=(4, 5),
     )
     first, stop = found["window"]
     m = found["measures"][first:stop]
@@ -308,13 +295,11 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
     data.update(
         {
             "force_E_mean": (
-                dims,
-                out["force_E_mean"],
+                dims, out["force_E_mean"],
                 {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at E"},
             ),
             "force_F_mean": (
-                dims,
-                out["force_F_mean"],
+                dims, out["force_F_mean"],
                 {"units": "N", "long_name": "mean over the judged cycles of each cycle's largest contact force at F"},
             ),
             "force_numerical_error": (
@@ -340,8 +325,7 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
                 },
             ),
             "chain_F": (
-                dims,
-                out["chain_F"],
+                dims, out["chain_F"],
                 {"units": "N", "long_name": "model A's linear chain: peak |Q_F| over a cycle under the same cam drive"},
             ),
             "contact_lost": (
@@ -354,9 +338,7 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
             ),
             "state_status": (dims, status.astype(str), {"units": "1", "long_name": "the settled state's status"}),
             "state_period": (
-                dims,
-                periods,
-                {"units": "1", "long_name": "period of the settled state in cycles (0: not periodic)"},
+                dims, periods, {"units": "1", "long_name": "period of the settled state in cycles (0: not periodic)"},
             ),
             "cycles_run": (dims, cycles, {"units": "1", "long_name": "drive cycles integrated"}),
             "warp_pull": (
@@ -422,8 +404,7 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
                 },
             ),
             "contact_force": (
-                ("case", "speed", "cycle_point", "joint"),
-                forces,
+                ("case", "speed", "cycle_point", "joint"), forces,
                 {"units": "N", "long_name": "dry contact force over the last judged cycle"},
             ),
         }
@@ -432,19 +413,16 @@ def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -
         "case": ("case", names, {"units": "1", "long_name": "named case of the assumed parameters"}),
         "speed": ("speed", rpm, {"units": "rev/min", "long_name": "main-shaft speed"}),
         "cycle_point": (
-            "cycle_point",
-            np.linspace(0.0, 360.0, forces.shape[2]),
+            "cycle_point", np.linspace(0.0, 360.0, forces.shape[2]),
             {"units": "deg", "long_name": "drive angle over a cycle"},
         ),
         "joint": ("joint", ["E", "F"], {"units": "1", "long_name": "clearance joint"}),
         "drive": (
-            "drive",
-            list(DRIVE_RATIO),
+            "drive", list(DRIVE_RATIO),
             {"units": "1", "long_name": "drive-frequency scenario (heald.drive.frequency's choices)"},
         ),
     }
     return xr.Dataset(
-        data,
-        coords=coords,
+        data, coords=coords,
         attrs={"drive_ratio": float(ratio), "title": "Heald linkage with clearance joints at E and F"},
     )

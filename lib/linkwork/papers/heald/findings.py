@@ -11,15 +11,8 @@ import pandas as pd
 import xarray as xr
 
 from ...pipeline.compare import (
-    acceptance,
-    classify,
-    compare_datasets,
-    counts_dataset,
-    findings_attrs,
-    nominal_rows,
-    scenario_changes,
-    tolerance_of,
-    where_true,
+    acceptance, classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scenario_changes,
+    tolerance_of, where_true,
 )
 from ...units import RAD_S_PER_RPM
 from .adapter import amplitude, omega_grid, parameters
@@ -44,10 +37,7 @@ SCAN = 9
 SWEEP_INPUT = {"reaction_ratio": "reaction_E", "heald_mass": "M_P", "warp_stiffness": "k_O"}
 #: What the findings carry over from the chain study on eq. (2)'s massless-node condition.
 EQ2_NODE_MASS = (
-    "eq2_relative_difference",
-    "eq2_node_mass_difference",
-    "eq2_node_mass_difference_at",
-    "eq2_node_mass",
+    "eq2_relative_difference", "eq2_node_mass_difference", "eq2_node_mass_difference_at", "eq2_node_mass",
     "eq2_node_mass_antiresonance",
 )
 CLAIM_SHORT = {
@@ -163,9 +153,7 @@ def sweep_boundary(cfg: Mapping[str, Any], published: Mapping[str, Any], flips: 
         lo, hi = min(a, b), max(a, b)
         for j in range(flips.sizes["flip"]):
             if (str(flips.flip_model.values[j]), str(flips.flip_claim.values[j]), str(flips.flip_input.values[j])) == (
-                model,
-                claim,
-                name,
+                model, claim, name,
             ):
                 v = float(flips.flip_value.values[j]) * k
                 if lo <= v <= hi:
@@ -214,13 +202,7 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
                     value = flip_point(holds, a, b, FLIP_RTOL)
                     rows.append(
                         (
-                            row.model,
-                            row.id,
-                            name,
-                            nominal,
-                            end,
-                            value,
-                            f(moved(cfg, name, value)),
+                            row.model, row.id, name, nominal, end, value, f(moved(cfg, name, value)),
                             "holds" if base else "fails",
                         )
                     )
@@ -231,18 +213,14 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
             "flip_model": (dim, np.array(cols[0], dtype=object), {"units": "1", "long_name": "chain model"}),
             "flip_claim": (dim, np.array(cols[1], dtype=object), {"units": "1", "long_name": "published claim"}),
             "flip_input": (
-                dim,
-                np.array(cols[2], dtype=object),
-                {"units": "1", "long_name": "the assumed input moved alone"},
+                dim, np.array(cols[2], dtype=object), {"units": "1", "long_name": "the assumed input moved alone"},
             ),
             "flip_nominal": (
-                dim,
-                np.array(cols[3], dtype=float),
+                dim, np.array(cols[3], dtype=float),
                 {"units": "config units of the input", "long_name": "its assumed value"},
             ),
             "flip_end": (
-                dim,
-                np.array(cols[4], dtype=float),
+                dim, np.array(cols[4], dtype=float),
                 {"units": "config units of the input", "long_name": "the end of its range on the flipping side"},
             ),
             "flip_value": (
@@ -254,13 +232,11 @@ def thresholds(cfg: Mapping[str, Any], published: Mapping[str, Any], table: pd.D
                 },
             ),
             "flip_measure": (
-                dim,
-                np.array(cols[6], dtype=float),
+                dim, np.array(cols[6], dtype=float),
                 {"units": "the claim's unit", "long_name": "the claim's measure at the flip value"},
             ),
             "flip_nominal_state": (
-                dim,
-                np.array(cols[7], dtype=object),
+                dim, np.array(cols[7], dtype=object),
                 {"units": "1", "long_name": "whether the claim holds at the assumed value"},
             ),
         },
@@ -317,13 +293,8 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
         values = chain[var].sel(model=row.model).values
         over.append(
             classify(
-                float(row.published),
-                float(row.tolerance),
-                row.relation,
-                float(values[0]),
-                float(row.numerical_error),
-                float(values.min()),
-                float(values.max()),
+                float(row.published), float(row.tolerance), row.relation, float(values[0]), float(row.numerical_error),
+                float(values.min()), float(values.max()),
             )
         )
     shape = (len(chain.model), len(CLAIMS))
@@ -332,13 +303,8 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
         [
             [
                 classify(
-                    float(limit_row.published[str(m)]),
-                    float(limit_row.tolerance[str(m)]),
-                    limit_row.relation[str(m)],
-                    float(v),
-                    float(limit_row.numerical_error[str(m)]),
-                    float(v),
-                    float(v),
+                    float(limit_row.published[str(m)]), float(limit_row.tolerance[str(m)]), limit_row.relation[str(m)],
+                    float(v), float(limit_row.numerical_error[str(m)]), float(v), float(v),
                 )
                 for v in chain.cam_harmonic_speed.sel(model=m).values
             ]
@@ -358,13 +324,11 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
     return xr.Dataset(
         {
             "verdict_sine_nominal": (
-                ("model", "claim"),
-                grid(sine.verdict),
+                ("model", "claim"), grid(sine.verdict),
                 {"units": "1", "long_name": "verdict at the assumed parameters, harmonic drive"},
             ),
             "verdict_cam_nominal": (
-                ("model", "claim"),
-                grid(cam_table.verdict),
+                ("model", "claim"), grid(cam_table.verdict),
                 {"units": "1", "long_name": "verdict at the assumed parameters, cam drive"},
             ),
             "verdict_cam_over_rise": (
@@ -376,8 +340,7 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
                 },
             ),
             "value_cam_nominal": (
-                ("model", "claim"),
-                np.array(list(cam_table.reproduced), dtype=float).reshape(shape),
+                ("model", "claim"), np.array(list(cam_table.reproduced), dtype=float).reshape(shape),
                 {"units": "the claim's unit", "long_name": "the claim's measure, cam drive"},
             ),
             "verdict_limit_by_harmonic": (
@@ -404,8 +367,7 @@ def cam_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr.D
             "largest_dip_cam_by_joint_damping": chain.largest_dip_cam_by_joint_damping,
             "joint_branch_damping_ratio": chain.joint_branch_damping_ratio,
             "cam_changes_a_verdict": (
-                (),
-                int((sine.verdict.values != cam_table.verdict.values).any()),
+                (), int((sine.verdict.values != cam_table.verdict.values).any()),
                 {"units": "1", "long_name": "1 if the cam's harmonics change a verdict at the assumed parameters"},
             ),
         }
@@ -441,8 +403,7 @@ def drive_verdicts(published: Mapping[str, Any], chain: xr.Dataset, accuracy: xr
                 },
             ),
             "value_by_drive": (
-                dims,
-                value,
+                dims, value,
                 {"units": "the claim's unit", "long_name": "the claim's measure per drive-frequency scenario"},
             ),
             "drive_ratio": ("drive", chain.drive_ratio.values, dict(chain.drive_ratio.attrs)),
@@ -471,19 +432,15 @@ def compare(
     findings = xr.Dataset(
         {
             "holds_for": (
-                ("model", "claim", "sweep"),
-                sup["text"],
+                ("model", "claim", "sweep"), sup["text"],
                 {"units": "1", "long_name": "sub-ranges of the swept parameter over which the claim holds"},
             ),
             "limit_rad_s": ((), limit, {"units": "rad s-1", "long_name": "the paper's speed limit"}),
             "limit_rpm": (
-                (),
-                limit / RAD_S_PER_RPM,
-                {"units": "min-1", "long_name": "the paper's speed limit as a shaft speed"},
+                (), limit / RAD_S_PER_RPM, {"units": "min-1", "long_name": "the paper's speed limit as a shaft speed"},
             ),
             "limit_band": (
-                (),
-                tolerance_of(pub["limit_41_89"]),
+                (), tolerance_of(pub["limit_41_89"]),
                 {"units": "rad s-1", "long_name": "half-width of the band around the limit (our reading)"},
             ),
             "many_times": ((), many_times, {"units": "1", "long_name": "ratio read as 'many times' (our reading)"}),

@@ -51,20 +51,7 @@ JOINTS = ("ideal", "elastic")
 #: with no other): model A takes the assumed reactions, not the kinetostatic state that sets model B's; model B has
 #: no mass on its driven node (eq. (2)) and takes its own kinetostatic reactions.
 _COMMON = (
-    "m_E7",
-    "M_G",
-    "m_H9",
-    "m_F8",
-    "M_K",
-    "m_L10",
-    "M_P",
-    "eta7",
-    "eta8",
-    "k_O",
-    "c_O",
-    "k_n",
-    "c_joint",
-    "clearance_E",
+    "m_E7", "M_G", "m_H9", "m_F8", "M_K", "m_L10", "M_P", "eta7", "eta8", "k_O", "c_O", "k_n", "c_joint", "clearance_E",
     "clearance_F",
 )
 MODEL_INPUTS = {"A": ("m_D", "m_E6", "m_F6", *_COMMON, "reaction_E", "reaction_F"),
@@ -121,9 +108,7 @@ def model_a(p: Mapping[str, float], variant: str = "elastic") -> Network:
         Element("warp_damping", "damper", "P", GROUND, p["c_O"]),
     )
     levers = (
-        Lever("lever7", "e", "g", p["eta7"]),
-        Lever("lever8", "f", "k", p["eta8"]),
-        Lever("rod9", "g", "P", 1.0),
+        Lever("lever7", "e", "g", p["eta7"]), Lever("lever8", "f", "k", p["eta8"]), Lever("rod9", "g", "P", 1.0),
         Lever("rod10", "k", "P", 1.0),
     )
     return Network(("D", "e", "f", "g", "k", "P"), els, levers, "D", "velocity")

@@ -12,24 +12,12 @@ from ...engines.chains import resonances, solve_network
 from ...units import RAD_S_PER_RPM
 from .adapter import DRIVE_RATIO, amplitude, omega_grid, parameters, sweep_values
 from .dynamics import (
-    cam_harmonics,
-    damped_modes,
-    harmonic_transfer,
-    joint_forces,
-    kinetostatic_reactions,
-    periodic_peaks,
+    cam_harmonics, damped_modes, harmonic_transfer, joint_forces, kinetostatic_reactions, periodic_peaks,
     self_consistent_reactions,
 )
 from .model import (
-    JOINTS,
-    build,
-    drive_frequency,
-    eq2_mobility,
-    eq2_node_mass_difference,
-    joint_stiffness,
-    model_b,
-    model_b_parameters,
-    node_mass,
+    JOINTS, build, drive_frequency, eq2_mobility, eq2_node_mass_difference, joint_stiffness, model_b,
+    model_b_parameters, node_mass,
 )
 
 def growth_fraction(model: str, p: Mapping[str, float], omega: np.ndarray, amplitude: float) -> float:
@@ -80,8 +68,7 @@ def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
         for k, (unit, text) in MEASURES.items()
     }
     data["first_resonance_rpm"] = (
-        "model",
-        [measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models],
+        "model", [measures[m]["first_resonance"] / RAD_S_PER_RPM for m in models],
         {"units": "min-1", "long_name": "shaft speed at which the drive meets the lowest undamped resonance"},
     )
     if refinement:
@@ -89,16 +76,14 @@ def claims(cfg: Mapping[str, Any], refinement: bool = True) -> xr.Dataset:
             w[0], w[-1], 2 * w.size - 1
         )  # every interval halved: how much the grid decides the growth measure
         data["growth_fraction_refinement"] = (
-            "model",
-            [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
+            "model", [abs(growth_fraction(m, p, fine, amp) - measures[m]["growth_fraction"]) for m in models],
             {"units": "1", "long_name": "change of the growth fraction when the frequency grid is halved"},
         )
     return xr.Dataset(
         data,
         coords={
             "model": (
-                "model",
-                np.array(models, dtype=object),
+                "model", np.array(models, dtype=object),
                 {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"},
             )
         },
@@ -285,15 +270,13 @@ def drive_scenarios(p: Mapping[str, float], models: list[str], w: np.ndarray, am
                 table[k][i, j] = v
     out = {
         f"{k}_by_drive": xr.DataArray(
-            arr,
-            dims=("model", "drive"),
+            arr, dims=("model", "drive"),
             attrs={"units": MEASURES[k][0], "long_name": f"{MEASURES[k][1]}, per drive frequency"},
         )
         for k, arr in table.items()
     }
     out["drive_ratio"] = xr.DataArray(
-        [DRIVE_RATIO[c] for c in choices],
-        dims="drive",
+        [DRIVE_RATIO[c] for c in choices], dims="drive",
         attrs={"units": "1", "long_name": "drive frequency over the main-shaft frequency"},
     )
     return {
@@ -317,13 +300,11 @@ def damping(p: Mapping[str, float], models: list[str], n_modes: int = 4) -> dict
             freq[i, : min(n_modes, wn.size)], zeta[i, : min(n_modes, wn.size)] = wn[:n_modes], z[:n_modes]
         nan = {"nan_meaning": "no such mode (or a massless free driven node)"}
         out[f"mode_frequency_{name}"] = xr.DataArray(
-            freq,
-            dims=("model", "mode"),
+            freq, dims=("model", "mode"),
             attrs={"units": "rad s-1", "long_name": f"natural frequency |lambda| of the damped {what}", **nan},
         )
         out[f"damping_ratio_{name}"] = xr.DataArray(
-            zeta,
-            dims=("model", "mode"),
+            zeta, dims=("model", "mode"),
             attrs={"units": "1", "long_name": f"damping ratio -Re(lambda)/|lambda| of the {what}", **nan},
         )
     return out
@@ -344,8 +325,7 @@ def kinetostatics(p: Mapping[str, float], models: list[str], w: np.ndarray, amp:
             },
         ),
         "reaction_assumed": xr.DataArray(
-            [p["reaction_E"], p["reaction_F"]],
-            dims="joint",
+            [p["reaction_E"], p["reaction_F"]], dims="joint",
             attrs={"units": "N", "long_name": "assumed |R| (config; model A only)"},
         ),
         "omega_op": xr.DataArray(
@@ -357,15 +337,13 @@ def kinetostatics(p: Mapping[str, float], models: list[str], w: np.ndarray, amp:
     }
     b = model_b_parameters(p)
     out["reaction_model_B"] = xr.DataArray(
-        [b["reaction_E"], b["reaction_F"]],
-        dims="joint",
+        [b["reaction_E"], b["reaction_F"]], dims="joint",
         attrs={"units": "N", "long_name": "the reactions model B uses (its kinetostatic ones, closed form)"},
     )
     if "A" in models:
         sc = self_consistent_reactions(p, "A")
         out["reaction_self_consistent_A"] = xr.DataArray(
-            [sc["R_E"], sc["R_F"]],
-            dims="joint",
+            [sc["R_E"], sc["R_F"]], dims="joint",
             attrs={"units": "N", "long_name": "model A: reactions R = |Q(omega_op; k_tau(R))| (fixed point)"},
         )
         out["self_consistent_split_slope_A"] = xr.DataArray(
@@ -464,8 +442,7 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
         c = c * amp / abs(c[0])
         if j == 0:
             variables["cam_harmonic_amplitude"] = xr.DataArray(
-                np.abs(c) / amp,
-                dims="harmonic",
+                np.abs(c) / amp, dims="harmonic",
                 attrs={"units": "1", "long_name": "|c_h| / |c_1| of the cam drive (nominal rise fraction)"},
             )
             ratio = np.abs(c) / amp
@@ -564,24 +541,19 @@ def cam_study(cfg: Mapping[str, Any], p: Mapping[str, float], models: list[str],
         )
     coords = {
         "rise": (
-            "rise",
-            np.array(["nominal", "low", "high"], dtype=object),
+            "rise", np.array(["nominal", "low", "high"], dtype=object),
             {"units": "1", "long_name": "cam rise fraction: nominal and its range ends"},
         ),
         "rise_fraction": (
-            "rise",
-            np.array(fractions),
+            "rise", np.array(fractions),
             {"units": "1", "long_name": "fraction of a turn of the rise (and of the return)"},
         ),
         "joint_damping": (
-            "joint_damping",
-            np.array(damping_values),
+            "joint_damping", np.array(damping_values),
             {"units": "N s m-1", "long_name": "joint damping c_joint: the ends of its assumed range"},
         ),
         "harmonic": (
-            "harmonic",
-            np.arange(1, cam["harmonics"] + 1),
-            {"units": "1", "long_name": "harmonic of the shaft speed"},
+            "harmonic", np.arange(1, cam["harmonics"] + 1), {"units": "1", "long_name": "harmonic of the shaft speed"},
         ),
         "joint": ("joint", np.array(["E", "F"], dtype=object), {"units": "1", "long_name": "joint"}),
     }

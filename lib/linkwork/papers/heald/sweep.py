@@ -114,18 +114,15 @@ def gathered(cfg: Mapping[str, Any], points: Sequence[xr.Dataset], published: Ma
     )
     ds = ds.assign_coords(
         model=(
-            "model",
-            np.array(models, dtype=object),
+            "model", np.array(models, dtype=object),
             {"units": "1", "long_name": "A: physical linkage; B: chain of the form of eq. (2)"},
         ),
         warp_parameter=(
-            "warp_parameter",
-            np.array(list(WARP_BRANCH_CHANGES), dtype=object),
+            "warp_parameter", np.array(list(WARP_BRANCH_CHANGES), dtype=object),
             {"units": "1", "long_name": "warp-branch parameter"},
         ),
         warp_factor=(
-            "warp_parameter",
-            np.array(list(WARP_BRANCH_CHANGES.values())),
+            "warp_parameter", np.array(list(WARP_BRANCH_CHANGES.values())),
             {"units": "1", "long_name": "factor the parameter is multiplied by"},
         ),
     )

@@ -41,8 +41,7 @@ def quadrature_accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, A
     ds = xr.Dataset(
         {
             "error": (
-                "panels",
-                np.array(errors),
+                "panels", np.array(errors),
                 {"units": "1", "long_name": "max relative error of x_O' (trapezoid vs closed form)"},
             ),
             **summary_variables("stiffness quadrature", settings, [*errors, ROUNDING], "closed form"),

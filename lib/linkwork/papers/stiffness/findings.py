@@ -33,9 +33,7 @@ def implied_modulus(table: pd.DataFrame, youngs_modulus: float, forms: list[str]
         coords={
             "implied_form": ("implied_form", np.array(forms, dtype=object), {"units": "1", "long_name": "model form"}),
             "stiffness_quantity": (
-                "stiffness_quantity",
-                np.array(ids, dtype=object),
-                {"units": "1", "long_name": "published stiffness"},
+                "stiffness_quantity", np.array(ids, dtype=object), {"units": "1", "long_name": "published stiffness"},
             ),
         },
         attrs={"units": "Pa", "long_name": "Young's modulus the published stiffness implies"},
@@ -68,9 +66,7 @@ def shown_deviations(headline: pd.DataFrame, forms: list[str]) -> dict[str, Any]
     return {
         "coords": {
             "quantity_id": (
-                "quantity_id",
-                np.array(ids, dtype=object),
-                {"units": "1", "long_name": "published headline number"},
+                "quantity_id", np.array(ids, dtype=object), {"units": "1", "long_name": "published headline number"},
             ),
             "deviation_unit": (
                 "quantity_id",
@@ -141,21 +137,18 @@ def axial_statement(cfg: Mapping[str, Any], result: xr.Dataset) -> dict[str, Any
             threshold, "1", "our reading of 'negligible': a share of the displacement below this"
         ),
         "axial_terms_negligible": (
-            share.dims,
-            (share.values < threshold).astype(int),
+            share.dims, (share.values < threshold).astype(int),
             {"units": "1", "long_name": "1 if the axial share stays below the 'negligible' threshold at every frame"},
         ),
         "axial_share_largest": scalar(
             float(share.max()), "1", "largest axial share over forms, load cases and the paper's frames"
         ),
         "axial_share_largest_force": scalar(
-            float(share.sel(load_case="unit force").max()),
-            "1",
+            float(share.sel(load_case="unit force").max()), "1",
             "largest axial share of x_O' (forms with internal forces)",
         ),
         "axial_share_largest_moment": scalar(
-            float(share.sel(load_case="unit moment").max()),
-            "1",
+            float(share.sel(load_case="unit moment").max()), "1",
             "largest axial share of phi_O' (forms with internal forces)",
         ),
     }
@@ -288,8 +281,7 @@ def compare(
             first[first.id.str.contains("beta")].deviation.abs().max(), "deg", "largest |deviation| of beta in Table 3"
         ),
         "table3_max_deviation_gamma": scalar(
-            first[first.id.str.contains("gamma")].deviation.abs().max(),
-            "deg",
+            first[first.id.str.contains("gamma")].deviation.abs().max(), "deg",
             "largest |deviation| of gamma in Table 3",
         ),
         "headline_matches": (
@@ -304,14 +296,12 @@ def compare(
             },
         ),
         "headline_total": (
-            "form",
-            [int((numbers.model == f).sum()) for f in forms],
+            "form", [int((numbers.model == f).sum()) for f in forms],
             {"units": "1", "long_name": "published stiffness numbers compared (the conclusion apart), per form"},
         ),
         "used_youngs_modulus": scalar(used, "Pa", "Young's modulus used (as printed)"),
         "steel_factor": scalar(
-            float(cfg["steel_youngs_modulus_Pa"]["value"]) / used,
-            "1",
+            float(cfg["steel_youngs_modulus_Pa"]["value"]) / used, "1",
             "steel's modulus over the printed one: the factor every stiffness would grow by",
         ),
     }
@@ -343,8 +333,7 @@ def compare(
         float(result.moment_jump_B.sel(force_form=PAPER_MODEL, load_case="unit force")) if PAPER_MODEL in forms else 0.0
     )
     data["tables_in_equilibrium"] = scalar(
-        jump <= EQUILIBRIUM_JUMP,
-        "1",
+        jump <= EQUILIBRIUM_JUMP, "1",
         f"1 if the paper's tables give no moment jump at B above {EQUILIBRIUM_JUMP:g} N m per N",
     )
     data["tables_moment_jump"] = scalar(
@@ -353,8 +342,7 @@ def compare(
     conclusion = headline[headline.id.isin(CONCLUSION)]
     verdicts = conclusion_verdicts(table, forms)
     data["conclusion_holds"] = (
-        "form",
-        [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
+        "form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
         {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"},
     )
     data["conclusion_verdict"] = (
@@ -370,13 +358,11 @@ def compare(
     )
     by_joints = joint_verdicts(dict(zip(forms, verdicts, strict=True)))
     data["conclusion_by_joints"] = (
-        "joint_model",
-        np.array([by_joints[j] for j in JOINT_MODELS], dtype=object),
+        "joint_model", np.array([by_joints[j] for j in JOINT_MODELS], dtype=object),
         {"units": "1", "long_name": "the paper's conclusion per joint model (the scenario that decides it)"},
     )
     data["conclusion_decided_by_joints"] = scalar(
-        len(set(by_joints.values())) > 1,
-        "1",
+        len(set(by_joints.values())) > 1, "1",
         "1 if the joint model (welded or pinned) changes the conclusion's verdict",
     )
     data["conclusion_counted_for_defensible"] = (
@@ -405,15 +391,13 @@ def compare(
     data["pinned_max_over_min"] = scalar(float(result.K_pinned_max_over_min), "1",
                                          "max/min of the pinned output stiffness over the paper's frames")
     data["table3_all_match"] = scalar(
-        bool((first.verdict == "matches").all()),
-        "1",
+        bool((first.verdict == "matches").all()), "1",
         "1 if every Table 3 angle is reproduced within half the printed digit",
     )
     if "implied_youngs_modulus_tables_min" in data:
         lo, hi = (float(data[k][1]) for k in ("implied_youngs_modulus_tables_min", "implied_youngs_modulus_tables_max"))
         data["implies_printed_modulus"] = scalar(
-            abs(lo / used - 1) < IMPLIED_MODULUS_RTOL and abs(hi / used - 1) < IMPLIED_MODULUS_RTOL,
-            "1",
+            abs(lo / used - 1) < IMPLIED_MODULUS_RTOL and abs(hi / used - 1) < IMPLIED_MODULUS_RTOL, "1",
             f"1 if every published stiffness implies the printed modulus within {IMPLIED_MODULUS_RTOL:.0%}",
         )
     data.update(axial_statement(cfg, result))
@@ -425,24 +409,20 @@ def compare(
             limit, "1", "max/min that the conclusion claims read as 'varies considerably' (published yaml)"
         )
         data["pinned_varies_considerably"] = scalar(
-            float(result.K_pinned_max_over_min) >= limit,
-            "1",
+            float(result.K_pinned_max_over_min) >= limit, "1",
             "1 if the pinned output stiffness varies considerably by the same reading (max/min over the frames)",
         )
     coords = {
         "form": (
-            "form",
-            np.array(forms, dtype=object),
+            "form", np.array(forms, dtype=object),
             {"units": "1", "long_name": "model form (pinned: the real mechanism, crank held)"},
         ),
         "joints": (
-            "form",
-            np.array([joint_model(f) for f in forms], dtype=object),
+            "form", np.array([joint_model(f) for f in forms], dtype=object),
             {"units": "1", "long_name": "joint model of the form: welded or pinned"},
         ),
         "joint_model": (
-            "joint_model",
-            np.array(JOINT_MODELS, dtype=object),
+            "joint_model", np.array(JOINT_MODELS, dtype=object),
             {"units": "1", "long_name": "joints A and B welded (the paper) or pinned (the machine)"},
         ),
         **deviations.pop("coords"),

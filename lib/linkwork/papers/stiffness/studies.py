@@ -62,23 +62,19 @@ def _grid_variables(cfg: Mapping[str, Any], step_deg: float, suffix: str) -> dic
     return {
         "coords": {dim: coord},
         "beta" + suffix: xr.DataArray(
-            np.degrees(first.beta),
-            dims=dim,
+            np.degrees(first.beta), dims=dim,
             attrs={"units": "deg", "long_name": "rocker angle beta = 180 deg - direction of O'B"},
         ),
         "gamma" + suffix: xr.DataArray(
-            np.degrees(first.gamma),
-            dims=dim,
+            np.degrees(first.gamma), dims=dim,
             attrs={"units": "deg", "long_name": "coupler angle gamma = direction of AB"},
         ),
         "K_h" + suffix: xr.DataArray(
-            np.stack([c.linear for c in curves]),
-            dims=("form", dim),
+            np.stack([c.linear for c in curves]), dims=("form", dim),
             attrs={"units": "N m-1", "long_name": "equivalent linear stiffness K_h = 1/x_O'"},
         ),
         "K_c" + suffix: xr.DataArray(
-            np.stack([c.rotational for c in curves]),
-            dims=("form", dim),
+            np.stack([c.rotational for c in curves]), dims=("form", dim),
             attrs={"units": "N m rad-1", "long_name": "equivalent rotational stiffness K_c = 1/phi_O'"},
         ),
     }
@@ -114,29 +110,22 @@ def continuity_and_axial(cfg: Mapping[str, Any]) -> dict[str, xr.DataArray]:
     return {
         "coords": {
             "force_form": (
-                "force_form",
-                np.array(forms, dtype=object),
+                "force_form", np.array(forms, dtype=object),
                 {"units": "1", "long_name": "model form defined by internal forces"},
             ),
             "load_case": (
-                "load_case",
-                np.array(LOAD_CASES, dtype=object),
-                {"units": "1", "long_name": "unit load at O'"},
+                "load_case", np.array(LOAD_CASES, dtype=object), {"units": "1", "long_name": "unit load at O'"},
             ),
         },
         "moment_jump_B": (
-            dims,
-            jump,
+            dims, jump,
             {"units": unit, "long_name": "largest jump of |M| at the rigid joint B over the paper's frames"},
         ),
         "moment_BO_at_B": (
-            dims,
-            moment_b,
-            {"units": unit, "long_name": "largest |M| in BO' at B over the paper's frames"},
+            dims, moment_b, {"units": unit, "long_name": "largest |M| in BO' at B over the paper's frames"},
         ),
         "axial_share_max": (
-            dims,
-            share,
+            dims, share,
             {"units": "1", "long_name": "largest axial share of the unit-load displacement over the paper's frames"},
         ),
     }
@@ -163,8 +152,7 @@ def variation(ds: xr.Dataset) -> dict[str, Any]:
         values = _statistics(v, ds.crank_angle, "crank_angle")
         for stat, (text, stat_unit) in STATISTICS.items():
             out[f"{var}_{stat}"] = xr.DataArray(
-                np.asarray(values[stat].values, dtype=float),
-                dims="form",
+                np.asarray(values[stat].values, dtype=float), dims="form",
                 attrs={"units": stat_unit or v.attrs["units"], "long_name": f"{var} {text} (over the paper's frames)"},
             )
     return out
@@ -212,18 +200,15 @@ def pinned(cfg: Mapping[str, Any], ds: xr.Dataset) -> dict[str, Any]:
         )
     ratio = k / ds.K_c
     out["K_pinned_over_K_c_min"] = xr.DataArray(
-        ratio.min("crank_angle").values,
-        dims="form",
+        ratio.min("crank_angle").values, dims="form",
         attrs={"units": "1", "long_name": "smallest K_pinned / K_c over the paper's frames"},
     )
     out["K_pinned_over_K_c_max"] = xr.DataArray(
-        ratio.max("crank_angle").values,
-        dims="form",
+        ratio.max("crank_angle").values, dims="form",
         attrs={"units": "1", "long_name": "largest K_pinned / K_c over the paper's frames"},
     )
     out["mobility"] = xr.DataArray(
-        np.array([planar_mobility(*c) for c in MOBILITY_CASES.values()]),
-        dims="mobility_case",
+        np.array([planar_mobility(*c) for c in MOBILITY_CASES.values()]), dims="mobility_case",
         attrs={"units": "1", "long_name": "Grübler mobility 3 (bodies - 1) - 2 pins"},
     )
     return out
@@ -244,13 +229,11 @@ def sections_size(cfg: Mapping[str, Any]) -> dict[str, Any]:
             side, dims="member", attrs={"units": "m", "long_name": "side of a square of the printed area"}
         ),
         "section_side_over_length": xr.DataArray(
-            side / lengths,
-            dims="member",
+            side / lengths, dims="member",
             attrs={"units": "1", "long_name": "square side of the printed area over the member's length"},
         ),
         "youngs_modulus": xr.DataArray(
-            np.array([m.youngs_modulus for m in members]),
-            dims="member",
+            np.array([m.youngs_modulus for m in members]), dims="member",
             attrs={"units": "Pa", "long_name": "Young's modulus as printed"},
         ),
     }
@@ -267,25 +250,20 @@ def stiffness(cfg: Mapping[str, Any]) -> xr.Dataset:
         **fine.pop("coords"),
         **analysis.pop("coords"),
         "form": xr.DataArray(
-            np.array(forms, dtype=object),
-            dims="form",
+            np.array(forms, dtype=object), dims="form",
             attrs={"units": "1", "long_name": "; ".join(f"{f}: {FORM_DESCRIPTIONS[f]}" for f in forms)},
         ),
     }
     coords["pinned_part"] = (
-        "pinned_part",
-        np.array(PINNED_PARTS, dtype=object),
+        "pinned_part", np.array(PINNED_PARTS, dtype=object),
         {"units": "1", "long_name": "part of the pinned output's compliance"},
     )
     coords["mobility_case"] = (
-        "mobility_case",
-        np.array(list(MOBILITY_CASES), dtype=object),
+        "mobility_case", np.array(list(MOBILITY_CASES), dtype=object),
         {"units": "1", "long_name": "mechanism (bodies counted with the frame)"},
     )
     coords["member"] = (
-        "member",
-        np.array(MEMBERS, dtype=object),
-        {"units": "1", "long_name": "member (BO: the rocker BO')"},
+        "member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member (BO: the rocker BO')"},
     )
     ds = xr.Dataset({**paper, **fine, **analysis}, coords=coords)
     ds = ds.assign(variation(ds))

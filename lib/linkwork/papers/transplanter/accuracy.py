@@ -48,10 +48,7 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     finest = runs[("quintic8", max(levels))] if "quintic8" in kinds else runs[(kinds[0], max(levels))]
     window = reference_angles(finest, acc["reference_window"])
     ref_r = solve(
-        cfg,
-        d,
-        "quasi-static",
-        theta[window],
+        cfg, d, "quasi-static", theta[window],
         disc=discretisation(cfg, kind="quintic8", elements=tuple(base * acc["reference_refinement"])),
     )
     ref_tip, ref_stress = np.abs(ref_r.tip[:, 1]).max(), ref_r.stress.max()
@@ -81,29 +78,24 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
     ds = xr.Dataset(
         {
             "tip_error": (
-                ("element", "refinement"),
-                tip_err,
+                ("element", "refinement"), tip_err,
                 {"units": "1", "long_name": "relative error of the peak |Uy| vs a fine quintic reference"},
             ),
             "stress_error": (
-                ("element", "refinement"),
-                stress_err,
+                ("element", "refinement"), stress_err,
                 {"units": "1", "long_name": "relative error of the peak stress vs the reference"},
             ),
             "tip_error_max": (
-                (),
-                float(tip_err.max()),
+                (), float(tip_err.max()),
                 {"units": "1", "long_name": "largest relative error of the peak |Uy| over the meshes"},
             ),
             "dofs": (("element", "refinement"), dofs, {"units": "1", "long_name": "system coordinates"}),
             "modal_tip_error": (
-                "modes",
-                np.array(modal_tip),
+                "modes", np.array(modal_tip),
                 {"units": "1", "long_name": "relative error of the peak |Uy|, modes kept vs all (base mesh)"},
             ),
             "modal_stress_error": (
-                "modes",
-                np.array(modal_stress),
+                "modes", np.array(modal_stress),
                 {"units": "1", "long_name": "relative error of the peak stress, modes kept vs all"},
             ),
             **summary_variables("FE mesh and modes", settings, errors, f"{cfg['fe']['element']} x1"),
@@ -112,8 +104,7 @@ def accuracy(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
             "modes": ("modes", np.array(modes), {"units": "1", "long_name": "modes kept in the superposition"}),
             "element": ("element", np.array(kinds, dtype=object), {"units": "1", "long_name": "element type"}),
             "refinement": (
-                "refinement",
-                np.array(levels),
+                "refinement", np.array(levels),
                 {"units": "1", "long_name": "elements per member, multiple of the base mesh"},
             ),
         },

@@ -81,9 +81,7 @@ def claim_measures(
     at_initial = responses(cfg, initial, solution)
     members = MEMBERS if every_member else GOVERNING
     e = elasticities(
-        lambda d: responses(cfg, d, solution),
-        published,
-        float(cfg["claims"]["elasticity_step"]),
+        lambda d: responses(cfg, d, solution), published, float(cfg["claims"]["elasticity_step"]),
         [MEMBERS.index(m) for m in members],
     )
     out = {

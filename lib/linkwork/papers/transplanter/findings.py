@@ -15,13 +15,7 @@ import pandas as pd
 import xarray as xr
 
 from ...pipeline.compare import (
-    classify,
-    compare_datasets,
-    counts_dataset,
-    findings_attrs,
-    nominal_rows,
-    scalar,
-    scenario_changes,
+    classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scalar, scenario_changes,
 )
 
 def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple[float, str]]:
@@ -55,9 +49,7 @@ def compare(
 ) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table and findings (dynamic peak stress at our optimum against the allowable)."""
     table = compare_datasets(
-        published,
-        [optim, at_published],
-        errors={"": numerical_errors(optim, at_published, accuracy)},
+        published, [optim, at_published], errors={"": numerical_errors(optim, at_published, accuracy)},
         uncertainty=uncertainty,
     )
     table = label_compared_solution(table, at_published)
@@ -74,8 +66,7 @@ def compare(
                 dynamic / allowable - 1.0, "1", "dynamic peak at our optimum over the allowable, minus 1"
             ),
             "optimum_dynamic_error": scalar(
-                claim["error"],
-                "MPa",
+                claim["error"], "MPa",
                 "numerical error bar of the dynamic peak at our optimum (Newmark step + periodicity + mesh)",
             ),
             "optimum_dynamic_low": scalar(
@@ -159,8 +150,7 @@ def active_bounds(cfg: Mapping[str, Any], optim: xr.Dataset, at_published: xr.Da
     grad = at_published.gradient_SS.values
     return {
         "at_minimum_diameter": (
-            "member",
-            (optim.d_opt.values - d_min <= ACTIVE_RTOL * d_min).astype(int),
+            "member", (optim.d_opt.values - d_min <= ACTIVE_RTOL * d_min).astype(int),
             {"units": "1", "long_name": f"1 if our optimal diameter is within {ACTIVE_RTOL:.0%} of the minimum"},
         ),
         "at_allowable": (
@@ -172,13 +162,11 @@ def active_bounds(cfg: Mapping[str, Any], optim: xr.Dataset, at_published: xr.Da
             },
         ),
         "published_stress_fraction": (
-            "member",
-            at_published.stress_members.values / allowable,
+            "member", at_published.stress_members.values / allowable,
             {"units": "1", "long_name": "member stress at the published optimum over the allowable"},
         ),
         "published_point_stationary": scalar(
-            bool(np.all(np.abs(grad) <= STATIONARY_PER_MM)),
-            "1",
+            bool(np.all(np.abs(grad) <= STATIONARY_PER_MM)), "1",
             f"1 if every |dSS/dx| at the published optimum is at most {STATIONARY_PER_MM:g} per mm",
         ),
         "published_gradient_all_positive": scalar(
@@ -200,23 +188,16 @@ def missing_load_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[s
     other = "crank, coupler or arm"
     return {
         "inertia_stress_ours": (
-            "member",
-            ours,
-            {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"},
+            "member", ours, {"units": "MPa", "long_name": "peak stress per member at our optimum, inertia loads alone"},
         ),
         "inertia_stress_published": (
-            "member",
-            theirs,
-            {"units": "MPa", "long_name": "the same at the published optimum"},
+            "member", theirs, {"units": "MPa", "long_name": "the same at the published optimum"},
         ),
         "inertia_fraction_ours": (
-            "member",
-            ours / allowable,
-            {"units": "1", "long_name": "the same at our optimum over the allowable"},
+            "member", ours / allowable, {"units": "1", "long_name": "the same at our optimum over the allowable"},
         ),
         "inertia_fraction_published": (
-            "member",
-            theirs / allowable,
+            "member", theirs / allowable,
             {"units": "1", "long_name": "the same at the published optimum over the allowable"},
         ),
         "inferred_load": (("direction", "member"), loads.values, dict(loads.attrs)),
@@ -231,13 +212,11 @@ def missing_load_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[s
             float(others.min()), "N", f"smallest tip force over the directions making the {other} stress-active"
         ),
         "arm_overload_at_rocker_load": scalar(
-            float(arm_at_rocker_load.min()),
-            "1",
+            float(arm_at_rocker_load.min()), "1",
             "arm's peak stress over the allowable under the rocker's force (smallest over directions)",
         ),
         "one_load_reconciles": scalar(
-            bool(np.any(loads.max("member") <= 1.1 * loads.min("member"))),
-            "1",
+            bool(np.any(loads.max("member") <= 1.1 * loads.min("member"))), "1",
             "1 if in some direction one tip force (within 10 %) makes all four diameters stress-active",
         ),
     }
@@ -246,13 +225,8 @@ def missing_load_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[s
 def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tuple]:
     """The claims' measures (at_published) for the answer and the report: masses (g), distortions, elasticities."""
     keep = (
-        "mass_initial",
-        "mass_published",
-        "mass_ratio",
-        "distortion_initial",
-        "distortion_published",
-        "distortion_ratio",
-        "stress_initial",
+        "mass_initial", "mass_published", "mass_ratio", "distortion_initial", "distortion_published",
+        "distortion_ratio", "stress_initial",
     )
     out = {k: ((), float(at_published[k]), dict(at_published[k].attrs)) for k in keep}
     out["mass_ours"] = ((), float(optim.mass_opt), dict(optim.mass_opt.attrs))
@@ -263,9 +237,7 @@ def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tup
 def dynamic_clause(findings: xr.Dataset) -> str:
     """How our dynamic finding stands over the damping range, in words."""
     lo, hi, allowable = (
-        float(findings.optimum_dynamic_low),
-        float(findings.optimum_dynamic_high),
-        float(findings.allowable),
+        float(findings.optimum_dynamic_low), float(findings.optimum_dynamic_high), float(findings.allowable),
     )
     span = f"{lo / allowable - 1:+.0%} to {hi / allowable - 1:+.0%} over the damping range"
     status = findings.attrs["optimum_dynamic_finding"]

@@ -24,16 +24,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...engines.fem import (
-    BeamMesh,
-    assemble,
-    element_strain_extremes,
-    gather,
-    local_matrices,
-    local_to_global,
-    newmark_history,
-    rotate,
-    rotated,
-    scatter,
+    BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate,
+    rotated, scatter,
 )
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
@@ -130,11 +122,7 @@ def discretise(elements_per_member: tuple[int, int, int, int], kind: str = "quin
     fraction = [0.0, 1.0, 1.0, 0.0, 1.0]
     node_member = [0, 0, 1, 2, 3]
     node_ends = [
-        MEMBER_ENDS["crank"],
-        MEMBER_ENDS["crank"],
-        MEMBER_ENDS["coupler"],
-        MEMBER_ENDS["rocker"],
-        MEMBER_ENDS["arm"],
+        MEMBER_ENDS["crank"], MEMBER_ENDS["crank"], MEMBER_ENDS["coupler"], MEMBER_ENDS["rocker"], MEMBER_ENDS["arm"],
     ]
     next_node = 5
     end_keys = {  # (slope key, curvature key) at the member's start and end joint

@@ -75,9 +75,7 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
     data.update(
         {
             f"{k}_assembly": (
-                "assembly",
-                np.array([r[k] for r in combo_rows]),
-                {"units": u, "long_name": f"{n}, by assembly"},
+                "assembly", np.array([r[k] for r in combo_rows]), {"units": u, "long_name": f"{n}, by assembly"},
             )
             for k, (u, n) in SUMMARY_ATTRS.items()
         }
@@ -85,8 +83,7 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
     data.update(
         {
             "stress_members": (
-                "member",
-                prob.stresses(d) / 1e6,
+                "member", prob.stresses(d) / 1e6,
                 {"units": "MPa", "long_name": f"largest stress per member ({cfg['fe']['angle_step_deg']:g} deg grid)"},
             ),
             "U_along_arm": (
@@ -110,51 +107,40 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
                 },
             ),
             "Ux_curve": (
-                ("solution", "crank_angle"),
-                np.array([curves[s].tip[:, 0] for s in solutions]),
+                ("solution", "crank_angle"), np.array([curves[s].tip[:, 0] for s in solutions]),
                 {"units": "m", "long_name": "elastic tip displacement x at the published optimum"},
             ),
             "Uy_curve": (
-                ("solution", "crank_angle"),
-                np.array([curves[s].tip[:, 1] for s in solutions]),
+                ("solution", "crank_angle"), np.array([curves[s].tip[:, 1] for s in solutions]),
                 {"units": "m", "long_name": "elastic tip displacement y at the published optimum"},
             ),
             "stress_curve": (
-                ("solution", "crank_angle", "member"),
-                np.array([curves[s].stress for s in solutions]) / 1e6,
+                ("solution", "crank_angle", "member"), np.array([curves[s].stress for s in solutions]) / 1e6,
                 {"units": "MPa", "long_name": "largest eq. (8) stress in the member at the published optimum"},
             ),
             "SY_at_published": ((), parts["SY"], {"units": "1", "long_name": "SY at the published optimum"}),
             "SZ_at_published": (
-                (),
-                parts["SZ"],
-                {"units": "1", "long_name": "SZ at the published optimum ([x_S1] from config)"},
+                (), parts["SZ"], {"units": "1", "long_name": "SZ at the published optimum ([x_S1] from config)"},
             ),
             "SY_SZ_at_published": (
-                (),
-                parts["SY"] + parts["SZ"],
-                {"units": "1", "long_name": "SY + SZ at the published optimum"},
+                (), parts["SY"] + parts["SZ"], {"units": "1", "long_name": "SY + SZ at the published optimum"},
             ),
             "SG_at_published": ((), parts["SG"], {"units": "1", "long_name": "SG at the published optimum, last r(k)"}),
             "SS_at_published": ((), parts["SS"], {"units": "1", "long_name": "SS at the published optimum, last r(k)"}),
             "r_consistent": (
-                (),
-                (published_ss - parts["SY"] - parts["SZ"]) / barrier,
+                (), (published_ss - parts["SY"] - parts["SZ"]) / barrier,
                 {"units": "1", "long_name": "r that would make SS equal the printed value with our SY, SZ"},
             ),
             "gradient_SS": (
-                "member",
-                grad * 1e-3,
+                "member", grad * 1e-3,
                 {"units": "mm-1", "long_name": "dSS/dx at the published optimum (per mm), last r(k)"},
             ),
             "gradient_SY_SZ": (
-                "member",
-                grad_sz * 1e-3,
+                "member", grad_sz * 1e-3,
                 {"units": "mm-1", "long_name": "d(SY + SZ)/dx at the published optimum (per mm)"},
             ),
             "published_diameter": (
-                "member",
-                published_mm,
+                "member", published_mm,
                 {"units": "mm", "long_name": "the published optimum (where our model is evaluated)"},
             ),
             "stress_inertia_only": (
@@ -195,30 +181,25 @@ def at_published(cfg: Mapping[str, Any], published: Mapping[str, Any]) -> xr.Dat
         coords={
             "case": ("case", np.array(list(cases), dtype=object), {"units": "1", "long_name": "model choice"}),
             "assembly": (
-                "assembly",
-                np.array([f"arm side {s:+d}, branch {b:+d}" for s, b in combos], dtype=object),
+                "assembly", np.array([f"arm side {s:+d}, branch {b:+d}" for s, b in combos], dtype=object),
                 {"units": "1", "long_name": "arm side and assembly branch"},
             ),
             "member": ("member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member"}),
             "solution": (
-                "solution",
-                np.array(solutions, dtype=object),
+                "solution", np.array(solutions, dtype=object),
                 {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"},
             ),
             "crank_angle": ("crank_angle", theta, {"units": "deg", "long_name": "crank angle"}),
             "direction": (
-                "direction",
-                np.array(cfg["missing_load"]["directions_deg"], dtype=float),
+                "direction", np.array(cfg["missing_load"]["directions_deg"], dtype=float),
                 {"units": "deg", "long_name": "direction of the tip force, from +x counter-clockwise"},
             ),
             "loaded": (
-                "loaded",
-                np.array(MEMBERS, dtype=object),
+                "loaded", np.array(MEMBERS, dtype=object),
                 {"units": "1", "long_name": "member the tip force makes stress-active"},
             ),
             "response": (
-                "response",
-                np.array(RESPONSES, dtype=object),
+                "response", np.array(RESPONSES, dtype=object),
                 {"units": "1", "long_name": "response whose sensitivity is measured"},
             ),
         },
@@ -242,9 +223,7 @@ def claim_variables(claims) -> dict[str, tuple]:
         "distortion_initial": (1.0, "m", "largest elastic tip displacement at the initial diameters"),
         "distortion_published": (1.0, "m", "largest elastic tip displacement at the published optimum"),
         "distortion_ratio": (
-            1.0,
-            "1",
-            "largest tip displacement at the published optimum over that at the initial diameters",
+            1.0, "1", "largest tip displacement at the published optimum over that at the initial diameters",
         ),
         "stress_initial": (1e-6, "MPa", "peak stress at the initial diameters"),
     }
@@ -253,8 +232,7 @@ def claim_variables(claims) -> dict[str, tuple]:
         out["elasticity"] = (("response", "member"), claims["elasticity"],
                              {"units": "1", "long_name": "d ln(response) / d ln(diameter) at the published optimum"})
     out["governing_elasticity"] = (
-        "response",
-        claims["governing_elasticity"],
+        "response", claims["governing_elasticity"],
         {"units": "1", "long_name": "smaller |elasticity| of the arm and the coupler, per response"},
     )
     return out

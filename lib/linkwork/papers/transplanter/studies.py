@@ -28,14 +28,8 @@ def inertia_only_peaks(cfg: Mapping[str, Any], diameters, tip_force=(0.0, 0.0)) 
     """Largest quasi-static eq. (8) stress (Pa) per member over the report grid at ``diameters`` (m) under the
     inertia loads alone (no gravity), plus a constant tip force ``tip_force`` (N, global x and y; none by default)."""
     r = ked(
-        mechanism(cfg),
-        discretisation(cfg),
-        np.asarray(diameters, dtype=float),
-        material(cfg),
-        np.radians(report_grid(cfg)),
-        "quasi-static",
-        gravity=0.0,
-        tip_force=tip_force,
+        mechanism(cfg), discretisation(cfg), np.asarray(diameters, dtype=float), material(cfg),
+        np.radians(report_grid(cfg)), "quasi-static", gravity=0.0, tip_force=tip_force,
     )
     return r.stress.max(axis=0)
 
@@ -57,10 +51,7 @@ def problem(cfg: Mapping[str, Any], theta_deg: np.ndarray | None = None) -> Pena
         return ked(mech, disc, x, mat, theta, "quasi-static", gravity=gravity).stress.max(axis=0)
 
     return PenaltyProblem(
-        stresses,
-        member_lengths(cfg),
-        allowable(cfg),
-        float(cfg["optimization"]["reference_diameter_m"]["value"]),
+        stresses, member_lengths(cfg), allowable(cfg), float(cfg["optimization"]["reference_diameter_m"]["value"]),
         float(cfg["minimum_diameter_m"]),
     )
 
@@ -140,13 +131,11 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
         {
             "r": ("iteration", np.array([e["r"] for e in h]), {"units": "1", "long_name": "penalty factor r(k)"}),
             "exchange_round": (
-                "iteration",
-                np.array([e["round"] for e in h]),
+                "iteration", np.array([e["round"] for e in h]),
                 {"units": "1", "long_name": "exchange round of the crank angles (0: first run)"},
             ),
             "x": (
-                ("iteration", "member"),
-                np.array([e["x"] for e in h]) * 1e3,
+                ("iteration", "member"), np.array([e["x"] for e in h]) * 1e3,
                 {"units": "mm", "long_name": "diameters after iteration k"},
             ),
             **{
@@ -154,24 +143,20 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
                 for p in ("SY", "SZ", "SG", "SH", "SS")
             },
             "g": (
-                ("iteration", "constraint"),
-                np.array([e["g"] for e in h]),
+                ("iteration", "constraint"), np.array([e["g"] for e in h]),
                 {"units": "1", "long_name": "constraints g_1..g_8 (>= 0 feasible)"},
             ),
             "d_opt": ("member", x_opt * 1e3, {"units": "mm", "long_name": "optimal diameters (SUMT)"}),
             "d_slsqp": (
-                "member",
-                xs * 1e3,
+                "member", xs * 1e3,
                 {"units": "mm", "long_name": "optimal diameters (SLSQP on SY + SZ, explicit constraints)"},
             ),
             "sumt_slsqp_difference": (
-                (),
-                float(np.abs(x_opt - xs).max() * 1e3),
+                (), float(np.abs(x_opt - xs).max() * 1e3),
                 {"units": "mm", "long_name": "largest |SUMT - SLSQP| diameter difference"},
             ),
             "stress_opt": (
-                "member",
-                info["stress"] / 1e6,
+                "member", info["stress"] / 1e6,
                 {"units": "MPa", "long_name": "largest stress per member at the SUMT optimum (report grid)"},
             ),
             "constraints_opt": (
@@ -193,49 +178,36 @@ def optim(cfg: Mapping[str, Any]) -> xr.Dataset:
                 },
             ),
             "mass_opt": (
-                (),
-                bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
+                (), bar_mass(member_lengths(cfg), x_opt, material(cfg).density) * 1e3,
                 {"units": "g", "long_name": "mass of the four bars at the SUMT optimum"},
             ),
             "allowable": (
-                (),
-                prob.allowable / 1e6,
-                {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"},
+                (), prob.allowable / 1e6, {"units": "MPa", "long_name": "allowable stress (yield / safety factor)"},
             ),
             "SS_opt": (
-                (),
-                prob.parts(x_opt, h[-1]["r"])["SS"],
+                (), prob.parts(x_opt, h[-1]["r"])["SS"],
                 {"units": "1", "long_name": "SS(X*, r(k)) at the SUMT optimum, last r(k), report grid"},
             ),
             "evaluations": (
-                (),
-                sum(run.evaluations for run in runs),
-                {"units": "1", "long_name": "objective evaluations (SUMT)"},
+                (), sum(run.evaluations for run in runs), {"units": "1", "long_name": "objective evaluations (SUMT)"},
             ),
         },
         coords={
             "iteration": ("iteration", np.arange(len(h)), {"units": "1", "long_name": "outer iteration k"}),
             "member": member,
             "constraint": (
-                "constraint",
-                np.arange(1, 9),
+                "constraint", np.arange(1, 9),
                 {"units": "1", "long_name": "constraint index (1-4 diameter, 5-8 stress)"},
             ),
         },
     )
     ds.attrs.update(
-        title="Section optimisation (mixed penalty SUMT)",
-        slsqp_success=str(info_s["success"]),
-        slsqp_message=info_s["message"],
-        slsqp_evaluations=sum(r["evaluations"] for r in slsqp_runs),
-        reference_diameter_m=prob.reference_diameter,
-        angle_step_deg=cfg["fe"]["angle_step_deg"],
-        coarse_angle_step_deg=opt["angle_step_deg"],
-        active_angles=info["active_angles"],
-        grid_angles=info["grid_angles"],
-        exchange_rounds=info["exchange_rounds"],
-        peaks_in_active=int(info["peaks_in_active"]),
-        slsqp_exchange_rounds=slsqp_info["exchange_rounds"],
+        title="Section optimisation (mixed penalty SUMT)", slsqp_success=str(info_s["success"]),
+        slsqp_message=info_s["message"], slsqp_evaluations=sum(r["evaluations"] for r in slsqp_runs),
+        reference_diameter_m=prob.reference_diameter, angle_step_deg=cfg["fe"]["angle_step_deg"],
+        coarse_angle_step_deg=opt["angle_step_deg"], active_angles=info["active_angles"],
+        grid_angles=info["grid_angles"], exchange_rounds=info["exchange_rounds"],
+        peaks_in_active=int(info["peaks_in_active"]), slsqp_exchange_rounds=slsqp_info["exchange_rounds"],
     )
     return ds
 
@@ -326,15 +298,7 @@ def damping_study(cfg: Mapping[str, Any], diameters: np.ndarray, allowable_mpa: 
     def run(zeta):
         revolutions = max(int(fe["revolutions"]), int(np.ceil(fe["revolutions"] * nominal / zeta)))
         r = ked(
-            mech,
-            disc,
-            diameters,
-            mat,
-            theta,
-            "dynamic",
-            gravity=gravity,
-            damping_ratio=zeta,
-            revolutions=revolutions,
+            mech, disc, diameters, mat, theta, "dynamic", gravity=gravity, damping_ratio=zeta, revolutions=revolutions,
             substeps=fe["substeps"],
         )
         return float(r.stress.max() / 1e6), r.periodicity, revolutions
@@ -393,8 +357,7 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
             "tip_x": ("crank_angle", path[:, 0], {"units": "m", "long_name": "planting-arm tip E, rigid path, x"}),
             "tip_y": ("crank_angle", path[:, 1], {"units": "m", "long_name": "planting-arm tip E, rigid path, y"}),
             "joint_position": (
-                ("snapshot", "joint", "xy"),
-                snapshot,
+                ("snapshot", "joint", "xy"), snapshot,
                 {"units": "m", "long_name": "joints A, B, C, D, E at the snapshot crank angles"},
             ),
             "Ux": (dims3, tip[..., 0], {"units": "m", "long_name": "elastic displacement of the tip, x"}),
@@ -402,23 +365,18 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
             "U_axial": (dims3, tip_ax, {"units": "m", "long_name": "elastic tip displacement along the arm"}),
             "U_transverse": (dims3, tip_tr, {"units": "m", "long_name": "elastic tip displacement across the arm"}),
             "stress": (
-                (*dims3, "member"),
-                stress,
-                {"units": "MPa", "long_name": "largest eq. (8) stress in the member"},
+                (*dims3, "member"), stress, {"units": "MPa", "long_name": "largest eq. (8) stress in the member"},
             ),
             "peak_stress": (
-                ("diameters", "solution"),
-                stress.max(axis=(2, 3)),
+                ("diameters", "solution"), stress.max(axis=(2, 3)),
                 {"units": "MPa", "long_name": "largest stress over members and crank angles"},
             ),
             "diameter": (
-                ("diameters", "member"),
-                np.array(list(sets.values())) * 1e3,
+                ("diameters", "member"), np.array(list(sets.values())) * 1e3,
                 {"units": "mm", "long_name": "member diameters"},
             ),
             "natural_frequency": (
-                ("diameters", "mode"),
-                freqs,
+                ("diameters", "mode"), freqs,
                 {"units": "rad s-1", "long_name": "lowest natural frequencies at crank angle 0"},
             ),
             "periodicity": (
@@ -431,23 +389,18 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
             ),
             "crank_speed": ((), omega, {"units": "rad s-1", "long_name": "crank speed"}),
             "coordinates": (
-                (),
-                int(disc.mesh.dof_indices()[0]),
-                {"units": "1", "long_name": "generalized coordinates of the mesh"},
+                (), int(disc.mesh.dof_indices()[0]), {"units": "1", "long_name": "generalized coordinates of the mesh"},
             ),
             "rayleigh_alpha": (
-                "diameters",
-                rayleigh[:, 0],
+                "diameters", rayleigh[:, 0],
                 {"units": "s-1", "long_name": "Rayleigh damping C = alpha M + beta K: alpha (dynamic solution)"},
             ),
             "rayleigh_beta": (
-                "diameters",
-                rayleigh[:, 1],
+                "diameters", rayleigh[:, 1],
                 {"units": "s", "long_name": "Rayleigh damping C = alpha M + beta K: beta (dynamic solution)"},
             ),
             "damping_ratio": (
-                (),
-                float(cfg["fe"]["damping_ratio"]["value"]),
+                (), float(cfg["fe"]["damping_ratio"]["value"]),
                 {"units": "1", "long_name": "assumed damping ratio at the first two natural frequencies"},
             ),
             "allowable": ((), float(optim.allowable), {"units": "MPa", "long_name": "allowable stress"}),
@@ -460,13 +413,10 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "newmark_reference_peak": (
-                (),
-                newmark["reference"],
-                {"units": "MPa", "long_name": "the same with the reference step"},
+                (), newmark["reference"], {"units": "MPa", "long_name": "the same with the reference step"},
             ),
             "newmark_peak_error": (
-                "newmark_step",
-                newmark["peak_error"],
+                "newmark_step", newmark["peak_error"],
                 {"units": "1", "long_name": "relative error of the dynamic peak stress against the reference step"},
             ),
             "newmark_field_error": (
@@ -481,8 +431,7 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "newmark_order": (
-                "newmark_pair",
-                newmark["order"],
+                "newmark_pair", newmark["order"],
                 {"units": "1", "long_name": "observed order of the field error between neighbouring steps"},
             ),
             "newmark_pipeline_error": (
@@ -494,23 +443,19 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
                 },
             ),
             "newmark_pipeline_step": (
-                (),
-                newmark["pipeline_step"],
+                (), newmark["pipeline_step"],
                 {"units": "deg", "long_name": "the pipeline's Newmark step (fe.angle_step_deg / fe.substeps)"},
             ),
             "damping_peak": (
-                "damping",
-                damping["peaks"],
+                "damping", damping["peaks"],
                 {"units": "MPa", "long_name": "dynamic peak stress at our optimum (report grid)"},
             ),
             "damping_periodicity": (
-                "damping",
-                damping["periodicity"],
+                "damping", damping["periodicity"],
                 {"units": "1", "long_name": "change of the tip response between the last two revolutions / its range"},
             ),
             "damping_revolutions": (
-                "damping",
-                damping["revolutions"],
+                "damping", damping["revolutions"],
                 {"units": "1", "long_name": "Newmark revolutions (grow as 1/damping below the nominal)"},
             ),
             "damping_threshold": (
@@ -525,38 +470,29 @@ def ked_responses(cfg: Mapping[str, Any], optim: xr.Dataset) -> xr.Dataset:
         },
         coords={
             "diameters": (
-                "diameters",
-                np.array(list(sets), dtype=object),
+                "diameters", np.array(list(sets), dtype=object),
                 {"units": "1", "long_name": "initial or our optimal diameters"},
             ),
             "solution": (
-                "solution",
-                np.array(solutions, dtype=object),
+                "solution", np.array(solutions, dtype=object),
                 {"units": "1", "long_name": "quasi-static K^-1 F, or Newmark over revolutions"},
             ),
             "crank_angle": ("crank_angle", theta_deg, {"units": "deg", "long_name": "crank angle"}),
             "member": (
-                "member",
-                np.array(MEMBERS, dtype=object),
-                {"units": "1", "long_name": "member (AB, BC, CD, BE)"},
+                "member", np.array(MEMBERS, dtype=object), {"units": "1", "long_name": "member (AB, BC, CD, BE)"},
             ),
             "mode": ("mode", np.arange(1, 5), {"units": "1", "long_name": "mode number"}),
             "snapshot": (
-                "snapshot",
-                np.array(SNAPSHOT_ANGLES_DEG),
+                "snapshot", np.array(SNAPSHOT_ANGLES_DEG),
                 {"units": "deg", "long_name": "crank angle of the linkage drawing"},
             ),
             "joint": ("joint", np.array(list("ABCDE"), dtype=object), {"units": "1", "long_name": "joint"}),
             "xy": ("xy", np.array(["x", "y"], dtype=object), {"units": "1", "long_name": "coordinate"}),
             "newmark_step": (
-                "newmark_step",
-                newmark["steps"],
-                {"units": "deg", "long_name": "Newmark step (crank angle)"},
+                "newmark_step", newmark["steps"], {"units": "deg", "long_name": "Newmark step (crank angle)"},
             ),
             "newmark_pair": (
-                "newmark_pair",
-                newmark["steps"][1:],
-                {"units": "deg", "long_name": "finer step of the pair"},
+                "newmark_pair", newmark["steps"][1:], {"units": "deg", "long_name": "finer step of the pair"},
             ),
             "damping": ("damping", damping["ratios"], {"units": "1", "long_name": "Rayleigh damping ratio"}),
         },

@@ -20,12 +20,7 @@ from ...pipeline.search import searcher
 from ...pipeline.uncertainty import Input, gathered, labelled_inputs, run_batch
 
 PROPAGATED = (
-    "youngs_modulus_Pa",
-    "density_kg_m3",
-    "gravity_m_s2",
-    "reference_diameter_m",
-    "compared_solution",
-    "damping_ratio",
+    "youngs_modulus_Pa", "density_kg_m3", "gravity_m_s2", "reference_diameter_m", "compared_solution", "damping_ratio",
 )
 
 
