@@ -82,26 +82,46 @@ def test_static_solve_with_fixed_dofs():
 
 
 def test_compiled_newmark_steps_equal_the_numpy_loop_and_a_closed_form():
-    """The compiled Newmark loop against the same loop in numpy (to the bit) and, on one undamped oscillator with
-    constant matrices, against the average-acceleration method's exact discrete solution: a rotation of
-    (u, v / omega) by 2 atan(omega dt / 2) per step."""
-    from linkwork.engines.fem import newmark_history, newmark_steps
+    """The compiled Newmark loop (Cholesky factors of the step matrices, triangular solves) against the same method in
+    numpy with a direct solve of each step matrix (to rounding) and, on one undamped oscillator with constant
+    matrices, against the average-acceleration method's exact discrete solution: a rotation of (u, v / omega) by
+    2 atan(omega dt / 2) per step."""
+    from linkwork.engines.fem import cholesky_batch, newmark_history, newmark_steps
 
     rng = np.random.default_rng(3)
     n, d = 12, 6
     k = rng.normal(size=(n, d, d))
     c = 1e-3 * rng.normal(size=(n, d, d))
     f = rng.normal(size=(n, d))
-    step_inverse = 1e-2 * rng.normal(size=(n, d, d))
+    b = rng.normal(size=(n, d, d))
+    step_matrix = b @ np.swapaxes(b, 1, 2) + d * np.eye(d)  # symmetric positive definite, as M + gamma dt C + ...
     u0, v0, a0 = rng.normal(size=(3, d))
-    compiled = newmark_history(step_inverse, k, c, f, u0, v0, a0, 1e-3, 5 * n)
-    assert np.array_equal(compiled, newmark_steps(step_inverse, k, c, f, u0, v0, a0, 1e-3, 5 * n, 0.25, 0.5))
+    compiled = newmark_history(cholesky_batch(step_matrix), k, c, f, u0, v0, a0, 1e-3, 5 * n)
+    reference = newmark_steps(step_matrix, k, c, f, u0, v0, a0, 1e-3, 5 * n, 0.25, 0.5)
+    assert np.allclose(compiled, reference, rtol=1e-12, atol=1e-12 * np.abs(reference).max())
+    assert not np.array_equal(compiled[0], u0)  # the loop moved
 
     omega, dt, steps = 3.0, 0.05, 200
     kk, mm = np.full((1, 1, 1), omega**2), np.ones((1, 1, 1))
-    inverse = np.linalg.inv(mm + 0.25 * dt**2 * kk)
-    u = newmark_history(inverse, kk, np.zeros((1, 1, 1)), np.zeros((1, 1)), [1.0], [0.0], [-(omega**2)], dt, steps)[
+    factor = np.sqrt(mm + 0.25 * dt**2 * kk)
+    u = newmark_history(factor, kk, np.zeros((1, 1, 1)), np.zeros((1, 1)), [1.0], [0.0], [-(omega**2)], dt, steps)[
         :, 0
     ]
     phase = 2 * np.arctan(omega * dt / 2) * np.arange(1, steps + 1)
     assert np.allclose(u, np.cos(phase), atol=1e-10)
+
+
+def test_cholesky_factors_and_solves_against_numpy():
+    """The compiled stacked Cholesky factorisation and solve against numpy's (factor and solution to rounding), and
+    a matrix that is not positive definite is refused."""
+    from linkwork.engines.fem import cholesky_batch, cholesky_solve_batch
+
+    rng = np.random.default_rng(5)
+    b = rng.normal(size=(7, 9, 9))
+    a = b @ np.swapaxes(b, 1, 2) + 0.1 * np.eye(9)
+    rhs = rng.normal(size=(7, 9))
+    lower = cholesky_batch(a)
+    assert np.allclose(lower, np.linalg.cholesky(a), rtol=1e-12, atol=1e-12)
+    assert np.allclose(cholesky_solve_batch(lower, rhs), np.linalg.solve(a, rhs[..., None])[..., 0], rtol=1e-10)
+    with pytest.raises(ValueError, match="not positive definite"):
+        cholesky_batch(-a)

@@ -24,8 +24,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...engines.fem import (
-    BeamMesh, assemble, element_strain_extremes, gather, local_matrices, local_to_global, newmark_history, rotate,
-    rotated, scatter,
+    BeamMesh, assemble, cholesky_batch, cholesky_solve_batch, element_strain_extremes, gather, local_matrices,
+    local_to_global, newmark_history, rotate, scatter_vectors, scatter_weighted, shape_integrals,
 )
 from ...engines.kinematics import Chain, Dyad, solve_chain
 
@@ -209,10 +209,9 @@ def _element_geometry(mech, disc, motion):
 
 def element_frames(mech, disc, theta) -> tuple[FloatArray, FloatArray, RigidMotion]:
     """(element lengths (m), element directions (n, elements; rad), the rigid motion) over crank angles ``theta``
-    (rad): what the stresses and tip displacements are read in, without assembling any matrix."""
-    motion = rigid_motion(mech, theta)
-    el_len, _, _, el_dir = _element_geometry(mech, disc, motion)
-    return el_len, el_dir, motion
+    (rad): what the stresses and tip displacements are read in (from the cached ``frames``)."""
+    fr = frames(mech, disc, theta)
+    return fr.el_len, fr.el_dir, fr.motion
 
 
 def tip_dofs(disc: Discretisation) -> list[int]:
@@ -220,6 +219,64 @@ def tip_dofs(disc: Discretisation) -> list[int]:
     _, table = disc.mesh.dof_indices()
     last = table[[k for k, (a, b) in enumerate(disc.mesh.elements) if b == 4][0]]
     return [int(i) for i in last[-(4 if disc.mesh.kind == "quintic8" else 3):][:2]]
+
+
+@dataclass(frozen=True)
+class Frames:
+    """What a KED solution reads that depends on the geometry, the mesh and the crank angles only, not on the
+    diameters or the material: the rigid motion, element lengths (m) and directions (rad), and each element's matrices
+    per unit section property rotated into the global frame at every angle (stiffness per unit E A and per unit E I,
+    mass per unit rho A) with its inertia loads per unit rho A (from the rigid accelerations, and per m/s^2 of
+    gravity).  Computed once per (mechanism, mesh, angles): every diameter and material a search or an optimiser
+    tries reuses it."""
+
+    el_len: FloatArray
+    el_dir: FloatArray
+    motion: RigidMotion
+    stiffness_bases: FloatArray  # (elements, 2, angles, size, size): per unit E A, per unit E I
+    mass_bases: FloatArray  # (elements, 1, angles, size, size): per unit rho A
+    acceleration_loads: FloatArray  # (elements, angles, size): -M_e U''_rigid per unit rho A (N per m^2)
+    gravity_loads: FloatArray  # (elements, angles, size): -M_e (0, -1) per unit rho A and per m/s^2
+
+
+#: Frames of the latest (mechanism, mesh, angles): a job evaluates one or two angle grids many times.
+_FRAMES: dict[tuple, Frames] = {}
+_FRAMES_KEPT = 4
+
+
+def frames(mech: Transplanter, disc: Discretisation, theta) -> Frames:
+    """The ``Frames`` of a mechanism, mesh and crank angles ``theta`` (rad), cached (a few entries)."""
+    theta = np.asarray(theta, dtype=float)
+    key = (mech, disc.mesh, disc.member_of, disc.fraction.tobytes(), disc.node_ends, theta.tobytes())
+    if key not in _FRAMES:
+        if len(_FRAMES) >= _FRAMES_KEPT:
+            _FRAMES.pop(next(iter(_FRAMES)))
+        _FRAMES[key] = _frames(mech, disc, theta)
+    return _FRAMES[key]
+
+
+def _frames(mech: Transplanter, disc: Discretisation, theta: FloatArray) -> Frames:
+    motion = rigid_motion(mech, theta)
+    el_len, _, node_acc, el_dir = _element_geometry(mech, disc, motion)
+    kind = disc.mesh.kind
+    per_end = 3 if kind == "frame6" else 4
+    k_bases, m_bases, acc_loads, g_loads = [], [], [], []
+    for e, ((i, j), member) in enumerate(zip(disc.mesh.elements, disc.member_of, strict=True)):
+        axial_k, axial_m, bend_k, bend_m = shape_integrals(kind, float(el_len[e]))
+        t = local_to_global(kind, el_dir[:, e])
+        mass = rotate(t, axial_m + bend_m)
+        k_bases.append([rotate(t, axial_k), rotate(t, bend_k)])
+        m_bases.append([mass])
+        rig, down = np.zeros((len(theta), 2 * per_end)), np.zeros(2 * per_end)
+        for end, node in enumerate((i, j)):
+            o = end * per_end
+            rig[:, o], rig[:, o + 1] = node_acc[:, node, 0], node_acc[:, node, 1]
+            rig[:, o + 2] = motion.alpha[:, member]
+            down[o + 1] = 1.0  # F = -M (U'' - g), g = (0, -gravity): gravity's share is -M (0, 1) gravity
+        acc_loads.append(-(mass @ rig[..., None])[..., 0])
+        g_loads.append(-(mass @ down))
+    return Frames(el_len, el_dir, motion, np.array(k_bases), np.array(m_bases), np.array(acc_loads),
+                  np.array(g_loads))
 
 
 def system_matrices(
@@ -235,38 +292,52 @@ def system_matrices(
     """(K, M, F, element data) over crank angles: F = -M (U''_rigid - g) assembled element by element, plus an
     external force ``tip_force`` (N, global x and y, the same at every crank angle) at the arm tip E.
 
-    ``mass``: "all" assembles the global M at every crank angle, "first" only at the first (the quasi-static
-    solution needs it only for the natural frequencies; the loads use the element matrices)."""
-    motion = rigid_motion(mech, theta)
-    el_len, node_pos, node_acc, el_dir = _element_geometry(mech, disc, motion)
+    Each element's matrices are its section properties times the cached bases (``frames``), scattered by the dof table
+    (``fem.scatter_weighted``; tests/test_transplanter.py checks them against rotating and assembling each element's
+    own matrices).  ``mass``: "all" returns the global M at every crank angle, "first" only at the first (the
+    quasi-static solution needs it only for the natural frequencies)."""
+    fr = frames(mech, disc, theta)
+    sections = np.array([circle(diameters[member]) for member in disc.member_of])  # (elements, (A, I))
+    n_dof, table = disc.mesh.dof_indices()
+    k = scatter_weighted(table, fr.stiffness_bases, material.youngs_modulus * sections, n_dof)
+    rho_a = material.density * sections[:, 0]
+    m_bases = fr.mass_bases if mass == "all" else fr.mass_bases[:, :, :1]
+    m = scatter_weighted(table, m_bases, rho_a[:, None], n_dof)
+    loads = rho_a[:, None, None] * (fr.acceleration_loads + gravity * fr.gravity_loads)
+    f = scatter_vectors(table, loads, n_dof)
+    f[:, tip_dofs(disc)] += np.asarray(tip_force, dtype=float)
+    return k, m, f, (fr.el_len, fr.el_dir, fr.motion)
+
+
+def system_matrices_by_element(
+    mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0,
+    tip_force=(0.0, 0.0),
+):
+    """(K, M, F) over crank angles by the direct route: each element's own local matrices (``fem.local_matrices``)
+    rotated and assembled (``fem.assemble``), its loads -M_e (U''_rigid - g) added at its dofs.  The independent route
+    ``system_matrices`` is tested against."""
+    motion = rigid_motion(mech, np.asarray(theta, dtype=float))
+    el_len, _, node_acc, el_dir = _element_geometry(mech, disc, motion)
     kind = disc.mesh.kind
     per_end = 3 if kind == "frame6" else 4
-    k_loc, m_loc = [], []
-    for e, member in enumerate(disc.member_of):
-        area, inertia = circle(diameters[member])
-        k_e, m_e = local_matrices(kind, material.youngs_modulus, area, inertia, material.density, el_len[e])
-        k_loc.append(k_e)
-        m_loc.append(m_e)
-    k = assemble(disc.mesh, k_loc, el_dir)
-    m_all = rotated(disc.mesh, m_loc, el_dir) if mass == "all" else None  # every angle's: the loads reuse them
-    m = scatter(disc.mesh, m_all) if m_all is not None else assemble(disc.mesh, m_loc, el_dir[:1])
-    # element loads
+    local = [local_matrices(kind, material.youngs_modulus, *circle(diameters[member]), material.density, el_len[e])
+             for e, member in enumerate(disc.member_of)]
+    k = assemble(disc.mesh, [kl for kl, _ in local], el_dir)
+    m = assemble(disc.mesh, [ml for _, ml in local], el_dir)
     n_dof, table = disc.mesh.dof_indices()
     f = np.zeros((len(motion.theta), n_dof))
     for e, ((i, j), member) in enumerate(zip(disc.mesh.elements, disc.member_of, strict=True)):
         rig = np.zeros((len(motion.theta), 2 * per_end))
         for end, node in enumerate((i, j)):
             o = end * per_end
-            rig[:, o] = node_acc[:, node, 0]
-            rig[:, o + 1] = node_acc[:, node, 1] + gravity
+            rig[:, o], rig[:, o + 1] = node_acc[:, node, 0], node_acc[:, node, 1] + gravity
             rig[:, o + 2] = motion.alpha[:, member]
-        m_e = m_all[e] if m_all is not None else rotate(local_to_global(kind, el_dir[:, e]), m_loc[e])
+        m_e = rotate(local_to_global(kind, el_dir[:, e]), local[e][1])
         f_e = -(m_e @ rig[..., None])[..., 0]
-        idx = table[e]
-        keep = np.flatnonzero(idx >= 0)
-        np.add.at(f, (slice(None), idx[keep]), f_e[:, keep])
+        keep = np.flatnonzero(table[e] >= 0)
+        np.add.at(f, (slice(None), table[e][keep]), f_e[:, keep])
     f[:, tip_dofs(disc)] += np.asarray(tip_force, dtype=float)
-    return k, m, f, (el_len, el_dir, motion)
+    return k, m, f
 
 
 def _postprocess(mech, disc, diameters, material, u, el_len, el_dir, motion):
@@ -319,7 +390,7 @@ def ked(
         k, m, f, (el_len, el_dir, motion) = system_matrices(
             mech, disc, diameters, material, theta, gravity, mass="first", tip_force=tip_force
         )
-        u = np.linalg.solve(k, f[..., None])[..., 0]
+        u = cholesky_solve_batch(cholesky_batch(k), f)
         freqs = natural_frequencies(k[0], m[0])
         periodicity, rayleigh = 0.0, (0.0, 0.0)
     elif solution == "dynamic":
@@ -333,12 +404,12 @@ def ked(
         c = a0 * m + a1 * k
         dt = (2 * np.pi / n) / mech.crank_speed
         beta, gamma = 0.25, 0.5
-        # the step matrix of every angle, inverted once and reused in every revolution
-        step_inverse = np.linalg.inv(m + gamma * dt * c + beta * dt**2 * k)
+        # the step matrix of every angle, factorised once and reused in every revolution
+        step_factor = cholesky_batch(m + gamma * dt * c + beta * dt**2 * k)
         ud = np.linalg.solve(k[0], f[0])
         vd = np.zeros_like(ud)
         ad = np.linalg.solve(m[0], f[0] - k[0] @ ud)
-        history = newmark_history(step_inverse, k, c, f, ud, vd, ad, dt, revolutions * n, beta, gamma)
+        history = newmark_history(step_factor, k, c, f, ud, vd, ad, dt, revolutions * n, beta, gamma)
         # the step that lands on angle index s is history[step] with s = (step + 1) % n
         last = np.roll(history[-n:], 1, axis=0)[::substeps]
         prev = np.roll(history[-2 * n : -n], 1, axis=0)[::substeps]
