@@ -313,6 +313,21 @@ def transplanter(f: dict) -> list[str]:
             f"| optimisation (SUMT and the SLSQP cross-check) | {_s(f['optimisation_s'])} (1 run) |"
             f" {_target(f['optimisation_s'], t['optimisation_s'])} |"
         ),
+        *_ked_baseline(f.get("baseline")),
+    ]
+
+
+def _ked_baseline(b: dict | None) -> list[str]:
+    """Rows of the KED passes against a baseline revision, timed in turn (none without one)."""
+    if not b:
+        return []
+    return [
+        (
+            f"| {label} KED pass at diameters near the initial ones, ours against revision `{b['revision']}` in turn"
+            f" ({b['rounds']} rounds) | {_s(b[key])} against {_s(b['baseline_' + key])}: ours takes"
+            f" {b['ratio_' + key]:.2f} of it | |"
+        )
+        for label, key in (("quasi-static", "quasi_static_s"), ("dynamic", "dynamic_s"))
     ]
 
 

@@ -49,7 +49,7 @@ def test_cached_bases_assemble_what_each_element_assembles(kind):
     d = np.array([0.006, 0.0075, 0.008, 0.0065])
     for mat in (MAT, replace(MAT, youngs_modulus=0.5 * MAT.youngs_modulus, density=1.3 * MAT.density)):
         k, m, f, _ = system_matrices(MECH, disc, d, mat, THETA, 9.81, tip_force=(3.0, -40.0))
-        k_ref, m_ref, f_ref = system_matrices_by_element(MECH, disc, d, mat, THETA, 9.81, tip_force=(3.0, -40.0))
+        k_ref, m_ref, f_ref, _ = system_matrices_by_element(MECH, disc, d, mat, THETA, 9.81, tip_force=(3.0, -40.0))
         for new, ref in ((k, k_ref), (m, m_ref), (f, f_ref)):
             assert np.abs(new - ref).max() <= 1e-13 * np.abs(ref).max()
     first = system_matrices(MECH, disc, d, MAT, THETA, mass="first")[1]

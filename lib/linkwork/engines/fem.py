@@ -363,30 +363,6 @@ def scatter_vectors(table, element_vectors, n_dof):
 
 
 @njit(cache=True)
-def cholesky_batch(a):
-    """Lower Cholesky factors L (L L^T = a[s]) of a stack of symmetric positive definite matrices a (n, d, d);
-    raises ValueError at the first matrix that is not positive definite.  Compiled: for the 35 x 35 matrices of the
-    transplanter about six times faster than numpy's stacked inverse."""
-    n_c, d, _ = a.shape
-    out = np.zeros_like(a)
-    for c in range(n_c):
-        for j in range(d):
-            s = a[c, j, j]
-            for k in range(j):
-                s -= out[c, j, k] * out[c, j, k]
-            if not s > 0.0:
-                raise ValueError("cholesky_batch: a matrix is not positive definite")
-            ljj = np.sqrt(s)
-            out[c, j, j] = ljj
-            for i in range(j + 1, d):
-                s = a[c, i, j]
-                for k in range(j):
-                    s -= out[c, i, k] * out[c, j, k]
-                out[c, i, j] = s / ljj
-    return out
-
-
-@njit(cache=True)
 def _cholesky_solve_into(lower, r, x):
     """x = (L L^T)^-1 r for one lower factor L (d, d)."""
     d = r.size
@@ -404,8 +380,8 @@ def _cholesky_solve_into(lower, r, x):
 
 @njit(cache=True)
 def cholesky_solve_batch(lower, b):
-    """Solutions x[s] of (L[s] L[s]^T) x[s] = b[s] for stacks of lower factors (n, d, d) and right-hand sides (n, d).
-    Compiled."""
+    """Solutions x[s] of (L[s] L[s]^T) x[s] = b[s] for stacks of lower Cholesky factors (n, d, d;
+    ``np.linalg.cholesky``) and right-hand sides (n, d).  Compiled: two triangular solves per system."""
     out = np.empty_like(b)
     for c in range(b.shape[0]):
         _cholesky_solve_into(lower[c], b[c], out[c])
@@ -428,7 +404,7 @@ def newmark_history(
     """Newmark's method on M u'' + C u' + K u = F with matrices that vary periodically over ``f.shape[0]`` steps
     (angle index s of step number i is (i + 1) mod n): displacements (m) after each of ``steps`` steps of ``dt`` (s)
     from u0, v0, a0.  ``step_factor[s]`` is the lower Cholesky factor of M + gamma dt C + beta dt^2 K at angle s
-    (``cholesky_batch``): one factorisation per angle, reused in every revolution.  Compiled, the predictor, the
+    (``np.linalg.cholesky``): one factorisation per angle, reused in every revolution.  Compiled, the predictor, the
     residual and the two triangular solves in one loop; ``newmark_steps`` is the same method in numpy with a direct
     solve of the step matrix (tests/test_fem.py compares them)."""
     return _newmark_compiled(

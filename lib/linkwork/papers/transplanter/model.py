@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...engines.fem import (
-    BeamMesh, assemble, cholesky_batch, cholesky_solve_batch, element_strain_extremes, gather, local_matrices,
+    BeamMesh, assemble, cholesky_solve_batch, element_strain_extremes, gather, local_matrices,
     local_to_global, newmark_history, rotate, scatter_vectors, scatter_weighted, shape_integrals,
 )
 from ...engines.kinematics import Chain, Dyad, solve_chain
@@ -209,9 +209,10 @@ def _element_geometry(mech, disc, motion):
 
 def element_frames(mech, disc, theta) -> tuple[FloatArray, FloatArray, RigidMotion]:
     """(element lengths (m), element directions (n, elements; rad), the rigid motion) over crank angles ``theta``
-    (rad): what the stresses and tip displacements are read in (from the cached ``frames``)."""
-    fr = frames(mech, disc, theta)
-    return fr.el_len, fr.el_dir, fr.motion
+    (rad): what the stresses and tip displacements are read in, without assembling any matrix."""
+    motion = rigid_motion(mech, theta)
+    el_len, _, _, el_dir = _element_geometry(mech, disc, motion)
+    return el_len, el_dir, motion
 
 
 def tip_dofs(disc: Discretisation) -> list[int]:
@@ -240,19 +241,32 @@ class Frames:
 
 
 #: Frames of the latest (mechanism, mesh, angles): a job evaluates one or two angle grids many times.
-_FRAMES: dict[tuple, Frames] = {}
-_FRAMES_KEPT = 4
+_FRAMES: dict[tuple, tuple[Frames, int]] = {}  # key -> (frames, bytes)
+#: Memory bounds (bytes): frames larger than FRAMES_ENTRY_BYTES are not built (the matrices are assembled element by
+#: element instead: a fine mesh or angle grid of an accuracy study is solved a few times, and its bases would take a
+#: few hundred MB); the cache keeps at most FRAMES_BYTES, the oldest entries going first.  The paper's mesh on 360
+#: angles takes about 21 MB.
+FRAMES_ENTRY_BYTES = 32 * 2**20
+FRAMES_BYTES = 64 * 2**20
+
+
+def frames_bytes(disc: Discretisation, n_angles: int) -> int:
+    """What the ``Frames`` of the mesh ``disc`` on ``n_angles`` crank angles take (bytes): three bases and two loads
+    per element and angle."""
+    size = 2 * (3 if disc.mesh.kind == "frame6" else 4)
+    return 8 * len(disc.member_of) * n_angles * (3 * size * size + 2 * size)
 
 
 def frames(mech: Transplanter, disc: Discretisation, theta) -> Frames:
-    """The ``Frames`` of a mechanism, mesh and crank angles ``theta`` (rad), cached (a few entries)."""
+    """The ``Frames`` of a mechanism, mesh and crank angles ``theta`` (rad), cached within ``FRAMES_BYTES``."""
     theta = np.asarray(theta, dtype=float)
     key = (mech, disc.mesh, disc.member_of, disc.fraction.tobytes(), disc.node_ends, theta.tobytes())
     if key not in _FRAMES:
-        if len(_FRAMES) >= _FRAMES_KEPT:
+        need = frames_bytes(disc, theta.size)
+        while _FRAMES and sum(size for _, size in _FRAMES.values()) + need > FRAMES_BYTES:
             _FRAMES.pop(next(iter(_FRAMES)))
-        _FRAMES[key] = _frames(mech, disc, theta)
-    return _FRAMES[key]
+        _FRAMES[key] = (_frames(mech, disc, theta), need)
+    return _FRAMES[key][0]
 
 
 def _frames(mech: Transplanter, disc: Discretisation, theta: FloatArray) -> Frames:
@@ -295,7 +309,10 @@ def system_matrices(
     Each element's matrices are its section properties times the cached bases (``frames``), scattered by the dof table
     (``fem.scatter_weighted``; tests/test_transplanter.py checks them against rotating and assembling each element's
     own matrices).  ``mass``: "all" returns the global M at every crank angle, "first" only at the first (the
-    quasi-static solution needs it only for the natural frequencies)."""
+    quasi-static solution needs it only for the natural frequencies).  Frames above ``FRAMES_ENTRY_BYTES`` (the
+    accuracy studies' fine meshes and angle grids) are not built: those matrices come element by element."""
+    if frames_bytes(disc, np.size(theta)) > FRAMES_ENTRY_BYTES:
+        return system_matrices_by_element(mech, disc, diameters, material, theta, gravity, mass, tip_force)
     fr = frames(mech, disc, theta)
     sections = np.array([circle(diameters[member]) for member in disc.member_of])  # (elements, (A, I))
     n_dof, table = disc.mesh.dof_indices()
@@ -311,11 +328,12 @@ def system_matrices(
 
 def system_matrices_by_element(
     mech: Transplanter, disc: Discretisation, diameters, material: Material, theta, gravity: float = 0.0,
-    tip_force=(0.0, 0.0),
+    mass: str = "all", tip_force=(0.0, 0.0),
 ):
-    """(K, M, F) over crank angles by the direct route: each element's own local matrices (``fem.local_matrices``)
-    rotated and assembled (``fem.assemble``), its loads -M_e (U''_rigid - g) added at its dofs.  The independent route
-    ``system_matrices`` is tested against."""
+    """(K, M, F, element data) over crank angles by the direct route: each element's own local matrices
+    (``fem.local_matrices``) rotated and assembled (``fem.assemble``), its loads -M_e (U''_rigid - g) added at its
+    dofs (``mass`` as in ``system_matrices``).  The independent route the cached bases are tested against, and the
+    route of meshes too fine to cache."""
     motion = rigid_motion(mech, np.asarray(theta, dtype=float))
     el_len, _, node_acc, el_dir = _element_geometry(mech, disc, motion)
     kind = disc.mesh.kind
@@ -323,7 +341,7 @@ def system_matrices_by_element(
     local = [local_matrices(kind, material.youngs_modulus, *circle(diameters[member]), material.density, el_len[e])
              for e, member in enumerate(disc.member_of)]
     k = assemble(disc.mesh, [kl for kl, _ in local], el_dir)
-    m = assemble(disc.mesh, [ml for _, ml in local], el_dir)
+    m = assemble(disc.mesh, [ml for _, ml in local], el_dir if mass == "all" else el_dir[:1])
     n_dof, table = disc.mesh.dof_indices()
     f = np.zeros((len(motion.theta), n_dof))
     for e, ((i, j), member) in enumerate(zip(disc.mesh.elements, disc.member_of, strict=True)):
@@ -337,7 +355,7 @@ def system_matrices_by_element(
         keep = np.flatnonzero(table[e] >= 0)
         np.add.at(f, (slice(None), table[e][keep]), f_e[:, keep])
     f[:, tip_dofs(disc)] += np.asarray(tip_force, dtype=float)
-    return k, m, f
+    return k, m, f, (el_len, el_dir, motion)
 
 
 def _postprocess(mech, disc, diameters, material, u, el_len, el_dir, motion):
@@ -390,7 +408,7 @@ def ked(
         k, m, f, (el_len, el_dir, motion) = system_matrices(
             mech, disc, diameters, material, theta, gravity, mass="first", tip_force=tip_force
         )
-        u = cholesky_solve_batch(cholesky_batch(k), f)
+        u = cholesky_solve_batch(np.linalg.cholesky(k), f)
         freqs = natural_frequencies(k[0], m[0])
         periodicity, rayleigh = 0.0, (0.0, 0.0)
     elif solution == "dynamic":
@@ -405,7 +423,7 @@ def ked(
         dt = (2 * np.pi / n) / mech.crank_speed
         beta, gamma = 0.25, 0.5
         # the step matrix of every angle, factorised once and reused in every revolution
-        step_factor = cholesky_batch(m + gamma * dt * c + beta * dt**2 * k)
+        step_factor = np.linalg.cholesky(m + gamma * dt * c + beta * dt**2 * k)
         ud = np.linalg.solve(k[0], f[0])
         vd = np.zeros_like(ud)
         ad = np.linalg.solve(m[0], f[0] - k[0] @ ud)
