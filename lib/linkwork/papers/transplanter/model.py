@@ -236,8 +236,8 @@ class Frames:
     motion: RigidMotion
     stiffness_bases: FloatArray  # (elements, 2, angles, size, size): per unit E A, per unit E I
     mass_bases: FloatArray  # (elements, 1, angles, size, size): per unit rho A
-    acceleration_loads: FloatArray  # (elements, angles, size): -M_e U''_rigid per unit rho A (N per m^2)
-    gravity_loads: FloatArray  # (elements, angles, size): -M_e (0, -1) per unit rho A and per m/s^2
+    acceleration_loads: FloatArray  # (elements, angles, size): -M_e U''_rigid per unit rho A (N per kg/m: m^2/s^2)
+    gravity_loads: FloatArray  # (elements, angles, size): -M_e (0, 1) per unit rho A and per m/s^2 of gravity (m)
 
 
 #: Frames of the latest (mechanism, mesh, angles): a job evaluates one or two angle grids many times.
