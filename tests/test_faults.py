@@ -50,6 +50,53 @@ def test_compiled_code_is_cached_in_the_cache_folder_never_below_lib(tmp_path):
     assert not _entries(lib), _entries(lib)
 
 
+#: Compiles the right-hand side of a one-body scene (a driven crank under gravity) and prints its module's name and the
+#: driver's torque, which reads the kernels' cos and sin of the crank's angle.
+CRANK_SCENE = """
+import numpy as np
+from linkwork.engines.multibody import describe, model
+crank = {
+    "bodies": {"crank": {"mass_kg": 0.4, "inertia_kg_m2": 1.0e-3, "points": {"O": [-0.05, 0.0], "A": [0.05, 0.0]},
+                         "angle_guess_deg": 30}},
+    "ground": {"O2": [0.0, 0.0]},
+    "joints": {"O2": {"journal": "crank.O", "bearing": "ground.O2"}},
+    "driver": {"body": "crank", "speed_rad_s": 20.0, "start_angle_deg": 30},
+    "output": "crank",
+}
+linkage = describe.from_config(crank, "linkages.crank")
+scene = model.compile_scene(linkage, True)
+diag = np.zeros(scene.N_DIAG)
+scene.rhs(0.0, np.full(scene.NY, 0.1), model.pack(linkage)[0], np.zeros(1), np.zeros(8, dtype=np.int64), diag)
+print(scene.__name__, repr(float(diag[1])))
+"""
+
+
+def _scene(lib: Path, cache: Path) -> tuple[str, float]:
+    env = {**os.environ, "PYTHONPATH": str(lib), "LINKWORK_CACHE": str(cache)}
+    env.pop("NUMBA_CACHE_DIR", None)
+    done = subprocess.run(
+        [sys.executable, "-c", CRANK_SCENE], env=env, capture_output=True, text=True, timeout=600, check=True
+    )
+    name, torque = done.stdout.split()
+    return name, float(torque)
+
+
+def test_an_edited_kernel_reaches_a_scene_compiled_before_the_edit(tmp_path):
+    """numba checks a cached function against its own file only: a generated scene compiled before an edit of
+    kernels.py must not keep the old kernels.  After the edit, the scene compiled with the cache of the unedited
+    kernels is a new module and computes what a compile from an empty cache computes."""
+    lib = tmp_path / "lib"
+    shutil.copytree(PROJECT / "lib", lib, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    before = _scene(lib, tmp_path / "cache")
+    kernels = lib / "linkwork/engines/multibody/kernels.py"
+    line = "        cs[2 * b] = np.cos(q[3 * b + 2])"
+    assert line in kernels.read_text()
+    kernels.write_text(kernels.read_text().replace(line, "        cs[2 * b] = 2.0 * np.cos(q[3 * b + 2])"))
+    after = _scene(lib, tmp_path / "cache")
+    assert after[0] != before[0] and after[1] != before[1], (before, after)
+    assert after == _scene(lib, tmp_path / "fresh cache")
+
+
 #: Bytes pickle reads as a request for an exabyte (BINBYTES8 with a huge length): it raises MemoryError.
 HUGE = b"\x80\x04\x8e\xff\xff\xff\xff\xff\xff\x00\x00"
 

@@ -226,6 +226,17 @@ def _check_topology(linkage: Linkage) -> None:
             )
 
 
+#: The compiled kernels every generated scene calls (kernels.py, beside this file).
+KERNELS = Path(__file__).with_name("kernels.py")
+
+
+def kernels_fingerprint() -> str:
+    """sha256 of kernels.py's text.  numba checks a cached function against its own file only, not against the files
+    of the functions it calls, so a scene compiled before an edit of kernels.py would keep the old kernels: the
+    generated source carries this fingerprint, and a new fingerprint is a new source, a new module and a new compile."""
+    return hashlib.sha256(KERNELS.read_bytes()).hexdigest()
+
+
 def generate_source(linkage: Linkage, gravity: bool) -> str:
     """Python source of the scene's right-hand side and integrators (numba): the linkage's topology, its clearance
     joints' effects and, if ``gravity``, gravity."""
@@ -239,6 +250,7 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     out_b, drv_b = linkage.body_index(linkage.output), linkage.body_index(linkage.driver.body)
     L: list[str] = []
     a = L.append
+    a(f"# compiled against kernels.py of sha256 {kernels_fingerprint()}")
     a("import numpy as np")
     a("from numba import njit")
     a("from linkwork.engines.multibody.kernels import (revolute, driver, driver_series, apply_force, clearance_state,")
