@@ -85,9 +85,7 @@ REPORT_PRIORITY["clearance"] = GATE_PRIORITY  # the longest report: out of the t
 
 def clearance_studies_compared():
     """The scenes the claims compare (lib's list)."""
-    from linkwork.papers.clearance.studies import COMPARED
-
-    return list(COMPARED)
+    return list(clearance_adapter.COMPARED)
 
 
 def scene_cfg(wildcards):

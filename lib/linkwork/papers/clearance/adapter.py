@@ -13,6 +13,11 @@ from collections.abc import Mapping
 from typing import Any
 
 BODIES = ("crank", "coupler", "rocker")
+#: The scenes the claims compare, dry then lubricated, in this order (here, not in studies, so that the Snakefile and
+#: the batch planner name them without importing the simulation's modules).
+DRY = ("dry_1", "dry_2", "dry_both")
+LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
+COMPARED = DRY + LUBRICATED
 
 #: Config keys (relative to the clearance section) that each effect adds to a scene with clearance joints.
 EFFECT_KEYS: dict[str, tuple[str, ...]] = {

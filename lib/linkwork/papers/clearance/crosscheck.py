@@ -402,7 +402,8 @@ def work_precision(cfg: Mapping[str, Any]) -> tuple[xr.Dataset, dict[str, Any]]:
 def dry_summary(cfg: Mapping[str, Any], dry: Sequence[xr.Dataset]) -> xr.Dataset:
     """Rule study: the claimed orders of the dry scenes on each engine's means (dry_1, dry_2, dry_both of a
     variant), whether every comparison agrees, and how much each engine's own mean moves with its setting."""
-    from .studies import DRY, order_as_claimed
+    from .adapter import DRY
+    from .studies import order_as_claimed
 
     by = {(d.attrs["variant"], d.attrs["scene"]): d for d in dry}
     variants = [v for v in cfg["variants"] if all((v, s) in by for s in DRY)]

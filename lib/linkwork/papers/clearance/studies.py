@@ -12,13 +12,10 @@ import xarray as xr
 
 from .fourbar import integrate, inverse_dynamics, start_angle
 from . import validity
-from .adapter import integrator_kind, parameters, scene_effects
+from .adapter import COMPARED, DRY, LUBRICATED, integrator_kind, parameters, scene_effects
 from .settling import MEASURES, RESPONSES
 
 JOINT_IDS = (1, 2)
-DRY = ("dry_1", "dry_2", "dry_both")
-LUBRICATED = ("lubricated_1", "lubricated_2", "lubricated_both")
-COMPARED = DRY + LUBRICATED  # the scenes the claims compare, in this order
 QUANTITIES = RESPONSES  # the compared responses, in the order of the measure rows
 
 

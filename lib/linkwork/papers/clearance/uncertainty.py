@@ -65,8 +65,7 @@ def batch_jobs(cfg: Mapping[str, Any]) -> list[dict[str, Any]]:
     both ends of its range, share one process: its imports, compiled code and nominal runs), with the samples'
     labels and moved values and the compared scenes whose model reads the moved input (a batch's config holds only
     those scenes' keys)."""
-    from .adapter import model_keys
-    from .studies import COMPARED
+    from .adapter import COMPARED, model_keys
 
     jobs: dict[tuple[str, tuple[str, ...]], dict[str, Any]] = {}
     design = _design(cfg)
