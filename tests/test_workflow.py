@@ -104,10 +104,12 @@ def snakemake(root: Path, *args: str, check: bool = True, trace: Path | None = N
     return proc
 
 
-#: The dry-run server (``DryRuns``): imports Snakemake once, then forks one child per request (a JSON line: the copy,
-#: the arguments, the file for the child's output) and answers with the child's exit code.
+#: The dry-run server (``DryRuns``): imports Snakemake (and numpy, numba, xarray; never linkwork) once, then forks
+#: one child per request (a JSON line: the copy, the arguments, the file for the child's output) and answers with the
+#: child's exit code.
 DRY_RUN_SERVER = """
 import json, logging, os, sys
+import numba, numpy, xarray  # third-party modules the config's validation imports: the same in every child
 import snakemake.cli as cli
 cli.get_argument_parser()
 for line in sys.stdin:
