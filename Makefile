@@ -20,9 +20,9 @@ reproduce: $(STAMP)
 	PATH="$(BIN):$$PATH" snakemake
 
 # two workers, one test file each at a time (a file's module fixtures are built once): the workflow tests' snakemake
-# run and the other files share the two cores
+# run and the other files share the two cores; the slowest tests are listed at the end (where CI time goes)
 test: $(STAMP) browser
-	PATH="$(BIN):$$PATH" python -m pytest -n 2 --dist loadfile
+	PATH="$(BIN):$$PATH" python -m pytest -n 2 --dist loadfile --durations=15
 
 # The browser the report test drives: Debian's chromium (installed if missing and apt-get is at hand).
 browser:
