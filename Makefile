@@ -1,5 +1,6 @@
 # Two entry points for a fresh machine with Python 3.11:
-#   make reproduce   set up .venv if needed, then run the whole reproduction (bare `snakemake`)
+#   make reproduce   set up .venv if needed, then run the whole reproduction (bare `snakemake`) and compare the
+#                    README's findings with it
 #   make test        set up .venv if needed, then run the tests
 PYTHON ?= python3
 VENV   ?= .venv
@@ -16,13 +17,16 @@ $(STAMP): pyproject.toml constraints.txt
 	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[test]'
 	touch $@
 
+# the run, then one line: whether the README's findings are this run's
 reproduce: $(STAMP)
 	PATH="$(BIN):$$PATH" snakemake
+	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.project.readme import check; check(Path('.'))"
 
-# two workers, one test file each at a time (a file's module fixtures are built once): the workflow tests' snakemake
-# run and the other files share the two cores; the slowest tests are listed at the end (where CI time goes)
+# two workers, one test file each at a time (a file's module fixtures are built once), in collection order (the
+# workflow files first: tests/conftest.py), so the workflow tests' snakemake run starts at once and the other files
+# share the second core; the slowest tests are listed at the end (where CI time goes)
 test: $(STAMP) browser
-	PATH="$(BIN):$$PATH" python -m pytest -n 2 --dist loadfile --durations=15
+	PATH="$(BIN):$$PATH" python -m pytest -n 2 --dist loadfile --no-loadscope-reorder --durations=15
 
 # The browser the report test drives: Debian's chromium (installed if missing and apt-get is at hand).
 browser:
@@ -51,10 +55,10 @@ slurm-proof: $(STAMP)
 	$(BIN)/python benchmarks/slurm_single_node.py $(if $(RECORD),--record)
 	$(if $(RECORD),$(BIN)/python benchmarks/readme.py)
 
+# the README's findings from the results of these sources, stamped with their fingerprint (a test compares it)
 readme: $(STAMP)
 	$(BIN)/snakemake results/readme_findings.md
-	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.project.readme import replace_block; \
-	  p = Path('README.md'); p.write_text(replace_block(p.read_text(), Path('results/readme_findings.md').read_text().strip()))"
+	$(BIN)/python -c "import sys; sys.path.insert(0, 'lib'); from pathlib import Path; from linkwork.project.readme import update; update(Path('.'))"
 
 # The main benchmarks (about 40 minutes on 2 cores; the pipeline one dominates), then the measured figures (docs/measured.md);
 # the others (benchmarks/*.py) run alone, each writing its own file.

@@ -161,3 +161,10 @@ def pytest_terminal_summary(terminalreporter):
         terminalreporter.write_sep("-", f"hard cases ({len(lines)})")
         for line in lines:
             terminalreporter.write_line(line)
+
+
+def pytest_collection_modifyitems(items):
+    """The workflow files (test_workflow*.py) first, the order kept otherwise: under `make test` (two workers, one
+    file each, in collection order: --no-loadscope-reorder) the Snakemake build, the longest file, starts at once
+    instead of last."""
+    items.sort(key=lambda item: not item.path.name.startswith("test_workflow"))

@@ -298,6 +298,54 @@ def test_readme_measured_figures_are_rendered_from_the_benchmark_files():
         assert (PROJECT / "benchmarks" / "measured" / f"{name}.json").exists(), name
 
 
+def test_readme_findings_carry_the_fingerprint_of_these_sources():
+    """The README's findings were written by `make readme` from a run of exactly this checkout's sources (code,
+    config, published numbers, pins): any change of them since fails here until `make readme` runs again."""
+    from linkwork.project.readme import sources_fingerprint, stamped_fingerprint
+
+    stamped = stamped_fingerprint((PROJECT / "README.md").read_text(encoding="utf-8"))
+    assert stamped is not None, "the README's findings carry no sources stamp: run `make readme`"
+    assert stamped == sources_fingerprint(PROJECT), (
+        "the sources changed since the README's findings were computed: run `make readme` (a full run)"
+    )
+
+
+def test_the_sources_fingerprint_moves_with_code_config_and_pins_and_not_with_tests_or_docs(tmp_path):
+    """Each kind of source edited in a small tree moves the fingerprint; tests, docs, results and the README do
+    not."""
+    from linkwork.project.readme import sources_fingerprint
+
+    files = {
+        "Snakefile": "x", "constraints.txt": "numpy==2.0", "pyproject.toml": "[p]", "config/config.yaml": "a: 1",
+        "config/published/p.yaml": "b: 2", "lib/linkwork/m.py": "c = 3", "lib/linkwork/sub/n.py": "d = 4",
+        "workflow/rules/r.smk": "rule r:", "workflow/scripts/s.py": "e = 5",
+        "tests/test_t.py": "f = 6", "docs/d.md": "g", "results/r.nc": "h", "README.md": "i",
+    }
+    for rel, text in files.items():
+        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / rel).write_text(text)
+    base = sources_fingerprint(tmp_path)
+    for rel in files:
+        original = (tmp_path / rel).read_text()
+        (tmp_path / rel).write_text(original + " ")
+        moved = sources_fingerprint(tmp_path) != base
+        (tmp_path / rel).write_text(original)
+        assert moved == (rel.split("/")[0] not in ("tests", "docs", "results", "README.md")), rel
+    (tmp_path / "lib/linkwork/m.py").rename(tmp_path / "lib/linkwork/m2.py")  # a renamed module moves it too
+    assert sources_fingerprint(tmp_path) != base
+
+
+def test_the_readme_check_names_a_changed_number_and_a_changed_word():
+    from linkwork.project.readme import END, START, differences, stamp
+
+    fresh = f"{START}\n\nK max 3.4600e+06 N/m, verdict deviates\n\n{END}"
+    readme = f"intro\n{START}\n{stamp('0' * 64)}\n\nK max 3.4601e+06 N/m, verdict deviates\n\n{END}\nend"
+    assert differences(readme, fresh) == []  # within 1e-3, the stamp ignored
+    changed = differences(readme.replace("3.4601e+06", "3.5e+06"), fresh)
+    assert changed == ["README 3.5e+06 against this run's 3.4600e+06"]
+    assert differences(readme.replace("deviates", "matches"), fresh) == ["the findings differ in words"]
+
+
 def _workflow_rules() -> tuple[set[str], set[str]]:
     """(every rule of the workflow, the rules declared local), read from the rule files."""
     import re
