@@ -623,26 +623,37 @@ def test_the_spec_covers_every_paper_the_sweeps_and_the_linkages():
     }
 
 
+def on_two_clones(built: Path, tmp_path: Path, label: str, items: list, check) -> list[str]:
+    """``check(root, dry, item)`` for every item, the items split over two clones of the built copy with a dry-run
+    server each (a dry run on each core); the failures it returns (None: none), merged."""
+    def run(worker: int, part: list) -> list[str]:
+        root = clone_of(built, tmp_path / f"{label}{worker}")
+        with DryRuns(root) as dry:
+            return [failure for item in part if (failure := check(root, dry, item))]
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        return [f for part in pool.map(run, range(2), [items[0::2], items[1::2]]) for f in part]
+
+
+def _mismatch(what: str, planned: set[str], expected: set[str]) -> str | None:
+    if planned == expected:
+        return None
+    return f"{what}: extra {sorted(planned - expected)}, missing {sorted(expected - planned)}"
+
+
 def test_single_key_edits_rerun_exactly_what_reads_the_key(built, declared, tmp_path):
     """Each row of tests/rerun_spec.yaml: the dry run after the edit schedules exactly the listed jobs."""
-    def run(worker: int, rows: list[dict]) -> list[str]:
-        root = clone_of(built, tmp_path / f"edits{worker}")
+    def check(root: Path, dry: DryRuns, row: dict) -> str | None:
         config = root / "config/config.yaml"
         original = config.read_text()
-        failures = []
-        with DryRuns(root) as dry:
-            for row in rows:
-                _set_key(config, row["key"], row["value"])
-                planned = set(job_listing(root, dry=dry))
-                expected = expected_jobs(row["jobs"], list(declared))
-                if planned != expected:
-                    extra, missing = sorted(planned - expected), sorted(expected - planned)
-                    failures.append(f"{row['key']}: extra {extra}, missing {missing}")
-                config.write_text(original)
-        return failures
+        _set_key(config, row["key"], row["value"])
+        try:
+            planned = set(job_listing(root, dry=dry))
+        finally:
+            config.write_text(original)
+        return _mismatch(row["key"], planned, expected_jobs(row["jobs"], list(declared)))
 
-    with ThreadPoolExecutor(max_workers=2) as pool:  # two clones, a dry run on each core
-        failures = [f for part in pool.map(run, range(2), [SPEC[0::2], SPEC[1::2]]) for f in part]
+    failures = on_two_clones(built, tmp_path, "edits", SPEC, check)
     assert not failures, "\n".join(failures)
 
 
@@ -724,28 +735,19 @@ def test_every_import_a_job_made_is_a_declared_input(built, declared):
 
 def test_editing_any_lib_module_reruns_exactly_its_dependants(built, declared, tmp_path):
     """Edit every lib module in turn: the dry run schedules the jobs that declare it and their descendants."""
-    def run(worker: int, modules: list[str]) -> list[str]:
-        root = clone_of(built, tmp_path / f"modules{worker}")
-        failures = []
-        with DryRuns(root) as dry:
-            for rel in modules:
-                path = root / rel
-                text, stat = path.read_text(), path.stat()
-                path.write_text(text + "\n# edited\n")
-                try:
-                    planned = set(job_listing(root, dry=dry))
-                finally:
-                    path.write_text(text)
-                    os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
-                users = {j for j, spec in declared.items() if rel in spec["input"]}
-                expected = _descendants(declared, users) | ({"all"} if users else set())
-                if planned != expected:
-                    failures.append(f"{rel}: extra {sorted(planned - expected)}, missing {sorted(expected - planned)}")
-        return failures
+    def check(root: Path, dry: DryRuns, rel: str) -> str | None:
+        path = root / rel
+        text, stat = path.read_text(), path.stat()
+        path.write_text(text + "\n# edited\n")
+        try:
+            planned = set(job_listing(root, dry=dry))
+        finally:
+            path.write_text(text)
+            os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+        users = {j for j, spec in declared.items() if rel in spec["input"]}
+        return _mismatch(rel, planned, _descendants(declared, users) | ({"all"} if users else set()))
 
-    halves = [LIB_MODULES[0::2], LIB_MODULES[1::2]]
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        failures = [f for part in pool.map(run, range(2), halves) for f in part]
+    failures = on_two_clones(built, tmp_path, "modules", LIB_MODULES, check)
     assert not failures, "\n".join(failures)
     # the layout's promise, as examples: an engine reaches several papers, a paper reaches only itself
     users = {rel: {j.split(":")[0] for j, spec in declared.items() if rel in spec["input"]} for rel in LIB_MODULES}
