@@ -4,10 +4,12 @@ is ever compiled into lib/."""
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -95,6 +97,39 @@ def test_an_edited_kernel_reaches_a_scene_compiled_before_the_edit(tmp_path):
     after = _scene(lib, tmp_path / "cache")
     assert after[0] != before[0] and after[1] != before[1], (before, after)
     assert after == _scene(lib, tmp_path / "fresh cache")
+
+
+CRANK_RUN = CRANK_SCENE.split("scene = model.compile_scene")[0] + """
+import json, sys, time
+from pathlib import Path
+from linkwork.engines.multibody.simulate import Run
+run = Run(linkage, True, {"method": "dop853", "rtol": 1e-8, "atol": 1e-11, "first_step_s": 1e-6, "max_step_s": 1e-3})
+while not Path(sys.argv[1]).exists():  # both processes start together
+    time.sleep(0.01)
+ys, _ = run.advance(np.linspace(0.0, 0.01, 3))
+stats = run.module.dop853.stats
+print(json.dumps([sum(stats.cache_misses.values()), sum(stats.cache_hits.values()), len(run.module.dop853.overloads),
+                  ys[-1].tolist()]))
+"""
+
+
+def test_two_jobs_of_one_scene_type_compile_it_once(tmp_path):
+    """Two processes integrate the same scene type at the same moment from an empty cache: one compiles the
+    integrator, the other waits and loads it from the cache (numba's own counts), and both compute the same."""
+    env = {**os.environ, "PYTHONPATH": str(PROJECT / "lib"), "LINKWORK_CACHE": str(tmp_path / "cache")}
+    env.pop("NUMBA_CACHE_DIR", None)
+    go = tmp_path / "go"
+    procs = [
+        subprocess.Popen([sys.executable, "-c", CRANK_RUN, str(go)], env=env, stdout=subprocess.PIPE, text=True)
+        for _ in range(2)
+    ]
+    time.sleep(5.0)  # both past their imports and waiting
+    go.touch()
+    out = [json.loads(p.communicate(timeout=600)[0]) for p in procs]
+    assert all(p.returncode == 0 for p in procs)
+    assert sorted((misses, hits) for misses, hits, _, _ in out) == [(0, 1), (1, 0)], out
+    assert all(overloads == 1 for _, _, overloads, _ in out)  # the call ran what was compiled for it
+    assert out[0][3] == out[1][3]
 
 
 #: Bytes pickle reads as a request for an exabyte (BINBYTES8 with a huge length): it raises MemoryError.

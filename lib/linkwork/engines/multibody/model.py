@@ -28,6 +28,7 @@ Sign conventions resolved here (the clearance paper's printed model differs):
 
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import importlib.util
 import os
@@ -821,3 +822,25 @@ def compile_scene(linkage: Linkage, gravity: bool):
     sys.modules[name] = module
     spec.loader.exec_module(module)
     return module
+
+
+def compiled_for(module, method: str, args: tuple) -> None:
+    """Compile ``module.<method>`` for the types of ``args`` (or load it from the cache), one process at a time.
+
+    A process that finds another compiling the same function of the same scene module waits for it, then loads the
+    result from the cache instead of compiling it again: two jobs of one scene type started together used to compile
+    it twice.  Once compiled in this process, nothing is locked.  The call then runs what a lazy compile would have
+    built: the same signature, the same machine code.
+    """
+    import numba
+
+    dispatcher = getattr(module, method)
+    signature = tuple(numba.typeof(a) for a in args)
+    if signature in dispatcher.overloads:
+        return
+    with open(cache_dir() / f"{module.__name__}.{method}.lock", "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            dispatcher.compile(signature)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)

@@ -16,7 +16,7 @@ import numpy as np
 
 from .assembly import start_state
 from .linkage import Linkage
-from .model import compile_scene, n_state, pack
+from .model import compile_scene, compiled_for, n_state, pack
 
 SCIPY = ("bdf", "radau", "lsoda", "rk45", "scipy-dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
 METHODS = ("rk4", "dopri5", "dop853", "ndf", *SCIPY)
@@ -62,21 +62,25 @@ class Run:
             raise ValueError(f"a run at t = {self.t} s cannot sample from t = {t_out[0]} s")
         integ, method = self.integrator, self.integrator["method"]
         if method == "rk4":
-            ys, diags, steps, rejected, _ = self.module.rk4(
-                self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was
-            )
+            args = (self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was)
+            compiled_for(self.module, method, args)
+            ys, diags, steps, rejected, _ = self.module.rk4(*args)
         elif method in ("dopri5", "dop853"):
-            ys, diags, steps, rejected, self.h = getattr(self.module, method)(
+            args = (
                 self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
                 integ["max_step_s"], self.was,
             )
+            compiled_for(self.module, method, args)
+            ys, diags, steps, rejected, self.h = getattr(self.module, method)(*args)
         elif method == "ndf":
             saved = self.latched.copy(), self.was.copy(), self.counts.copy()
+            args = (
+                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
+                integ["max_step_s"], self.was,
+            )
+            compiled_for(self.module, method, args)
             try:
-                ys, diags, steps, rejected, self.h = self.module.ndf(
-                    self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
-                    integ["max_step_s"], self.was,
-                )
+                ys, diags, steps, rejected, self.h = self.module.ndf(*args)
             except (
                 RuntimeError
             ):  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
