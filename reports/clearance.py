@@ -24,7 +24,8 @@ from _common import (
 
 from linkwork.papers.clearance import CITATION
 from linkwork.papers.clearance.words import (
-    CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words,
+    CLAIM_WORDS, MEASURE_WORDS, QUANTITY_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, ripple_bounds,
+    sample_in_words,
 )
 
 md(f"**Paper.** {esc(CITATION)}")
@@ -386,11 +387,8 @@ md(
     " ordering needs joint 2 lubricated, alone and with joint 1, above joint 1 alone. The table below shows the ripple"
     " of each lubricated scene at the pipeline's tolerance and at the two check tolerances on the same state: where it"
     " shrinks as the tolerance tightens, what the pipeline setting shows is consistent with the integrator's own"
-    " noise, and the ordering is left to the numerical error. Either way the ripples are at most "
-    + " and ".join(f"{float(fnd.ripple_over_ideal.sel(variant=v)):.1g} ({v})" for v in variants)
-    + " of the ideal rocker acceleration's RMS, and the whole lubricated deviation at most "
-    + " and ".join(f"{float(fnd.lubricated_deviation_over_ideal.sel(variant=v)):.1g}" for v in variants)
-    + " of it: no figure of ours can show the visible fluctuation peaks of the paper's lubricated curves (the figures"
+    f" noise, and the ordering is left to the numerical error. Either way {ripple_bounds(fnd, variants)}: no figure"
+    " of ours can show the visible fluctuation peaks of the paper's lubricated curves (the figures"
     " of the time series below), whichever way the ordering goes."
 )
 ripple_rows = []

@@ -682,3 +682,19 @@ def test_contact_frequency_uses_the_lightest_body_of_its_own_joint():
         expected = np.sqrt(1.5 * p.hertz_stiffness * np.sqrt(delta) / mass) / (2 * np.pi)
         assert contact_frequency(p, delta, joint) == pytest.approx(expected, rel=1e-12)
     assert np.isnan(contact_frequency(p, 0.0, 1))
+
+
+def test_a_printed_bound_is_rounded_up_so_that_at_most_stays_true():
+    """``words.at_most`` against exact decimal arithmetic: the printed number is the smallest two-digit value not below
+    the bound (ceiling at two significant digits), on random values over twelve decades and on exact two-digit ones."""
+    from decimal import ROUND_CEILING, Decimal
+
+    from linkwork.papers.clearance.words import at_most
+
+    rng = np.random.default_rng(7)
+    values = [*(10.0 ** rng.uniform(-6, 6, 300)), 0.03, 0.035, 0.1, 1.0, 0.0999, 2.5e-4]
+    for x in values:
+        d = Decimal(repr(float(x)))
+        expected = d.quantize(Decimal(1).scaleb(d.adjusted() - 1), rounding=ROUND_CEILING)
+        printed = Decimal(at_most(float(x)))
+        assert printed >= d and printed == expected, (x, at_most(float(x)), expected)

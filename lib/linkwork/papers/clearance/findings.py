@@ -11,7 +11,7 @@ import xarray as xr
 
 from ...pipeline.compare import compare_datasets, counts_dataset, findings_attrs
 from .validity import elastic_law_validity, penetration_limit
-from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, sample_in_words
+from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, ripple_bounds, sample_in_words
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
@@ -829,12 +829,8 @@ def ripples_text(findings: xr.Dataset) -> str:
                 + "."
             )
         text += (
-            " Either way the ripples (means over the judged windows) are at most about "
-            + " and ".join(f"{float(findings.ripple_over_ideal.sel(variant=v)):.2g} ({v})" for v in open_)
-            + " of the ideal rocker acceleration's RMS, and the whole lubricated deviation at most about "
-            + " and ".join(f"{float(findings.lubricated_deviation_over_ideal.sel(variant=v)):.2g}" for v in open_)
-            + " of it: the visible fluctuation peaks of the paper's lubricated curves are absent from every lubricated"
-            " response of ours."
+            f" Either way {ripple_bounds(findings, open_)}: the visible fluctuation peaks of the paper's lubricated"
+            " curves are absent from every lubricated response of ours."
         )
         for v in open_:
             held = findings.ripple_cutoff_holds.sel(variant=v)

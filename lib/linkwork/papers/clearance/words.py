@@ -5,6 +5,7 @@ scenes are simulated) so that a change of wording reruns only the comparison and
 
 from __future__ import annotations
 
+import math
 import re
 
 JOINT_WORDS = {"1": "joint 1", "2": "joint 2", "both": "both joints"}
@@ -62,3 +63,23 @@ def sample_in_words(label: str) -> str:
     for unit in ("_m_s", "_m", "_Pa_s", "_Pa"):
         name = name.removesuffix(unit)
     return f"{name.replace('_', ' ')} ({end} end)"
+
+
+def at_most(x: float, digits: int = 2) -> str:
+    """``x`` rounded up to ``digits`` significant digits: a bound that stays true when printed ('at most ...')."""
+    if not math.isfinite(x) or x == 0.0:
+        return f"{x:g}"
+    scale = 10.0 ** (math.floor(math.log10(abs(x))) - digits + 1)
+    return f"{math.ceil(x / scale - 1e-9) * scale:.{digits}g}"
+
+
+def ripple_bounds(findings, variants) -> str:
+    """The clause bounding the lubricated scenes' ripples and whole deviations by the ideal rocker acceleration's RMS,
+    per variant (``findings``: the comparison's findings; ``ripple_over_ideal``, ``lubricated_deviation_over_ideal``),
+    each bound rounded up."""
+    ripple = " and ".join(f"{at_most(float(findings.ripple_over_ideal.sel(variant=v)))} ({v})" for v in variants)
+    whole = " and ".join(at_most(float(findings.lubricated_deviation_over_ideal.sel(variant=v))) for v in variants)
+    return (
+        f"the ripples (means over the judged windows) are at most {ripple} of the ideal rocker acceleration's RMS, and"
+        f" the whole lubricated deviation at most {whole} of it"
+    )
