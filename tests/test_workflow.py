@@ -109,7 +109,7 @@ def snakemake(root: Path, *args: str, check: bool = True, trace: Path | None = N
 #: one child per request (a JSON line: the copy, the arguments, the file for the child's output) and answers with the
 #: child's exit code.
 DRY_RUN_SERVER = """
-import json, logging, os, sys
+import json, logging, os, sys, traceback
 import numba, numpy, xarray  # third-party modules the config's validation imports: the same in every child
 import snakemake.cli as cli
 cli.get_argument_parser()
@@ -125,8 +125,12 @@ for line in sys.stdin:
         code = 1
         try:
             cli.main(request["args"])
-        except SystemExit as exc:
+        except SystemExit as exc:  # as the interpreter ends: an exit code that is not a number is printed, status 1
             code = exc.code if isinstance(exc.code, int) else int(exc.code is not None)
+            if exc.code is not None and not isinstance(exc.code, int):
+                print(exc.code, file=sys.stderr)
+        except BaseException:  # as the interpreter ends on an uncaught exception: its traceback, status 1
+            traceback.print_exc()
         finally:
             logging.shutdown()
             sys.stdout.flush()
@@ -150,17 +154,24 @@ class DryRuns:
 
     def __call__(self, *args: str) -> str:
         """The output of `snakemake -n *args` in the copy; a failed run raises with its output."""
-        self.count += 1
-        out = self.root / f".dry-run-{self.count}.txt"
-        self.server.stdin.write(json.dumps({"cwd": str(self.root), "args": ["-n", *args], "out": str(out)}) + "\n")
-        self.server.stdin.flush()
-        ready, _, _ = select.select([self.server.stdout], [], [], RUN_GUARD_S)
-        assert ready, f"a dry run of {self.root} took over {RUN_GUARD_S} s"
-        code, text = json.loads(self.server.stdout.readline()), out.read_text()
-        out.unlink()
+        code, text = self.run(*args)
         if code != 0:
             raise AssertionError(f"snakemake -n {' '.join(args)} failed:\n{text[-5000:]}")
         return text
+
+    def run(self, *args: str, cwd: Path | None = None) -> tuple[int, str]:
+        """(exit code, stdout and stderr) of `snakemake -n *args` in the copy, or in ``cwd``: another copy of the same
+        lib (the server's imports are the same)."""
+        self.count += 1
+        where = cwd or self.root
+        out = self.root / f".dry-run-{self.count}.txt"
+        self.server.stdin.write(json.dumps({"cwd": str(where), "args": ["-n", *args], "out": str(out)}) + "\n")
+        self.server.stdin.flush()
+        ready, _, _ = select.select([self.server.stdout], [], [], RUN_GUARD_S)
+        assert ready, f"a dry run of {where} took over {RUN_GUARD_S} s"
+        code, text = json.loads(self.server.stdout.readline()), out.read_text()
+        out.unlink()
+        return code, text
 
     def __enter__(self) -> "DryRuns":
         return self
