@@ -35,8 +35,22 @@ def project_copy() -> Iterator[tuple[Path, dict[str, str]]]:
         yield root, env
 
 
+def speed_probe_s() -> float:
+    """Seconds for ten million additions in a pure-Python loop (best of three): how fast this machine is today, so
+    that figures taken on different days (machines of one name differ by two to three times) can be compared."""
+    import time
+
+    best = float("inf")
+    for _ in range(3):
+        t0, total = time.perf_counter(), 0
+        for i in range(10_000_000):
+            total += i
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
 def machine() -> dict[str, object]:
-    """What the figures were measured on: cores, CPU model, Python, date (UTC)."""
+    """What the figures were measured on: cores, CPU model, Python, date (UTC), the speed probe (s)."""
     import datetime
     import platform
 
@@ -55,6 +69,7 @@ def machine() -> dict[str, object]:
         "cpu_model": model or platform.processor(),
         "python": platform.python_version(),
         "date": datetime.datetime.now(datetime.timezone.utc).date().isoformat(),
+        "speed_probe_s": speed_probe_s(),
     }
 
 

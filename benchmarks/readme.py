@@ -38,8 +38,14 @@ def _target(value: float, limit: float, above: bool = False, unit: str = " s") -
     return f"{sign} {limit:g}{unit}: {'met' if ok else '**missed**'}"
 
 
+def _with_probe(f: dict) -> dict:
+    """The machine of a figures file, with the speed probe the file held beside it before the machine carried it."""
+    return {**({"speed_probe_s": f["speed_probe_s"]} if "speed_probe_s" in f else {}), **f["machine"]}
+
+
 def _machine(m: dict) -> str:
-    return f"{m['cpu_count']} cores ({m['cpu_model']}), Python {m['python']}, {m['date']}"
+    probe = f", speed probe {_s(m['speed_probe_s'])}" if "speed_probe_s" in m else ""
+    return f"{m['cpu_count']} cores ({m['cpu_model']}), Python {m['python']}, {m['date']}{probe}"
 
 
 #: The HTML reports (results/reports/).
@@ -353,7 +359,7 @@ def tests(f: dict) -> list[str]:
     t = f["make_test"]
     runs = len(t["runs_s"])
     return [
-        f"`python benchmarks/tests.py` on {_machine(f['machine'])}; speed probe {_s(f['speed_probe_s'])}. Method:"
+        f"`python benchmarks/tests.py` on {_machine(_with_probe(f))}. Method:"
         f" {f['method']}", "",
         "| command | wall clock | of which the workflow tests' build | tests | CI's bound (install included) |",
         "|---|---|---|---|---|",

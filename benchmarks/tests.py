@@ -30,17 +30,6 @@ OWN_CHECK = "tests/test_pipeline.py::test_readme_measured_figures_are_rendered_f
 BUILD = re.compile(r"([\d.]+)s setup\s+tests/test_workflow\.py::")
 
 
-def speed_probe_s() -> float:
-    """Seconds for ten million additions in a pure-Python loop (best of three): how fast this machine is today."""
-    best = float("inf")
-    for _ in range(3):
-        t0, total = time.perf_counter(), 0
-        for i in range(10_000_000):
-            total += i
-        best = min(best, time.perf_counter() - t0)
-    return best
-
-
 def one_run() -> tuple[float, int, float]:
     """(wall clock s, tests passed, the workflow build's setup s) of one `make test` from an empty compile cache."""
     with tempfile.TemporaryDirectory() as cache:
@@ -59,14 +48,13 @@ def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--repeats", type=int, default=1)
     args = parser.parse_args()
-    probe = speed_probe_s()
     runs, builds, count = [], [], 0
     for _ in range(args.repeats):
         wall, count, build = one_run()
         runs.append(wall)
         builds.append(build)
         print(f"make test: {count} tests in {wall:.0f} s (workflow build {build:.0f} s)", flush=True)
-    figures = {"make_test": {"runs_s": runs, "workflow_build_s": builds, "tests": count}, "speed_probe_s": probe}
+    figures = {"make_test": {"runs_s": runs, "workflow_build_s": builds, "tests": count}}
     write_figures("tests", figures, __doc__.split("Method:", 1)[1].split("Figures go")[0])
 
 
