@@ -49,8 +49,28 @@ def speed_probe_s() -> float:
     return best
 
 
+#: The import probe's modules: what every job of the pipeline imports before it computes anything.
+PROBE_IMPORTS = "import numpy, scipy.optimize, xarray, numba"
+
+
+def import_probe_s() -> float:
+    """Seconds for a fresh interpreter to import numpy, scipy.optimize, xarray and numba (median of three): the
+    start-up every job pays, which a tight loop (``speed_probe_s``) does not exercise (many files read, large code
+    run once), so that the two probes together say what kind of machine a figure came from."""
+    import statistics
+    import subprocess
+    import time
+
+    runs = []
+    for _ in range(3):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", PROBE_IMPORTS], check=True)
+        runs.append(time.perf_counter() - t0)
+    return statistics.median(runs)
+
+
 def machine() -> dict[str, object]:
-    """What the figures were measured on: cores, CPU model, Python, date (UTC), the speed probe (s)."""
+    """What the figures were measured on: cores, CPU model, Python, date (UTC), the two speed probes (s)."""
     import datetime
     import platform
 
@@ -70,6 +90,7 @@ def machine() -> dict[str, object]:
         "python": platform.python_version(),
         "date": datetime.datetime.now(datetime.timezone.utc).date().isoformat(),
         "speed_probe_s": speed_probe_s(),
+        "import_probe_s": import_probe_s(),
     }
 
 

@@ -45,6 +45,7 @@ def _with_probe(f: dict) -> dict:
 
 def _machine(m: dict) -> str:
     probe = f", speed probe {_s(m['speed_probe_s'])}" if "speed_probe_s" in m else ""
+    probe += f", import probe {_s(m['import_probe_s'])}" if "import_probe_s" in m else ""
     return f"{m['cpu_count']} cores ({m['cpu_model']}), Python {m['python']}, {m['date']}{probe}"
 
 
