@@ -176,6 +176,12 @@ def _batched_solve(a: ComplexArray, b: ComplexArray) -> tuple[ComplexArray, NDAr
         return x, flags
 
 
+def _frobenius2(a: ComplexArray) -> FloatArray:
+    """Squared Frobenius norm of each a[k] (no square root per entry)."""
+    flat = a.reshape(a.shape[0], -1)
+    return np.einsum("ij,ij->i", flat.real, flat.real) + np.einsum("ij,ij->i", flat.imag, flat.imag)
+
+
 def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
     """True where a[k], row- and column-equilibrated (so that units do not matter), has a reciprocal
     condition number below ``rcond``.  The condition number is the Frobenius one, |A|_F |A^-1|_F, which
@@ -186,7 +192,9 @@ def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
     with np.errstate(divide="ignore", invalid="ignore"):
         row = mag.max(axis=2, keepdims=True)
         col = (mag / row).max(axis=1, keepdims=True)
-        scaled = np.nan_to_num(a / row / col, nan=0.0, posinf=0.0, neginf=0.0)
+        scaled = a / row / col
+    if not np.isfinite(scaled).all():  # a zero row or column (0 / 0): zero entries, flagged below
+        scaled = np.nan_to_num(scaled, nan=0.0, posinf=0.0, neginf=0.0)
     bad = np.zeros(a.shape[0], dtype=bool)
     try:
         inverse = np.linalg.inv(scaled)
@@ -197,7 +205,7 @@ def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
                 inverse[k] = np.linalg.inv(scaled[k])
             except np.linalg.LinAlgError:
                 bad[k] = True
-    norm = np.sqrt(np.sum(np.abs(scaled) ** 2, axis=(1, 2)) * np.sum(np.abs(inverse) ** 2, axis=(1, 2)))
+    norm = np.sqrt(_frobenius2(scaled) * _frobenius2(inverse))
     with np.errstate(invalid="ignore"):
         return bad | ~(norm * rcond < 1.0)
 

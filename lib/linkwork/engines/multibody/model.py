@@ -563,7 +563,12 @@ def ndf(y0, t0, t_out, p, latched, counts, rtol, atol, h0, h_max, was):
             h_abs = h_max
             n_equal = 0
             inv_ok = False
-        min_step = 10.0 * 2.220446049250313e-16 * abs(t)  # as scipy: ten units in the last place of t
+        min_step = 10.0 * (np.nextafter(t, np.inf) - t)  # as scipy: ten units in the last place of t
+        if h_abs < min_step:  # as scipy: a step below it (a cut's rounding-size remainder) is raised to it
+            _ndf_change(D, order, min_step / h_abs)
+            h_abs = min_step
+            n_equal = 0
+            inv_ok = False
         while True:
             if h_abs < min_step:
                 raise RuntimeError("ndf: step size underflow")

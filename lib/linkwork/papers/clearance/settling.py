@@ -80,6 +80,11 @@ class CycleRunner:
         self.harmonic = ripple_harmonic(ripple_cutoff_hz, p.crank_speed)
         self.memories, self.extremes, self.last, self.peak_refinement = [], [], [], []
 
+    @property
+    def fallbacks(self) -> int:
+        """Cycles of this run the compiled NDF handed to scipy's BDF (``simulate.Run.fallbacks``)."""
+        return self.run.fallbacks
+
     def step(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """``n`` more cycles: (section points (n, components), measures (n, MEASURE_ROWS))."""
         T = 2 * np.pi / self.p.crank_speed
@@ -201,7 +206,8 @@ def check_state(
     within
     ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the
     state is not periodic: not testable); the period its section shows over the rerun (0 where the rerun is too short to
-    show one: a report, not a test; -1 where the check integrator failed, its delta then NaN).
+    show one: a report, not a test; -1 where the check integrator failed, its delta then NaN); and how many of the
+reruns' cycles the compiled NDF handed to scipy's BDF (``simulate.Run.fallbacks``).
 
     ``make_runner(integrator, memory)`` builds a CycleRunner at a check integrator from a run state."""
     first, stop = found["window"]
@@ -215,6 +221,7 @@ def check_state(
     )
     orbit = found["points"][stop - period : stop] if period != NOT_PERIODIC else None
     restart = stop - period if period != NOT_PERIODIC else first
+    fallbacks = 0
     for i, integ in enumerate(checks):
         rerun = make_runner(integ, runner.memories[restart])
         try:
@@ -222,6 +229,8 @@ def check_state(
         except RuntimeError:  # the check integrator gave up (a step size underflow): this check has no value
             periods[i] = -1
             continue
+        finally:
+            fallbacks += rerun.fallbacks
         if period != NOT_PERIODIC:
             ours = meas[-period:].mean(axis=0)
             base = measures[stop - period : stop].mean(axis=0)
@@ -234,7 +243,9 @@ def check_state(
             ours = meas.mean(axis=0)
             base = measures[first : min(first + n, stop)].mean(axis=0)
         deltas[i], means[i] = ours - base, ours
-    return {"delta": deltas, "mean": means, "kept": kept, "period": periods, "distance": distances}
+    return {
+        "delta": deltas, "mean": means, "kept": kept, "period": periods, "distance": distances, "fallbacks": fallbacks,
+    }
 
 
 def reach_state(
@@ -251,7 +262,8 @@ def reach_state(
     pipeline's: ``judged_statistics``'s mean per measure row) minus the pipeline's, and whether it is the pipeline's
     state (both periodic with the same period and its last section point within ``state_tolerance`` times
     max(1, |component|) of a point of the pipeline orbit: 1, else 0; NaN where the pipeline state is not periodic:
-    not testable).  A failed check integrator (step size underflow): status 'failed', the rest NaN."""
+    not testable); the cycles the compiled NDF handed to scipy's BDF.  A failed check integrator (step size underflow):
+    status 'failed', the rest NaN."""
     n_rows = found["measures"].shape[1]
     out = {"status": "failed", "period": -1, "delta": np.full(n_rows, np.nan), "same": np.nan, "cycles": 0}
     runner = make_runner(check, **start_runner_args)
@@ -259,6 +271,8 @@ def reach_state(
         reached = settle_start(runner, st, confidence)
     except RuntimeError:
         return out
+    finally:
+        out["fallbacks"] = runner.fallbacks
     ours = judged_statistics(reached["measures"], reached, batch, confidence)[:, 0]
     base = judged_statistics(found["measures"], found, batch, confidence)[:, 0]
     out.update(status=reached["status"], period=reached["period"], delta=ours - base, cycles=reached["points"].shape[0])

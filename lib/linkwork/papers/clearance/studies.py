@@ -530,7 +530,10 @@ def _scene_attrs(p, cfg, variant: str, scene: str, runs: SceneRuns, per: int, sh
         effects=",".join(effects), clearance_joints=",".join(map(str, joints)),
         integrator=integ["method"], steps=int(sum(r.run.steps for r in runners)),
         rejected_steps=int(sum(r.run.rejected for r in runners)),
-        ndf_fallbacks=int(sum(r.run.fallbacks for r in runners)),
+        ndf_fallbacks=int(
+            sum(r.fallbacks for r in runners) + sum(c["fallbacks"] for c in runs.checked)
+            + sum(r["fallbacks"] for r in runs.reached)
+        ),
         evaluations_contact=int(counts[0]), evaluations_friction=int(counts[1]),
         evaluations_lubrication=int(counts[2]), evaluations_gravity=int(counts[3]),
         crank_mass_kg=p.masses[0], shown_cycles=shown, hertz_stiffness=p.hertz_stiffness, clearance=p.clearance,
