@@ -207,7 +207,7 @@ def check_state(
     ``state_tolerance`` times max(1, |component|) of a point of the pipeline orbit, in every component; NaN where the
     state is not periodic: not testable); the period its section shows over the rerun (0 where the rerun is too short to
     show one: a report, not a test; -1 where the check integrator failed, its delta then NaN); and how many of the
-reruns' cycles the compiled NDF handed to scipy's BDF (``simulate.Run.fallbacks``).
+    reruns' cycles the compiled NDF handed to scipy's BDF (``simulate.Run.fallbacks``).
 
     ``make_runner(integrator, memory)`` builds a CycleRunner at a check integrator from a run state."""
     first, stop = found["window"]
