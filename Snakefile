@@ -1,5 +1,6 @@
 # linkwork: one DAG re-deriving five planar-linkage papers.
 # Bare `snakemake` reads profiles/default/profile.yaml (all cores).
+import os
 import sys
 from pathlib import Path
 
@@ -13,6 +14,15 @@ from linkwork.pipeline.errors import ConfigError  # noqa: E402
 from linkwork.pipeline.results import unwritable  # noqa: E402
 from linkwork.papers import PAPERS  # noqa: E402
 from linkwork.project.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
+
+# One BLAS thread per job unless the caller chose otherwise: Snakemake keeps every core busy with jobs, and OpenBLAS
+# (numpy's and scipy's, one pool each) would start a thread per core in every job, threads that then wait against the
+# other jobs: on n cores, n jobs of n threads each.  No job here has matrices large enough to gain from threads.
+# Measured on 2 cores: the transplanter's gather beside a busy core took 85 s with the default and 70 s with one thread,
+# the same results to the bit; a whole forced run showed no difference beyond its run-to-run spread.  The jobs inherit
+# it; on a cluster each job's Snakemake reads this file again.
+for _blas in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_blas, "1")
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
 # --config/--configfile values override it (--config's text read as the numbers the schema asks for; a --configfile

@@ -83,6 +83,8 @@ def _env(root: Path, trace: Path | None = None) -> dict[str, str]:
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     paths = ([str(TRACING)] if trace else []) + [str(root / "lib")]  # the copy's lib, not the installed one
     env["PYTHONPATH"] = os.pathsep.join(paths)
+    for blas in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):  # the Snakefile's default, not ours
+        env.pop(blas, None)
     env["LINKWORK_CHECK_FIGURES"] = "1"  # every rendered figure must draw inside its canvas (render_report)
     if trace:
         env["LINKWORK_TRACE_DIR"] = str(trace)
@@ -742,6 +744,19 @@ def test_every_import_a_job_made_is_a_declared_input(built, declared):
         assert not missing, f"{job} loaded {missing} without declaring them"
         jobs_with_lib += bool(files)
     assert jobs_with_lib >= len(declared) - 2  # every job but `all` ran Python that loaded linkwork
+
+
+def test_every_job_computes_with_one_blas_thread(built):
+    """Snakemake runs the jobs side by side, one core each: every job's processes (a report's kernel included) compute
+    with one OpenBLAS thread in each library loaded (numpy's and scipy's), as the libraries themselves report it
+    (the Snakefile's default; without it each library starts one thread per core, on CI's two cores two)."""
+    records = [json.loads(p.read_text()) for p in (built / "trace").glob("*.json")]
+    by_pid = {r["pid"]: r for r in records}
+    in_jobs = [r for r in records if r["outputs"] or by_pid.get(r["ppid"], {}).get("outputs")]
+    job_of = lambda r: (r["outputs"] or by_pid[r["ppid"]]["outputs"])[0]  # noqa: E731
+    assert len({job_of(r) for r in in_jobs if r["blas_threads"]}) == sum(ALL_JOBS.values()) - 1  # all but `all`
+    more = [(job_of(r), r["blas_threads"]) for r in in_jobs if set(r["blas_threads"].values()) - {1}]
+    assert not more, more
 
 
 def test_editing_any_lib_module_reruns_exactly_its_dependants(built, declared, tmp_path):
