@@ -52,6 +52,39 @@ def test_compiled_code_is_cached_in_the_cache_folder_never_below_lib(tmp_path):
     assert not _entries(lib), _entries(lib)
 
 
+#: ``COMPILE``, then numba's own counts of compiles (misses) and cache loads (hits) of the two functions it compiled.
+COUNTS = COMPILE + """
+stats = [kernels.body_trig.stats, fem._newmark_compiled.stats]
+print(sum(sum(s.cache_misses.values()) for s in stats), sum(sum(s.cache_hits.values()) for s in stats))
+"""
+
+
+def _counts(lib: Path, cache: Path) -> tuple[str, int, int]:
+    env = {**os.environ, "PYTHONPATH": str(lib), "LINKWORK_CACHE": str(cache)}
+    env.pop("NUMBA_CACHE_DIR", None)
+    done = subprocess.run(
+        [sys.executable, "-c", COUNTS], env=env, capture_output=True, text=True, timeout=600, check=True
+    )
+    values, counts = done.stdout.splitlines()
+    misses, hits = (int(x) for x in counts.split())
+    return values, misses, hits
+
+
+def test_a_copy_of_lib_elsewhere_loads_what_another_copy_compiled(tmp_path):
+    """Compiled code is filed by its source's content, not its folder: a second copy of lib in another folder (a
+    clone, a test's or a benchmark's copy) loads both functions from the cache instead of compiling them (numba's
+    counts) and computes the same; a copy whose source differs compiles its own."""
+    copies = [tmp_path / name / "lib" for name in ("first", "second", "edited")]
+    for lib in copies:
+        shutil.copytree(PROJECT / "lib", lib, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    fem = copies[2] / "linkwork/engines/fem.py"
+    fem.write_text(fem.read_text() + "\n# edited\n")
+    first, second, edited = (_counts(lib, tmp_path / "cache") for lib in copies)
+    assert first[1:] == (2, 0) and second[1:] == (0, 2), (first, second)
+    assert edited[1:] == (1, 1), edited  # fem.py differs: its function compiled again; kernels.py loaded
+    assert first[0] == second[0] == edited[0]
+
+
 #: Compiles the right-hand side of a one-body scene (a driven crank under gravity) and prints its module's name and the
 #: driver's torque, which reads the kernels' cos and sin of the crank's angle.
 CRANK_SCENE = """

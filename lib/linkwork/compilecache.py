@@ -1,5 +1,7 @@
 """The compile cache: one folder (``LINKWORK_CACHE``, else ~/.cache/linkwork) for the generated scene modules and for
-numba's compiled code of every cached function, so that nothing is written below lib/.
+numba's compiled code of every cached function, so that nothing is written below lib/.  The compiled code of this
+package's own functions is filed under its source's content, not its folder's path: every copy of lib (a clone, a test's
+or a benchmark's copy) shares what another compiled from the same source.
 
 A cache entry that cannot be read (a truncated or corrupted ``.nbi``/``.nbc`` file) is compiled again and
 overwritten, with one line on stderr naming it; a cache folder that cannot be used is named before any job
@@ -8,8 +10,10 @@ overwritten, with one line on stderr naming it; a cache folder that cannot be us
 
 from __future__ import annotations
 
+import hashlib
 import os
 import sys
+from functools import lru_cache
 from pathlib import Path
 
 #: What reading a damaged cache entry may raise: anything (pickle turns random bytes into any error, MemoryError
@@ -77,3 +81,40 @@ def use_for_numba() -> None:
             raise OSError(str(exc)) from exc  # IndexDataCacheFile.load reads an OSError as a miss
 
     files._load_index, files._load_data, files._linkwork_tolerant = _load_index, _load_data, True
+    _file_by_content(caching)
+
+
+#: This package's folder: the sources whose compiled code is filed by content.
+PACKAGE = Path(__file__).resolve().parent
+
+
+@lru_cache(maxsize=None)
+def content_subpath(py_file: str) -> str:
+    """The cache sub-folder of a source file: its name and a digest of its bytes (numba's default names it after the
+    path of the file's folder, so that a copy of the same source elsewhere compiles everything again).  numba's index
+    still checks each entry against the source's own content hash."""
+    path = Path(py_file)
+    return f"{path.stem}_{hashlib.sha256(path.read_bytes()).hexdigest()[:20]}"
+
+
+def _file_by_content(caching) -> None:
+    """Put a locator that files this package's functions by content (``content_subpath``) before numba's own; every
+    other source (the generated scene modules included) keeps numba's default."""
+    impl = caching.CacheImpl
+    if any(getattr(c, "_linkwork", False) for c in impl._locator_classes):
+        return
+
+    class ByContent(caching.UserProvidedCacheLocator):
+        _linkwork = True
+
+        @classmethod
+        def get_suitable_cache_subpath(cls, py_file):
+            return content_subpath(str(py_file))
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            if not Path(py_file).resolve().is_relative_to(PACKAGE):
+                return None
+            return super().from_function(py_func, py_file)
+
+    impl._locator_classes.insert(0, ByContent)
