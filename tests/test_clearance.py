@@ -27,6 +27,12 @@ STIFF = SECTION["integrators"]["stiff"]
 DRIFT_BOUND = 1e-6  # m
 
 
+#: The pipeline's dry and lubricated scenes' effects (config clearance.scenes): a test that needs no other set uses
+#: these, so that its scene is one the workflow compiles too (a scene of its own costs a compile of its own).
+DRY = tuple(SECTION["scenes"]["dry_both"]["effects"])
+LUBRICATED = tuple(SECTION["scenes"]["lubricated_both"]["effects"])
+
+
 def run(p, joints, effects, cycles=2.0, integ=EXPLICIT, y0=None, points=720):
     t = np.linspace(0.0, cycles * 2 * np.pi / p.crank_speed, int(cycles * points) + 1)
     ys, diags, steps, rejected, counts, _ = integrate(p, joints, effects, t, integ, y0=y0)
@@ -123,10 +129,14 @@ def test_the_dop853_tableau_held_as_data_is_scipys_to_the_bit():
 
 
 def test_an_effect_left_out_is_never_evaluated():
-    _, _, _, dry = run(SLENDER, (1, 2), ("contact", "friction", "gravity"), cycles=0.5)
-    assert dry[2] == 0 and dry[0] > 0 and dry[1] > 0  # no lubrication evaluation in a dry scene
-    _, _, _, lub = run(SLENDER, (2,), ("lubrication", "contact"), cycles=0.5, integ=STIFF)
-    assert lub[1] == 0 and lub[3] == 0 and lub[2] > 0  # no friction, no gravity
+    """Each effect's counter (contact, friction, lubrication, gravity) stays at zero in a scene that leaves the effect
+    out, and counts in one that names it (scenes the pipeline and the energy tests compile too)."""
+    _, _, _, dry = run(SLENDER, (1, 2), DRY, cycles=0.5)
+    assert dry[2] == 0 and dry[0] > 0 and dry[1] > 0 and dry[3] > 0  # no lubrication evaluation in a dry scene
+    _, _, _, bare = run(SLENDER, (1, 2), ("contact",), cycles=0.5)
+    assert bare[0] > 0 and bare[1] == 0 and bare[2] == 0 and bare[3] == 0  # no friction, lubrication or gravity
+    _, _, _, lub = run(SLENDER, (2,), LUBRICATED, cycles=0.5, integ=STIFF)
+    assert lub[2] > 0
     src = generate_source(linkage(SLENDER, (1,), ("contact",)), gravity=False)
     assert "film_forces(" not in src and "friction_coefficient(" not in src.split("def rhs")[1]
 
@@ -150,8 +160,19 @@ def test_scene_dataset_records_units_and_counts():
 
 
 def test_contact_laws_are_pluggable():
-    for law in ("hunt-crossley", "flores"):
-        run(replace(SLENDER, contact_law=law), (2,), ("contact",), cycles=0.5)
+    """Every contact law runs in the one compiled scene of its topology and effects (the law is data, not generated
+    code: here the pipeline's dry scene at joint 2), and each law's hysteresis gives its own contact forces."""
+    from linkwork.papers.clearance.fourbar import run as start_run
+
+    effects, modules, peaks = DRY, set(), {}
+    for law in ("lankarani-nikravesh", "hunt-crossley", "flores"):
+        p = replace(SLENDER, contact_law=law)
+        _, _, diags, counts = run(p, (2,), effects, cycles=0.5)
+        assert counts[0] > 0, law  # the journal met its bearing
+        modules.add(start_run(p, (2,), effects, EXPLICIT).module.__name__)
+        peaks[law] = float(diags[:, 7].max())  # the joint's dry normal force (N)
+    assert len(modules) == 1, modules
+    assert len(set(peaks.values())) == 3, peaks
 
 
 def _energy_balance(p, effects):
@@ -194,7 +215,7 @@ def test_restitution_0_3_dissipates():
 def test_lubrication_driven_to_eps_one():
     """A film far too thin to hold the journal: eps reaches 1, the film stays bounded, contact takes over."""
     p = replace(SLENDER, viscosity=1e-4)
-    _, _, diags, _ = run(p, (1, 2), ("lubrication", "contact"), cycles=0.5, integ=STIFF)
+    _, _, diags, _ = run(p, (1, 2), LUBRICATED, cycles=0.5, integ=STIFF)
     assert np.nanmax(diags[:, 4]) >= p.clearance  # e reached c
     f_r, f_t = film_forces(0.9999999, 1.0, 10.0, 1.0, p.film_coefficient, 1.0 - p.e0 / p.clearance)
     assert np.isfinite(f_r) and np.isfinite(f_t)
@@ -205,7 +226,7 @@ def test_lubrication_driven_to_eps_one():
 def test_friction_at_zero_slip():
     assert friction_coefficient(0.0, 0.1, 1e-4, 1e-3) == 0.0
     assert friction_coefficient(-0.0, 0.1, 0.0, 1e-3) == 0.0
-    run(replace(SLENDER, friction=0.3, v0=0.0), (2,), ("contact", "friction"), cycles=0.5)
+    run(replace(SLENDER, friction=0.3, v0=0.0), (2,), DRY, cycles=0.5)
 
 
 @pytest.mark.hard
@@ -218,7 +239,7 @@ def test_journal_starting_in_contact():
     dphi = 1.02 * SLENDER.clearance / l3
     phi_new = phi3 + dphi
     y0[3], y0[4], y0[5] = bx - 0.5 * l3 * np.cos(phi_new), by - 0.5 * l3 * np.sin(phi_new), phi_new
-    _, _, diags, _ = run(SLENDER, (1,), ("contact", "friction"), cycles=0.5, y0=y0)
+    _, _, diags, _ = run(SLENDER, (1,), DRY, cycles=0.5, y0=y0)
     assert diags[0, 5] > 0  # joint 1 starts in contact (penetration > 0)
 
 

@@ -8,13 +8,14 @@ complement Phi_q M^-1 Phi_q^T.  The driver torque is -lambda of the driver row.
 A clearance joint is not a constraint but a force element between a journal (on the joint's first body) and a
 bearing (on its second).  Each clearance joint names its effects; the right-hand side is generated as source code
 containing exactly those effects (no branch, no call for an effect left out), compiled by numba and cached on disk by
-the hash of its source.  The source holds the topology only (which bodies each joint joins, which effects act where,
-the contact laws' hysteresis); every dimension and property is data in the packed parameters (``pack``), so one
-compiled scene serves every linkage of the same topology.  Each effect increments its own evaluation counter, so a
+the hash of its source.  The source holds the topology only (which bodies each joint joins, which effects act
+where); every dimension and property is data in the packed parameters (``pack``), so one compiled scene serves every
+linkage of the same topology.  Each effect increments its own evaluation counter, so a
 test can prove that an effect left out is never evaluated.
 
 The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law) is chosen
-apart from its hysteresis damping (CONTACT_LAWS); it is data, not generated code.
+apart from its hysteresis damping (CONTACT_LAWS); both are data, not generated code: a scene compiled once serves
+every law (the kernels branch on the law's number).
 
 Sign conventions resolved here (the clearance paper's printed model differs):
 * eccentricity e = journal centre - bearing centre, n = e/|e|; the dry contact force on the
@@ -46,7 +47,7 @@ DIAG_PER_JOINT = 6  # e, delta, delta', dry normal force, film radial force, fil
 #: A clearance joint's packed values, in order (``pack``): its journal and bearing points, then its properties.
 CLEARANCE_VALUES = (
     "jx", "jy", "bx", "by", "clearance", "r_journal", "r_bearing", "restitution", "friction", "v0", "v1", "film",
-    "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent",
+    "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent", "contact_law",
 )
 
 
@@ -81,6 +82,7 @@ def _clearance_values(linkage: Linkage, joint) -> list[float]:
         v.update(
             restitution=c.restitution, floor=c.impact_velocity_floor, elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
             elastic_stiffness=c.elastic_stiffness, elastic_exponent=c.elastic_exponent,
+            contact_law=float(CONTACT_LAWS[c.contact_law]),
         )
     if "friction" in fx:
         v.update(friction=c.friction, v0=c.v0, v1=c.v1)
@@ -177,7 +179,7 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
                 f"        fe, ue = elastic_contact(int({P['elastic_law']}), {P['elastic_stiffness']},"
                 f" {P['elastic_exponent']}, delta)"
             )
-            a(f"        fn = fe * hertz_damping_factor({CONTACT_LAWS[c.contact_law]}, {P['restitution']}, ddot, vimp)")
+            a(f"        fn = fe * hertz_damping_factor(int({P['contact_law']}), {P['restitution']}, ddot, vimp)")
             a("        potential += ue")
             if "friction" in c.effects:
                 a("        counts[1] += 1")
