@@ -28,13 +28,28 @@ def stiffness_published():
     return load_yaml("config/published/stiffness.yaml")
 
 
+#: The session's ``validation_memo`` (for helpers that take no fixture).
+_SESSION: dict = {}
+
+
+@pytest.fixture(scope="session", autouse=True)
+def validation_memo(tmp_path_factory):
+    """Where validate_config's physical checks remember a pass, as the Snakefile's validation does: a check runs again
+    only on a section or code it has not passed (the heald check follows its linkage through the turn, about a second
+    per run).  A bad section is never remembered: its check raises every time."""
+    from linkwork.project.validate import Memo
+
+    _SESSION["memo"] = Memo(tmp_path_factory.mktemp("validated"), PROJECT / "lib")
+    return _SESSION["memo"]
+
+
 def expect_config_error(config, schema, *fragments):
     """validate_config must fail with a message containing every fragment."""
     from linkwork.pipeline.errors import ConfigError
     from linkwork.project.validate import validate_config
 
     with pytest.raises(ConfigError) as info:
-        validate_config(config, schema)
+        validate_config(config, schema, _SESSION.get("memo"))
     for fragment in fragments:
         assert fragment in str(info.value), str(info.value)
 

@@ -100,3 +100,50 @@ def test_a_labelled_entry_must_be_a_value_of_its_own_range_or_choices(config, sc
         node = node[key]
     node[path[-1]] = value
     _expect(config, schema, ".".join(path[:-1]), fragment)
+
+
+def test_a_physical_check_runs_again_only_when_its_own_section_or_code_changed(config, tmp_path, monkeypatch):
+    """The remembered validation (validate_once): a changed config or validating code validates again, and then each
+    paper's physical check (here the heald one, which follows the heald linkage through its turn) runs only if its own
+    section or the code it reads changed."""
+    import shutil
+
+    import linkwork.papers.heald.checks as heald_checks
+    from linkwork.project import validate
+
+    from conftest import PROJECT
+
+    runs = {"whole": 0, "heald": 0}
+    schema_check, heald_check = validate.validate_schema, heald_checks.check
+
+    def whole(*args):
+        runs["whole"] += 1
+        return schema_check(*args)
+
+    def heald(*args):
+        runs["heald"] += 1
+        return heald_check(*args)
+
+    monkeypatch.setattr(validate, "validate_schema", whole)
+    monkeypatch.setattr(heald_checks, "check", heald)
+    lib = tmp_path / "lib"
+    shutil.copytree(PROJECT / "lib", lib, ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    stamp, schema = tmp_path / "validated", PROJECT / "config/schema.yaml"
+
+    def after(edit) -> tuple[int, int]:
+        edit()
+        validate.validate_once(config, schema, lib, stamp)
+        return runs["whole"], runs["heald"]
+
+    def append(rel: str):
+        return lambda: (lib / rel).write_text((lib / rel).read_text() + "\n# edited\n")
+
+    def reason(paper: str, entry: str):
+        return lambda: config[paper]["parameters" if paper == "heald" else "assumed"][entry].update(reason="edited")
+
+    assert after(lambda: None) == (1, 1)
+    assert after(lambda: None) == (1, 1)  # nothing changed: nothing runs
+    assert after(reason("clearance", "joint_length_m")) == (2, 1)  # another paper's key
+    assert after(append("linkwork/papers/clearance/checks.py")) == (3, 1)  # another paper's checks
+    assert after(reason("heald", "m_D")) == (4, 2)  # a key of its own section
+    assert after(append("linkwork/engines/multibody/assembly.py")) == (5, 3)  # code it reads

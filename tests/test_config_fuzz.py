@@ -513,11 +513,11 @@ def test_the_table_is_large_and_names_are_unique():
 
 
 @pytest.mark.parametrize(("old", "new", "fragments"), [c[1:] for c in CASES], ids=[c[0] for c in CASES])
-def test_bad_config_is_refused_naming_the_key(tmp_path, schema, old, new, fragments):
+def test_bad_config_is_refused_naming_the_key(tmp_path, schema, old, new, fragments, validation_memo):
     path = tmp_path / "config.yaml"
     path.write_text(_edit(old, new), encoding="utf-8")
     with pytest.raises(ConfigError) as info:
-        validate_config(load_yaml(path), schema)
+        validate_config(load_yaml(path), schema, validation_memo)
     message = str(info.value)
     for fragment in fragments:
         assert fragment in message, message

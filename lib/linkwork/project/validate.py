@@ -12,7 +12,8 @@ import importlib
 import math
 import os
 import re
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -219,9 +220,12 @@ def check_labelled(node: Any, path: tuple = ()) -> None:
         check_labelled(value, (*path, key))
 
 
-def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
+def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any], memo: Memo | None = None) -> None:
     """Finite numbers and safe names first, then the schema, then the physical checks of every paper section
-    (their messages name the physics), then every labelled entry against its own range or choices."""
+    (their messages name the physics), then every labelled entry against its own range or choices.
+
+    ``memo``: where the physical checks (a paper section's, the linkages') remember that they passed, each by its own
+    inputs; without it every check runs."""
     check_finite(config)
     check_names(config, schema)
     validate_schema(config, schema)
@@ -229,11 +233,53 @@ def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any]) -> Non
     check_states(config)
     for paper in PAPERS:
         if paper in config:
-            importlib.import_module(f"linkwork.papers.{paper}.checks").check(config[paper], paper)
+            module = f"linkwork.papers.{paper}.checks"
+            section = config[paper]
+            _physics(memo, paper, section, module, lambda: importlib.import_module(module).check(section, paper))
     check_labelled(config)
     if "sweeps" in config:
         check_sweeps(config["sweeps"], config)
-    check_linkages(config.get("linkages") or {})
+    linkages = config.get("linkages") or {}
+    _physics(memo, "linkages", linkages, "linkwork.engines.multibody.describe", lambda: check_linkages(linkages))
+
+
+@dataclass(frozen=True)
+class Memo:
+    """Where the physical checks remember a pass: ``folder`` holds one stamp per check (its key), ``lib`` the package
+    whose code the keys read."""
+
+    folder: Path
+    lib: Path
+
+
+def _physics(memo: Memo | None, name: str, section: Any, module: str, check: Callable[[], None]) -> None:
+    """Run ``check`` (the physical check ``name`` of ``section``, coded in ``module``) unless it passed before on the
+    same section and the same code: the checks that follow a linkage through its turn take about a second, and an edit
+    of another paper's keys or code cannot change their outcome."""
+    if memo is None:
+        check()
+        return
+    import hashlib
+    import json
+
+    from ..pipeline.deps import closure
+
+    digest = hashlib.sha256(json.dumps(_typed(section)).encode())
+    for file in closure(module, memo.lib):
+        digest.update(str(file).encode() + b"\0" + Path(file).read_bytes())
+    key, stamp = digest.hexdigest(), memo.folder / name
+    if stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == key:
+        return
+    check()
+    _write_stamp(stamp, key)
+
+
+def _write_stamp(stamp: Path, key: str) -> None:
+    """``key`` into the file ``stamp``, atomically."""
+    stamp.parent.mkdir(parents=True, exist_ok=True)
+    tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
+    tmp.write_text(key + "\n", encoding="utf-8")
+    os.replace(tmp, stamp)
 
 
 def check_linkages(linkages: Mapping[str, Any]) -> None:
@@ -363,20 +409,18 @@ def validate_once(
     """Validate unless this exact config, schema and validating code passed before (``stamp`` holds the key);
     ``published``: the folder of the papers' published-numbers files, validated too (``linkwork.project.published``).
 
-    A passed validation is remembered so that a no-op run stays fast; any change to what it read runs it again.
+    A passed validation is remembered so that a no-op run stays fast; any change to what it read runs it again, and
+    then each physical check only if its own section or code changed (their stamps in the folder ``<stamp>.d``).
     """
     key = validation_key(config, schema_path, lib, published)
     if stamp.is_file() and stamp.read_text(encoding="utf-8").strip() == key:
         return
-    validate_config(config, load_yaml(schema_path))
+    validate_config(config, load_yaml(schema_path), Memo(stamp.with_name(f"{stamp.name}.d"), Path(lib)))
     if published is not None:
         from .published import check_published
 
         check_published(published, published_schema(published), list(PAPERS))
-    stamp.parent.mkdir(parents=True, exist_ok=True)
-    tmp = stamp.with_name(f"{stamp.name}.{os.getpid()}.tmp")
-    tmp.write_text(key + "\n", encoding="utf-8")
-    os.replace(tmp, stamp)
+    _write_stamp(stamp, key)
 
 
 def main(argv: list[str] | None = None) -> int:
