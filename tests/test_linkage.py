@@ -146,11 +146,14 @@ def test_a_driver_given_as_a_fourier_series_moves_the_crank_so():
     assert np.abs(diags[:, 1] - torque).max() < 1e-6 * np.abs(torque).max()
 
 
-def test_the_generated_right_hand_side_solves_the_assemblys_equations():
+@pytest.mark.parametrize("name", ["six_bar", "sprung"])
+def test_the_generated_right_hand_side_solves_the_assemblys_equations(name):
     """At random states of the six-bar: the compiled right-hand side's accelerations satisfy M q'' = g - Phi_q^T lam and
-    Phi_q q'' = gamma - 2 a Phi' - b^2 Phi with Phi_q, Phi, gamma written independently in numpy (``assembly``); the
-    driver's power follows its row (the third: after the crank's pin)."""
-    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    Phi_q q'' = gamma - 2 a Phi' - b^2 Phi with Phi_q, Phi, gamma (and g's spring-damper) written independently in numpy
+    (``assembly``); the driver's power follows its row (the third: after the crank's pin).  ``sprung``: a spring-damper
+    to the ground and a rocking driver, the elements of the heald linkage, on a linkage that compiles in a fraction of
+    the heald one's time."""
+    linkage = describe.from_config(SIX_BAR if name == "six_bar" else SPRUNG, f"linkages.{name}")
     assert_rhs_solves_the_numpy_equations(linkage, True, (0.0, 0.3), 1e-4, 0.5, seed=5, states=20, driver_row=2)
 
 
