@@ -185,15 +185,11 @@ _TAIL = '''
 '''
 
 
-def _module(body: str) -> str:
-    return body + "\n" + model.dop853_coefficients_source() + model.INTEGRATORS
-
-
 def joint_source(lengths) -> str:
-    """Source of the joint-coordinate scene (joint 2 in clearance, contact, friction and gravity): rhs, rhs_into and
-    the engine's integrators, with the benchmark's parameter layout (LAYOUT)."""
+    """Source of the joint-coordinate scene (joint 2 in clearance, contact, friction and gravity): rhs and rhs_into
+    (which the engine's compiled integrators take), with the benchmark's parameter layout (LAYOUT)."""
     P, idx, law = _names(lengths)
-    return _module(_head((2,), N_REDUCED, P, idx) + f'''
+    return (_head((2,), N_REDUCED, P, idx) + f'''
     th3, th4, w3, w4 = y[0], y[1], y[2], y[3]
     c2, s2, c3, s3, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th3), np.sin(th3), np.cos(th4), np.sin(th4)
     # absolute coordinates of the three bodies (centres of mass at mid-link)
@@ -228,7 +224,7 @@ def joint_source_both(lengths) -> str:
     free (x3, y3, theta3), the rocker turns about its ground pin (theta4); state (x3, y3, theta3, theta4, their rates,
     the driver's work)."""
     P, idx, law = _names(lengths)
-    return _module(_head((1, 2), 9, P, idx) + f'''
+    return (_head((1, 2), 9, P, idx) + f'''
     th4, w4 = y[3], y[7]
     c2, s2, c4, s4 = np.cos(th2), np.sin(th2), np.cos(th4), np.sin(th4)
     q[0], q[1], q[2] = 0.5 * l2 * c2, 0.5 * l2 * s2, th2

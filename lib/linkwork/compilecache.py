@@ -10,6 +10,7 @@ overwritten, with one line on stderr naming it; a cache folder that cannot be us
 
 from __future__ import annotations
 
+import fcntl
 import hashlib
 import os
 import sys
@@ -118,3 +119,20 @@ def _file_by_content(caching) -> None:
             return super().from_function(py_func, py_file)
 
     impl._locator_classes.insert(0, ByContent)
+
+
+def compile_once(dispatcher, signature: tuple, name: str) -> None:
+    """Compile a numba dispatcher for ``signature`` (argument types), or load it from the cache, one process at a
+    time: a process that finds another compiling the same function (``name``) waits for it, then loads the result
+    from the cache instead of compiling it again (two jobs started together used to compile the same scene twice).
+    Once compiled in this process, nothing is locked."""
+    if signature in dispatcher.overloads:
+        return
+    folder = root() / "locks"
+    folder.mkdir(parents=True, exist_ok=True)
+    with open(folder / f"{name}.lock", "a") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        try:
+            dispatcher.compile(signature)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)

@@ -4,7 +4,8 @@ linkage: the description (bodies, ground points, joints with their clearances an
 describe: the description read from config and checked, with the key of any problem named.
 assembly: configurations (assembly on a branch, the driven turn, kinematics) and the ideal inverse dynamics.
 kernels: compiled building blocks (constraints, forces, contact laws, film forces, small solves).
-model: the generated right-hand side of a scene (topology and effects as code, the rest as data) and its integrators.
+model: the generated right-hand side of a scene (topology and effects as code, the rest as data).
+integrators: the compiled integrators, compiled once and given a scene's right-hand side as a first-class function.
 simulate: continuable runs of a compiled scene.  exudyn_route: the same description in Exudyn.
 """
 

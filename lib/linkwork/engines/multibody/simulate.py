@@ -1,7 +1,7 @@
 """Time integration of a compiled scene: explicit RK4, Dormand-Prince 5(4) and 8(5,3) (DOP853, scipy's algorithm
-with its dense output) and the implicit variable-order NDF (a compiled port of scipy's BDF; all in the scene module)
-or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 / DOP853 as ``scipy-dop853``) stepped from
-Python around the compiled right-hand side.
+with its dense output) and the implicit variable-order NDF (a compiled port of scipy's BDF; all in ``integrators``,
+compiled once for every scene), or one of scipy's integrators (implicit BDF / Radau / LSODA, explicit RK45 /
+DOP853 as ``scipy-dop853``) stepped from Python around the compiled right-hand side.
 
 An integrator setting is a mapping ``{method, step_s}`` (rk4) or ``{method, rtol, atol, first_step_s,
 max_step_s}`` (the others); times in s.
@@ -14,9 +14,11 @@ from typing import Any
 
 import numpy as np
 
+from ...compilecache import compile_once
+from . import integrators
 from .assembly import start_state
 from .linkage import Linkage
-from .model import compile_scene, compiled_for, n_state, pack
+from .model import compile_scene, n_state, pack
 
 SCIPY = ("bdf", "radau", "lsoda", "rk45", "scipy-dop853")  # scipy.integrate's OdeSolver classes, by lower-case name
 METHODS = ("rk4", "dopri5", "dop853", "ndf", *SCIPY)
@@ -61,26 +63,26 @@ class Run:
         if abs(t_out[0] - self.t) > 1e-12 * max(1.0, abs(self.t)):
             raise ValueError(f"a run at t = {self.t} s cannot sample from t = {t_out[0]} s")
         integ, method = self.integrator, self.integrator["method"]
+        t_out = np.ascontiguousarray(t_out)
+        if method in ("rk4", "dopri5", "dop853", "ndf"):
+            scene = rhs_into(self.module), self.module.N_WORK, self.module.N_DIAG
+            compiled = integrators.ready(method)
         if method == "rk4":
-            args = (self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was)
-            compiled_for(self.module, method, args)
-            ys, diags, steps, rejected, _ = self.module.rk4(*args)
-        elif method in ("dopri5", "dop853"):
-            args = (
-                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
-                integ["max_step_s"], self.was,
+            ys, diags, steps, rejected, _ = compiled(
+                *scene, self.y, self.t, integ["step_s"], t_out, self.params, self.latched, self.counts, self.was
             )
-            compiled_for(self.module, method, args)
-            ys, diags, steps, rejected, self.h = getattr(self.module, method)(*args)
+        elif method in ("dopri5", "dop853"):
+            ys, diags, steps, rejected, self.h = compiled(
+                *scene, self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"],
+                self.h, integ["max_step_s"], self.was,
+            )
         elif method == "ndf":
             saved = self.latched.copy(), self.was.copy(), self.counts.copy()
-            args = (
-                self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"], integ["atol"], self.h,
-                integ["max_step_s"], self.was,
-            )
-            compiled_for(self.module, method, args)
             try:
-                ys, diags, steps, rejected, self.h = self.module.ndf(*args)
+                ys, diags, steps, rejected, self.h = compiled(
+                    *scene, self.y, self.t, t_out, self.params, self.latched, self.counts, integ["rtol"],
+                    integ["atol"], self.h, integ["max_step_s"], self.was,
+                )
             except (
                 RuntimeError
             ):  # a step size underflow: this stretch again with scipy's BDF, the same algorithm in Python
@@ -112,6 +114,13 @@ def integrate(linkage: Linkage, gravity: bool, t_out, integrator: Mapping[str, A
     return ys, diags, run.steps, run.rejected, run.counts
 
 
+def rhs_into(module):
+    """The scene's compiled ``rhs_into`` (compiled for ``integrators.RHS_INTO`` or loaded from the cache, one process
+    at a time), as the integrators take it."""
+    compile_once(module.rhs_into, integrators.RHS_INTO, f"{module.__name__}.rhs_into")
+    return module.rhs_into
+
+
 def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
     """A scipy integrator stepped from Python around the compiled right-hand side (the implicit ones with its
     compiled finite-difference Jacobian), with the impact velocity latched at accepted steps and dense output
@@ -124,11 +133,14 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
         integrator["method"]
     ]
     fun = lambda t, y: module.rhs(t, y, params, latched, counts, scratch)  # noqa: E731
-    jac = lambda t, y: module.jacobian(t, y, params, latched, counts, scratch)  # noqa: E731
+    jacobian, latch, scene = integrators.ready("jacobian"), integrators.ready("latch"), rhs_into(module)
+    jac = lambda t, y: jacobian(  # noqa: E731
+        scene, module.N_WORK, t, np.ascontiguousarray(y), params, latched, counts, scratch
+    )
     ys = np.empty((t_out.size, y0.size))
     diags = np.empty((t_out.size, module.N_DIAG))
     module.rhs(t_out[0], y0, params, latched, counts, diag)
-    module._latch(diag, latched, was)
+    latch(diag, latched, was)
     ys[0], diags[0] = y0, diag
     i = 1
     with np.errstate(over="ignore", invalid="ignore"):  # scipy's numerical Jacobian probes far steps
@@ -144,7 +156,7 @@ def _scipy(module, y0, t_out, params, latched, counts, integrator, was):
             if solver.status == "failed":
                 raise RuntimeError(f"{integrator['method']}: step failed at t = {solver.t}")
             module.rhs(solver.t, solver.y, params, latched, counts, diag)
-            module._latch(diag, latched, was)
+            latch(diag, latched, was)
             if i < t_out.size and t_out[i] <= solver.t:
                 stop = int(np.searchsorted(t_out, solver.t + 1e-15, side="right"))
                 ys[i:stop] = solver.dense_output()(t_out[i:stop]).T

@@ -26,7 +26,7 @@ import xarray as xr
 from ...configformat import labelled
 from ...engines.multibody import assembly
 from ...engines.multibody.linkage import Body, Clearance, Driver, Joint, Linkage, Spring
-from ...engines.multibody.model import DIAG_FIXED, DIAG_PER_JOINT
+from ...engines.multibody.integrators import DIAG_FIXED, DIAG_PER_JOINT
 from ...engines.multibody.simulate import Run
 from ...engines.states import settle
 from ...units import RAD_S_PER_RPM, STANDARD_GRAVITY
