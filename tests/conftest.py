@@ -1,5 +1,7 @@
 """Shared fixtures: the project's config, schema and published numbers."""
 
+import copy
+from functools import lru_cache
 from pathlib import Path
 
 import pytest
@@ -8,9 +10,16 @@ import yaml
 PROJECT = Path(__file__).resolve().parent.parent
 
 
-def load_yaml(rel: str):
+@lru_cache(maxsize=None)
+def _parsed(rel: str):
     with open(PROJECT / rel) as fh:
-        return yaml.safe_load(fh)
+        return yaml.load(fh, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))
+
+
+def load_yaml(rel: str):
+    """A project file's YAML, parsed once per test process (libyaml where installed, as lib reads config), a fresh copy
+    for every caller: a test may change what it is given."""
+    return copy.deepcopy(_parsed(rel))
 
 
 @pytest.fixture()

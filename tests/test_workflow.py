@@ -609,8 +609,12 @@ def expected_jobs(patterns: list[str], all_jobs: list[str]) -> set[str]:
     return out
 
 
+#: libyaml where installed: an edit test reads and writes the whole config once per row.
+_LOADER, _DUMPER = getattr(yaml, "CSafeLoader", yaml.SafeLoader), getattr(yaml, "CSafeDumper", yaml.SafeDumper)
+
+
 def _set_key(path: Path, key: str, value) -> None:
-    cfg = yaml.safe_load(path.read_text())
+    cfg = yaml.load(path.read_text(), Loader=_LOADER)
     node = cfg
     *parents, last = key.split(".")
     for part in parents:
@@ -620,7 +624,7 @@ def _set_key(path: Path, key: str, value) -> None:
     assert last in (range(len(node)) if isinstance(node, list) else node), key
     assert node[last] != value, f"{key} already has the value {value!r}"
     node[last] = value
-    path.write_text(yaml.safe_dump(cfg, sort_keys=False))
+    path.write_text(yaml.dump(cfg, Dumper=_DUMPER, sort_keys=False))
 
 
 def test_the_spec_covers_every_paper_the_sweeps_and_the_linkages():
