@@ -11,12 +11,10 @@ STAMP  := $(VENV)/.installed
 
 setup: $(STAMP)
 
-# --no-compile: a module is byte-compiled when it is first imported, not every module of every package at install
-# (most are never imported; the install takes half the time)
 $(STAMP): pyproject.toml constraints.txt
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet --no-compile -c constraints.txt -e '.[test]'
+	$(BIN)/python -m pip install --quiet -c constraints.txt -e '.[test]'
 	touch $@
 
 # the run, then one line: whether the README's findings are this run's
