@@ -12,6 +12,7 @@ sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
 from linkwork.pipeline.results import unwritable  # noqa: E402
+from linkwork.pipeline.scheduler import daemon_timers  # noqa: E402
 from linkwork.papers import PAPERS  # noqa: E402
 from linkwork.project.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
 
@@ -23,6 +24,10 @@ from linkwork.project.validate import coerce_overrides, load_yaml, merge_overrid
 # it; on a cluster each job's Snakemake reads this file again.
 for _blas in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_blas, "1")
+
+# The scheduler sleeps between jobs (the default profile's job-rate limit; linkwork.pipeline.scheduler): its pending
+# re-evaluations must not keep this process alive once the run is done.
+daemon_timers()
 
 # Read config/config.yaml ourselves (duplicate keys and syntax errors named with file and line), let
 # --config/--configfile values override it (--config's text read as the numbers the schema asks for; a --configfile

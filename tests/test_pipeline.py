@@ -527,3 +527,25 @@ def test_papers_are_found_by_their_packages_and_a_module_reading_them_depends_on
     lib = PROJECT / "lib"
     readme = {str(p.relative_to(lib)) for p in closure("linkwork.project.readme", lib)}
     assert {f"linkwork/papers/{p}/__init__.py" for p in PAPERS} <= readme
+
+
+def test_daemon_timers_let_a_process_end_before_its_pending_timers_fire():
+    """The Snakefile's daemon_timers: a process with an hour-long timer pending (as the scheduler's re-evaluation under
+    the default profile's job-rate limit) ends at once; without it, the same process waits for the timer (checked with
+    a short one, so that the test shows the wait it prevents)."""
+    import subprocess
+    import sys
+    import time
+
+    def run(patch: bool, delay: float) -> float:
+        code = (
+            "import threading\n"
+            + ("from linkwork.pipeline.scheduler import daemon_timers\ndaemon_timers()\n" if patch else "")
+            + f"threading.Timer({delay}, print).start()\n"
+        )
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", code], check=True, timeout=60)
+        return time.perf_counter() - t0
+
+    assert run(True, 3600.0) < 30.0
+    assert run(False, 3.0) >= 3.0
