@@ -14,6 +14,7 @@ from linkwork.engines.chains import (
     Network,
     Parallel,
     Series,
+    _frobenius_conditions,
     near_singular,
     network_system,
     resonances,
@@ -184,6 +185,23 @@ def test_near_singular_agrees_with_the_svd_condition_number():
     assert np.all(flagged[svd_rcond < rcond / (10 * n)])
     assert not np.any(flagged[svd_rcond > 10 * n * rcond])
     assert near_singular(np.zeros((1, n, n), dtype=complex), rcond).tolist() == [True]
+
+
+def test_compiled_frobenius_condition_agrees_with_numpy_inverse():
+    """Second route: the compiled LU condition equals |S|_F |S^-1|_F with numpy's equilibration and batched inverse
+    (to rounding), on random complex matrices of mixed scales (rows and columns scaled over ten decades)."""
+    rng = np.random.default_rng(11)
+    n, count = 6, 200
+    a = (rng.normal(size=(count, n, n)) + 1j * rng.normal(size=(count, n, n))) * 10.0 ** rng.uniform(
+        -5, 5, (count, n, 1)
+    ) * 10.0 ** rng.uniform(-5, 5, (count, 1, n))
+    mag = np.abs(a)
+    row = mag.max(axis=2, keepdims=True)
+    scaled = a / row / (mag / row).max(axis=1, keepdims=True)
+    expected = np.linalg.norm(scaled, axis=(1, 2)) * np.linalg.norm(np.linalg.inv(scaled), axis=(1, 2))
+    assert np.allclose(_frobenius_conditions(a), expected, rtol=1e-9, atol=0.0)
+    a[3, 2] = 0.0  # a zero row: singular, flagged
+    assert np.isinf(_frobenius_conditions(a)[3])
 
 
 @pytest.mark.hard

@@ -33,7 +33,12 @@ from dataclasses import dataclass, field
 from typing import Literal
 
 import numpy as np
+from numba import njit
 from numpy.typing import ArrayLike, NDArray
+
+from ..compilecache import use_for_numba
+
+use_for_numba()  # compiled code cached in the compile cache folder, never below lib/
 
 ComplexArray = NDArray[np.complex128]
 FloatArray = NDArray[np.float64]
@@ -176,38 +181,85 @@ def _batched_solve(a: ComplexArray, b: ComplexArray) -> tuple[ComplexArray, NDAr
         return x, flags
 
 
-def _frobenius2(a: ComplexArray) -> FloatArray:
-    """Squared Frobenius norm of each a[k] (no square root per entry)."""
-    flat = a.reshape(a.shape[0], -1)
-    return np.einsum("ij,ij->i", flat.real, flat.real) + np.einsum("ij,ij->i", flat.imag, flat.imag)
-
-
 def near_singular(a: ComplexArray, rcond: float) -> NDArray[np.bool_]:
     """True where a[k], row- and column-equilibrated (so that units do not matter), has a reciprocal
     condition number below ``rcond``.  The condition number is the Frobenius one, |A|_F |A^-1|_F, which
-    lies between the 2-norm condition and n times it, at the price of one batched inverse instead of a
-    batched SVD (benchmarks/chains.py times the solve with and without this check).  An exactly singular
-    matrix, or one with a zero row or column, is flagged."""
-    mag = np.abs(a)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        row = mag.max(axis=2, keepdims=True)
-        col = (mag / row).max(axis=1, keepdims=True)
-        scaled = a / row / col
-    if not np.isfinite(scaled).all():  # a zero row or column (0 / 0): zero entries, flagged below
-        scaled = np.nan_to_num(scaled, nan=0.0, posinf=0.0, neginf=0.0)
-    bad = np.zeros(a.shape[0], dtype=bool)
-    try:
-        inverse = np.linalg.inv(scaled)
-    except np.linalg.LinAlgError:  # an exactly singular member: invert one by one
-        inverse = np.full_like(scaled, np.nan)
-        for k in range(a.shape[0]):
-            try:
-                inverse[k] = np.linalg.inv(scaled[k])
-            except np.linalg.LinAlgError:
-                bad[k] = True
-    norm = np.sqrt(_frobenius2(scaled) * _frobenius2(inverse))
+    lies between the 2-norm condition and n times it, at the price of one LU factorisation and n solves
+    instead of an SVD (compiled, ``_frobenius_conditions``; benchmarks/chains.py times the solve with and
+    without this check).  An exactly singular matrix, or one with a zero row or column, is flagged."""
     with np.errstate(invalid="ignore"):
-        return bad | ~(norm * rcond < 1.0)
+        return ~(_frobenius_conditions(np.ascontiguousarray(a, dtype=np.complex128)) * rcond < 1.0)
+
+
+@njit(cache=True)
+def _frobenius_conditions(a):
+    """|S|_F |S^-1|_F of each a[k] equilibrated to S (rows scaled to a largest |entry| of 1, then columns),
+    by LU with partial pivoting; inf where S is singular (a zero row, column or pivot)."""
+    count, n = a.shape[0], a.shape[1]
+    out = np.empty(count)
+    lu = np.empty((n, n), dtype=np.complex128)
+    col = np.empty(n)
+    x = np.empty(n, dtype=np.complex128)
+    for k in range(count):
+        singular = False
+        for i in range(n):
+            big = 0.0
+            for j in range(n):
+                big = max(big, abs(a[k, i, j]))
+            if big == 0.0:
+                singular = True
+            for j in range(n):
+                lu[i, j] = a[k, i, j] / big if big > 0.0 else 0.0
+        for j in range(n):
+            big = 0.0
+            for i in range(n):
+                big = max(big, abs(lu[i, j]))
+            col[j] = big
+            if big == 0.0:
+                singular = True
+        if singular:
+            out[k] = np.inf
+            continue
+        norm2 = 0.0
+        for i in range(n):
+            for j in range(n):
+                lu[i, j] /= col[j]
+                norm2 += lu[i, j].real ** 2 + lu[i, j].imag ** 2
+        perm = np.arange(n)
+        for c in range(n):  # LU with partial pivoting, in place
+            p = c
+            for i in range(c + 1, n):
+                if abs(lu[i, c]) > abs(lu[p, c]):
+                    p = i
+            if lu[p, c] == 0.0:
+                singular = True
+                break
+            if p != c:
+                for j in range(n):
+                    lu[c, j], lu[p, j] = lu[p, j], lu[c, j]
+                perm[c], perm[p] = perm[p], perm[c]
+            for i in range(c + 1, n):
+                lu[i, c] /= lu[c, c]
+                f = lu[i, c]
+                for j in range(c + 1, n):
+                    lu[i, j] -= f * lu[c, j]
+        if singular:
+            out[k] = np.inf
+            continue
+        inv2 = 0.0
+        for e in range(n):  # column e of S^-1: solve L U x = P e_e
+            for i in range(n):
+                x[i] = 1.0 if perm[i] == e else 0.0
+            for i in range(n):
+                for j in range(i):
+                    x[i] -= lu[i, j] * x[j]
+            for i in range(n - 1, -1, -1):
+                for j in range(i + 1, n):
+                    x[i] -= lu[i, j] * x[j]
+                x[i] /= lu[i, i]
+                inv2 += x[i].real ** 2 + x[i].imag ** 2
+        out[k] = np.sqrt(norm2 * inv2)
+    return out
 
 
 def network_system(net: Network, w: NDArray[np.float64], amp: ComplexArray) -> tuple[ComplexArray, ComplexArray]:
