@@ -179,7 +179,27 @@ def baseline(rev: str) -> dict[str, object]:
         f"baseline {commit}: full reproduction, warm compile cache: {runs[1]:.0f} s (warm-up run {runs[0]:.0f} s)",
         flush=True,
     )
-    return {"revision": commit, "full_warm_s": runs[1], "warm_up_run_s": runs[0]}
+    return {"revision": commit, "full_warm_s": runs[1], "warm_up_run_s": runs[0], "recorded": recorded(commit)}
+
+
+def recorded(commit: str) -> dict[str, object] | None:
+    """What the baseline revision's own benchmark file says of its warm full reproduction (the machine of that day:
+    machines of one name differ by two to three times between days), or None where it holds no such figure."""
+    import json
+
+    shown = subprocess.run(
+        ["git", "show", f"{commit}:benchmarks/measured/pipeline.json"], cwd=PROJECT, capture_output=True, text=True
+    )
+    if shown.returncode != 0:
+        return None
+    figures = json.loads(shown.stdout)
+    if "full_warm_s" not in figures:
+        return None
+    return {
+        "full_warm_s": figures["full_warm_s"],
+        "runs": len(figures.get("full_warm_runs_s", [figures["full_warm_s"]])),
+        "date": figures.get("machine", {}).get("date", ""),
+    }
 
 
 if __name__ == "__main__":
