@@ -2,7 +2,7 @@
 
 Snakemake's job-rate limiter (its default: 100 jobs a second) makes the scheduler run again one timespan after every
 pass, and each pass stats every input of every waiting job; every finished job starts one more such chain of passes.
-On two cores the passes took 75 s of CPU in a 554 s full reproduction (docs/measured.md), time the jobs lost.  Local
+Measured on two cores (2026-11-28): the passes took 75 s of CPU in a 554 s full reproduction, time the jobs lost.  Local
 jobs start when a core frees (a finished job wakes the scheduler), so the default profile sets a limit no run of this
 workflow reaches over a span no run lasts (profiles/default/profile.yaml), and the scheduler sleeps between jobs.  Its
 pending re-evaluation timers must then not keep the finished run's process alive until they fire: ``daemon_timers``.
