@@ -162,6 +162,18 @@ def key_words(text: str) -> str:
     return re.sub(r"(?<![\w.])[A-Za-z][A-Za-z0-9]*(?:_[A-Za-z0-9]+)+(?![\w.])", word, text)
 
 
+def published_cell(value: float, tolerance: float, relation: str, source: str, digits: int = 5) -> str:
+    """A published value with its acceptance: '1.2 (± 0.005)', '3 (≥ 2.9)'; a one-sided threshold that is our reading
+    of a claim in words (not a printed number) says so: '≤ 0.8 (our reading)'."""
+    sign = {"ge": "≥", "le": "≤"}.get(str(relation))
+    if sign and str(source).startswith("our reading"):
+        return f"{sign} {_num(value, digits)} (our reading)"
+    if sign:
+        edge = value - tolerance if relation == "ge" else value + tolerance
+        return f"{_num(value, digits)} ({sign} {_num(edge, 3)})"
+    return f"{_num(value, digits)} (± {_num(tolerance, 2)})"
+
+
 def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: float = 1.0, digits: int = 5) -> None:
     """Published numbers beside ours with the verdict's ingredients: tolerance and its source, our numerical
     error bar and its source, the range of our value over the assumed inputs, what decides the verdict.
@@ -172,13 +184,14 @@ def comparison_table(rows: pd.DataFrame, caption: str | None = None, scale: floa
             **({"scenario": rows.scenario} if len(scenarios) > 1 else {}),
             "quantity": rows.quantity,
             "published": [
-                f"{_num(p * scale, digits)}"
-                f" ({'≥ ' + _num((p - t) * scale, 3) if r == 'ge' else '± ' + _num(t * scale, 2)})"
-                for p, t, r in zip(rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)))
+                published_cell(p * scale, t * scale, r, s, digits)
+                for p, t, r, s in zip(
+                    rows.published, rows.tolerance, rows.get("relation", ["eq"] * len(rows)), rows.tolerance_source
+                )
             ],
             "tolerance from": rows.tolerance_source,
             "ours": [_num(v * scale, digits) for v in rows.reproduced],
-            "numerical error": [_num(e * scale, 2) for e in rows.numerical_error],
+            "numerical error (in the row's unit)": [_num(e * scale, 2) for e in rows.numerical_error],
             "error from": rows.numerical_source,
             # where no range is shown, the input source says why (no assumed input enters, none propagated there, ...)
             "over the assumed inputs": [
@@ -302,7 +315,7 @@ def consistent_sets_table(unc, cmp: pd.DataFrame, reads: dict[str, set[str]] | N
                 "The best consistent assumption set per scenario: one point of the assumed inputs' box under which most"
                 " of the rows that are not robust deviations match at once (found by bounded searches). A row 'depends"
                 " on assumptions' only if it matches in such a set; a row that matches only where the others fail is"
-                " 'not reconciled'."
+                " 'only where other rows fail'."
             ),
         )
 
@@ -328,9 +341,27 @@ def design_text(unc) -> str:
     return "; ".join(parts)
 
 
-def answer(findings) -> None:
-    """The paper's one-sentence answer, computed by its findings, at the top of its report."""
-    md(f"**Does the paper hold up?** {esc(findings.attrs['answer'])}")
+def answer(paper: str, findings, comparison) -> None:
+    """The paper's answer at the top of its report, then its other findings grouped: what also holds, what also does
+    not, what cannot be tested (each statement rendered from the results; a withdrawn one struck through with its
+    failed condition)."""
+    from linkwork.pipeline import statements
+
+    rendered = statements.render(paper, findings, comparison)
+    md(f"**Does the paper hold up?** {statements.answer(rendered)}")
+    groups = statements.by_kind([r for r in rendered if r.answer is None])  # the answer's own are said above
+    titles = {"holds": "Also holds", "does not hold": "Also does not hold", "cannot be tested": "Cannot be tested"}
+    md("\n\n".join(
+        f"**{titles[kind]}**\n\n" + "\n".join(f"* {r.markdown()}" for r in groups[kind])
+        for kind in statements.KINDS if groups[kind]
+    ))
+
+
+def answer_html(paper: str, findings, comparison) -> str:
+    """The paper's answer as HTML, for a table cell (the index)."""
+    from linkwork.pipeline import statements
+
+    return statements.answer_html(statements.render(paper, findings, comparison))
 
 
 def caption(text: str) -> None:

@@ -82,7 +82,7 @@ sense_value = fnd.sense_value.to_pandas()
 sense_verdict = fnd.sense_verdict.to_pandas()
 our_reading = head[head.tolerance_source.str.startswith("our reading")]
 
-answer(fnd)
+answer("beatup", fnd, cmp)
 
 # %%
 front = f("front_dead_centre")
@@ -571,7 +571,7 @@ table(
     ),
 )
 peaks_pick = fnd.attrs["sense_picked_by_peaks"]
-span_sense = chosen if sense_verdict.loc["span_front_to_back", chosen] == "matches" else other_sense
+span_sense = chosen if sense_verdict.loc["span_front_to_back", chosen] == "reproduced" else other_sense
 md(
     f"**Which sense.** The printed {pub['span_front_to_back']['value']:g}° from front to back dead centre holds for the"
     f" {esc(sense_label[span_sense])}"
@@ -977,8 +977,9 @@ md(
     " between the widths come from where a window's edge falls relative to the impacts, not from a change at the dead"
     " centre. Where a window's numerical error is as large as its turn-to-turn spread, its mean is not resolved: in a"
     " motion that does not repeat, the check rerun's change is the divergence of the trajectory as much as the"
-    f" solver's error. The pin's impacts reach {float(sley.max_contact_force):.0f} N at a penetration of"
-    f" {float(sley.max_penetration) * 1e6:.1f} µm; over a whole turn the clearance moves the sley's acceleration by"
+    f" solver's error. The pin's largest contact force is {float(sley.max_contact_force):.0f} N and its deepest"
+    f" penetration {float(sley.max_penetration) * 1e6:.1f} µm (maxima over all impacts, not necessarily the same one);"
+    " over a whole turn the clearance moves the sley's acceleration by"
     f" {float(sley.rms_deviation):.0f} rad/s² (RMS, mean over the judged turns) from the ideal six-bar's. The four-bar"
     f" (its dimensions assumed, arm to crank {win_cfg['fourbar']['arm_to_crank']['value']:g}) is not the same stroke:"
     f" its sword swings {swing['four-bar']:.1f}° against the six-bar's {swing['six-bar']:.1f}°, so its accelerations"
@@ -990,12 +991,12 @@ md(
 # %% [markdown]
 # ## Appendix: Table 1, all 144 cells against the fitted model
 #
-# Verdict *matches* if |printed − fitted| ≤ half a unit of the printed digit + our numerical error (section 2); the
+# Verdict *reproduced* if |printed − fitted| ≤ half a unit of the printed digit + our numerical error (section 2); the
 # class says why
 # a cell does not match. Derivatives per unit of increasing θ1, as Table 1 prints them.
 
 # %%
-ev["verdict"] = np.where(ev["class"] == "matches the fitted model", "matches", "deviates")
+ev["verdict"] = np.where(ev["class"] == "matches the fitted model", "reproduced", "differs")
 show = ev[
     [
         "theta1", "quantity", "printed", "ours", "deviation", "tolerance", "numerical_error", "nominal_model",

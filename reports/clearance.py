@@ -47,7 +47,7 @@ def worded(df: pd.DataFrame) -> pd.DataFrame:
     return df.apply(lambda col: col.map(lambda x: in_words(x) if isinstance(x, str) else x))
 
 
-answer(fnd)
+answer("clearance", fnd, cmp)
 starts = [str(x) for x in claims.start.values]
 START_MARK = dict(zip(starts, ("o", "s", "^", "D", "v", "P")))
 

@@ -37,7 +37,7 @@ drive_labels = dict(
 model_names = {"A": "physical linkage (model A)", "B": "chain of eq. (2) (model B)"}
 MODEL_INPUTS = {m: fnd.attrs[f"inputs_of_model_{m}"].split(",") for m in models}  # the parameters each model reads
 
-answer(fnd)
+answer("heald", fnd, cmp)
 
 # %%
 claims_drawn = [
@@ -418,9 +418,9 @@ md(
     f" ({entries['parameters.reaction_E']['range'][0]:g}–{entries['parameters.reaction_E']['range'][1]:g} N, below"
     " the kinetostatic magnitudes) stand for that split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ kₙΔ) a common factor"
     " on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the range of the split,"
-    " not of the magnitude, is what decides. Model A's 'depends on assumptions' on this claim therefore means: it"
-    " holds only for an unequal split of the reactions that the paper does not give and the kinetostatics do not"
-    " produce."
+    " not of the magnitude, is what decides. Model A's 'decided by an unprinted input' on this claim therefore"
+    " means: it holds only for an unequal split of the reactions that the paper does not give and the kinetostatics do"
+    " not produce."
 )
 
 # %% [markdown]
@@ -738,7 +738,7 @@ weak_matches = [
     f" put model {m}'s limit"
     for r in rows
     for m in models
-    if r["counted"] == "no" and r[f"model {m}: limit verdict if h is the highest counted"] == "matches"
+    if r["counted"] == "no" and r[f"model {m}: limit verdict if h is the highest counted"] == "reproduced"
 ]
 md(
     ("So the cam's limit verdict depends on the significance fraction: counting " + "; ".join(weak_matches)
@@ -784,8 +784,8 @@ md(
     " forces no longer grow over the whole band (the next table takes the joint damping over its range). The verdicts"
     " of the summary (with the ranges of every assumed input) are those of the harmonic drive, the paper's own"
     " excitation; where the cam changes one, the summary and its figure say so beside it. The harmonic-drive column"
-    " here is the verdict with every input fixed at its assumed value, so it can read 'deviates' where the summary,"
-    " which also spans the inputs' ranges, reads 'depends on assumptions'."
+    " here is the verdict with every input fixed at its assumed value, so it can read 'differs' where the summary,"
+    " which also spans the inputs' ranges, reads 'decided by an unprinted input'."
 )
 
 # %% [markdown]

@@ -18,11 +18,11 @@
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
-from _common import VERDICT_COLOURS, caption, esc, inputs, load, md, read_csv, table
+from _common import VERDICT_COLOURS, answer_html, caption, esc, inputs, load, md, read_csv, table
 from matplotlib.patches import Patch
 
 from linkwork.papers import PAPERS
-from linkwork.pipeline.compare import VERDICT_MEANING, VERDICTS
+from linkwork.pipeline.compare import VERDICT_MEANING, VERDICTS, scenario_of
 
 files = inputs()
 
@@ -42,17 +42,18 @@ for paper, title in PAPERS.items():
     rows.append(
         {
             "paper": f'<a href="{paper}.html">{esc(title)}</a>',
-            "does it hold up?": esc(findings.attrs["answer"]),
+            "does it hold up?": answer_html(paper, findings, comparison),
             "headline rows (defensible model, nominal reading)": (
                 (f"{esc(defensible)}: " if defensible else "") + counts(findings, defensible)
             ),
         }
     )
     headline = comparison[comparison.role == "headline"]
-    scenario = headline["scenario"] if "scenario" in headline else pd.Series([""] * len(headline), index=headline.index)
-    for (model, scen), part in headline.groupby([headline.model, scenario], sort=False):
+    # a paper with one model or one reading leaves that column empty (NaN): keep its rows (groupby drops NaN keys)
+    model_of = headline.model.astype(object).where(headline.model.notna(), "").astype(str)
+    for (model, scen), part in headline.groupby([model_of, scenario_of(headline)], sort=False):
         blocks.append((paper, model, scen, list(part.verdict)))
-table(pd.DataFrame(rows), html_columns=("paper",))
+table(pd.DataFrame(rows), html_columns=("paper", "does it hold up?"))
 
 # %%
 width = max(len(v) for *_, v in blocks)

@@ -62,7 +62,7 @@ gravity_word = dict(zip(gravity_entry["choices"], gravity_entry["choice_labels"]
 # ## Answer
 
 # %%
-answer(fnd)
+answer("transplanter", fnd, cmp)
 fig, ax = plt.subplots(figsize=(8, 4.2), constrained_layout=True)
 members = [str(m) for m in fnd.member.values]
 xpos = np.arange(len(members))
@@ -486,7 +486,7 @@ md(
             " stress measure other than eq. (8)). "
         )
     )
-    + "The diameters and SS are therefore **not reproducible**, not deviations: we lack the input, not the method. The"
+    + "The diameters and SS are therefore **not printed**, not deviations: we lack the input, not the method. The"
     f" scan reaches {pub_pt.attrs['missing_load_max_N']:g} N in {pub_pt.attrs['missing_load_scan_points']} steps;"
     f" Brent's method resolves each force to {pub_pt.attrs['missing_load_xtol_N']:g} N."
 )

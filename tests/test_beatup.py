@@ -208,9 +208,9 @@ def test_first_row_fixes_the_branches(sixbar):
 def test_headline_numbers(sixbar, published):
     table = compare({**published, "tables": []}, sixbar).set_index("id")
     for qid in ("front_dead_centre", "swing", "span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak"):
-        assert table.loc[qid, "verdict"] == "matches", table.loc[qid]
+        assert table.loc[qid, "verdict"] == "reproduced", table.loc[qid]
     for qid in ("window_sixbar", "window_fourbar", "window_difference"):
-        assert table.loc[qid, "verdict"] == "not reproducible"
+        assert table.loc[qid, "verdict"] == "not printed"
 
 
 def test_crank_sense_is_a_named_choice_read_by_the_model(published):
@@ -293,8 +293,8 @@ def test_velocity_peaks_pick_the_crank_sense(sixbar, published):
     value = dict(zip(ids, notes["data"]["sense_value"][1], strict=True))
     down, up = senses.index("decreasing"), senses.index("increasing")
     for q in ("rate_peak_1", "rate_peak_2", "span_front_to_back"):
-        assert verdict[q][down] == "matches" and verdict[q][up] == "deviates", q
-    assert verdict["accel_peak"][down] == verdict["accel_peak"][up] == "matches"
+        assert verdict[q][down] == "reproduced" and verdict[q][up] == "differs", q
+    assert verdict["accel_peak"][down] == verdict["accel_peak"][up] == "reproduced"
     assert abs(value["rate_peak_1"][up] - 80) > 10 and abs(value["rate_peak_2"][up] - 300) > 10
     view = in_sense(sixbar, "increasing")
     assert float(view.span_front_to_back) == value["span_front_to_back"][up] and "crank_sense" not in view.dims
@@ -306,23 +306,18 @@ def findings(sixbar, published):
     return table, findings
 
 
-def test_answer_is_two_plain_sentences_with_its_numbers_from_the_findings(findings):
-    import re
+def test_the_answer_is_its_statements_with_the_numbers_of_the_findings(findings):
+    """The answer statements hold at the nominal reading and carry the findings' own numbers."""
+    from linkwork.pipeline import statements
 
     table, fnd = findings
-    text = fnd.attrs["answer"]
-    assert len(re.findall(r"[.!?](?:\s|$)", text)) == 2, text
-    assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text and "theta" not in text
-    value = fnd.sense_value.to_pandas()
-    for sense in ("decreasing", "increasing"):
-        for q in ("rate_peak_1", "rate_peak_2"):
-            assert f"{value.loc[q, sense]:.1f}°" in text
-    assert f"{int(fnd.table1_matches)} of {int(fnd.table1_total)} Table 1 cells" in text
-    assert "untested" in text and "21°" in text  # the comparative claim is named as untested
-    kinematic = table[
-        table.id.isin(["front_dead_centre", "swing", "span_front_to_back", "rate_peak_1", "rate_peak_2", "accel_peak"])
-    ]
-    assert f"{int((kinematic.verdict == 'matches').sum())} match" in text
+    rendered = statements.render("beatup", fnd, table)
+    assert all(r.holds for r in rendered if r.answer is not None), [r.failed for r in rendered if not r.holds]
+    text = statements.plain_answer(rendered)
+    assert f"{int(fnd.table1_printed_within_one_digit)} of {int(fnd.table1_total)} Table 1 cells" in text
+    assert "all 6 kinematic headline numbers" in text and "21° gain" in text
+    detail = next(r.text for r in rendered if r.id == "table1_detail")
+    assert f"{int(fnd.table1_printed_within_half_digit)} of {int(fnd.table1_total)}" in detail
 
 
 def test_tolerances_that_are_our_reading_are_marked(published):
@@ -407,11 +402,14 @@ def test_an_unknown_or_unlabelled_crank_sense_is_refused(config, schema, field, 
 
 
 def test_the_answer_follows_the_scenario(published):
-    """In the other crank sense the same code says the motion reproduces only in part and that the peaks pick the other
-    sense."""
+    """In the other crank sense the motion statement's conditions fail (a kinematic number no longer reproduces, and
+    the peaks pick the other sense): the answer shows it withdrawn, with the failed condition."""
+    from linkwork.pipeline import statements
+
     entry = SECTION["sixbar"]["crank_sense"]
     cfg = {**SECTION, "sixbar": {**SECTION["sixbar"], "crank_sense": {**entry, "value": "increasing"}}}
     table, fnd = compare_findings(cfg, published, sixbar_dataset(cfg), window_dataset(cfg), None)
-    text = fnd.attrs["answer"]
-    assert "reproduces only in part" in text and "pick the other sense" in text
-    assert table.set_index("id").loc["span_front_to_back", "verdict"] == "deviates"
+    assert table.set_index("id").loc["span_front_to_back", "verdict"] == "differs"
+    rendered = {r.id: r for r in statements.render("beatup", fnd, table)}
+    assert not rendered["motion"].holds and "every kinematic headline number reproduced" in rendered["motion"].failed
+    assert "~~The six-bar" in statements.answer(list(rendered.values()))

@@ -541,82 +541,18 @@ def test_the_ripple_sentence_says_what_decides_claim_3s_second_part():
     assert ripples_text(findings.assign(claim3_ripples_outcome=(vs, [[1, 1], [1, 1]]))) == ""
 
 
-def test_the_answer_is_plain_sentences_read_from_the_results():
-    """answer() on a hand-made comparison table (two starts) and findings: a few sentences, no code name, the
-    verdicts per variant from the first start, the claim the start decides, the penetration numbers and the law's
-    limit as given (not typed), and the claims that do not survive the other law."""
-    import re
-
-    import pandas as pd
-    import xarray as xr
-
-    from linkwork.papers.clearance.findings import answer
-    from prose import leaks
-
-    verdicts = {
-        "slender": ("undetermined (numerics)", "deviates", "deviates"),
-        "decoded": ("deviates", "undetermined (numerics)", "deviates"),
-    }
-    rows = [
-        {
-            "model": v,
-            "scenario": st,
-            "id": c,
-            "role": "headline",
-            "verdict": "matches" if (st == "start b" and v == "decoded" and c == "acceleration_order") else verdict,
-        }
-        for st in ("start a", "start b")
-        for v, row in verdicts.items()
-        for c, verdict in zip(("acceleration_order", "torque_order", "lubrication_close"), row)
-    ]
-    table = pd.DataFrame(rows)
-    survives = [[[1, 1, 1], [0, 1, 1]], [[1, 1, 1], [1, 1, 1]]]  # decoded, start b: claim 1 changes with the law
-    findings = xr.Dataset(
-        {
-            "dry_penetration_max": ("variant", [1.37, 0.61]),
-            "physically_consistent": ("variant", [0, 0]),
-            "sphere_law_valid": ("variant", [0, 0]),
-            "law_survives": (("variant", "start", "claim"), survives),
-            "claim3_close_holds": (("variant", "start"), [[1, 1], [1, 1]]),
-            "claim3_ripples_holds": (("variant", "start"), [[0, 0], [0, 0]]),
-            "claim3_ripples_outcome": (("variant", "start"), [[0, 0], [0, 0]]),
-        },
-        coords={
-            "variant": ["decoded", "slender"],
-            "start": ["a", "b"],
-            "claim": ["acceleration_order", "torque_order", "lubrication_close"],
-        },
-        attrs={"sphere_law_limit_over_clearance": 0.0635},
-    )
-    text = answer(table, findings)
-    assert len(re.split(r"(?<=[.!?])\s+(?=[A-Z])", text.strip())) <= 5, text
-    from linkwork.papers.clearance.findings import memory_explains
-    own = np.array([[[100.0, 150.0], [100.0, 100.5]]])  # one variant, two scenes: starts 50 apart, and 0.5 apart
-    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [
-        [1, 1]
-    ]  # each swap lands on the donor
-    assert memory_explains(own, np.array([[[140.0, 150.0], [100.5, 100.0]]])).tolist() == [
-        [0, 0]
-    ]  # the swaps keep their own states
-    assert leaks(text) == [], leaks(text)
-    assert text.startswith("No claim") and "1.37 c" in text and "0.61 c" in text and "0.0635 c" in text
-    assert (
-        "claim 2 (crank-torque order) and claim 3 (lubrication close to the ideal) fail" in text
-        and "holds from the start b" in text
-    )
-    assert "claim 1 (decoded, start b) changes outcome" in text and "two parts (decoded, slender)" in text
-
-
 def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_fails_from_the_other():
-    """``memory_relabel``: where the memory swap explains the starts' states, a claim holding decidedly from one start
-    and failing decidedly from the other becomes 'depends on assumptions' decided by the memory; one undetermined from a
-    start and failing from the other keeps its rows (no start shows it holding)."""
+    """``memory_causes``: where the memory swap explains the starts' states, a claim holding decidedly from one start
+    and failing decidedly from the other is told to the classifier as decided by the paper's model (the memory), and
+    the classifier classes every row of it so; one undetermined from a start and failing from the other is not (no
+    start shows it holding)."""
     import pandas as pd
     import xarray as xr
 
     from linkwork.papers.clearance.findings import (
-        MEMORY_DECIDES, NOMINAL_ONLY, NOT_PROPAGATED, memory_relabel, nominal_only,
+        MEMORY_DECIDES, NOMINAL_ONLY, NOT_PROPAGATED, memory_causes, nominal_only,
     )
+    from linkwork.pipeline.compare import compare
 
     claims = xr.Dataset({"outcome_by_start": (("variant", "start", "claim"), np.array([[[0, -1], [1, 0]]]))},
                         coords={"variant": ["decoded"], "start": ["centred", "off-centre"], "claim": ["c1", "c2"]})
@@ -629,16 +565,26 @@ def test_the_contact_memory_decides_only_a_claim_that_holds_from_one_start_and_f
             "model": ["decoded"] * 4,
             "scenario": ["start centred", "start centred", "start off-centre", "start off-centre"],
             "id": ["c1", "c2", "c1", "c2"],
-            "verdict": ["deviates", "undetermined (numerics)", "matches", "deviates"],
+            "verdict": ["differs", "undetermined by our numerics", "reproduced", "differs"],
             "decided_by": ["", "numerical error", "", ""],
             "input_low": [0.0, 0.0, np.nan, np.nan],
         }
     )
-    out = memory_relabel(table, claims, phys)
-    assert (out[out["id"] == "c1"].verdict == "depends on assumptions").all() and (
-        out[out["id"] == "c1"].decided_by == MEMORY_DECIDES
-    ).all()
-    assert out[out["id"] == "c2"].verdict.tolist() == ["undetermined (numerics)", "deviates"]
+    causes = memory_causes(claims, phys)
+    from linkwork.papers.clearance.findings import memory_explains
+
+    own = np.array([[[100.0, 150.0], [100.0, 100.5]]])  # one variant, two scenes: starts 50 apart, and 0.5 apart
+    assert memory_explains(own, np.array([[[100.4, 149.0], [100.0, 100.5]]])).tolist() == [[1, 1]]  # swaps land
+    assert memory_explains(own, np.array([[[140.0, 150.0], [100.5, 100.0]]])).tolist() == [[0, 0]]  # swaps stay
+    assert causes == {"decoded": {"model_decides": {"c1": MEMORY_DECIDES}}}
+    published = {"quantities": [
+        {"id": c, "quantity": c, "value": 1, "unit": "1", "where": "", "relation": "ge", "tolerance": {"abs": 0},
+         "measure": {"variable": c, "reduce": "value"}} for c in ("c1", "c2")
+    ]}
+    ds = xr.Dataset({"c1": ((), 0.0), "c2": ((), 0.0)})
+    rows = compare(published, ds, model="decoded", causes=causes["decoded"]).set_index("id")
+    assert rows.verdict["c1"] == "decided by the paper's model" and rows.decided_by["c1"] == MEMORY_DECIDES
+    assert rows.verdict["c2"] == "differs"  # the classifier's own class where the model is not named
     # a decided verdict in a start without propagated inputs says it holds at the nominal inputs only
     marked = nominal_only(table.assign(input_source="12 samples over 5 inputs"))
     assert marked.decided_by.tolist() == ["", "numerical error", NOMINAL_ONLY, NOMINAL_ONLY]
@@ -677,7 +623,9 @@ def test_a_row_whose_samples_are_all_undetermined_shows_no_range():
             "input_low": [0.0, 0.0, np.nan, np.nan, 1.0],
             "input_high": [0.0, 1.0, np.nan, np.nan, 1.0],
             "input_source": ["12 samples"] * 5,
-            "verdict": ["undetermined (numerics)", "deviates", "deviates", "deviates", "undetermined (numerics)"],
+            "verdict": [
+                "undetermined by our numerics", "differs", "differs", "differs", "undetermined by our numerics",
+            ],
             "decided_by": ["numerical error", np.nan, "", "", "numerical error"],
         }
     )

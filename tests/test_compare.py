@@ -30,20 +30,24 @@ def test_measures():
 def test_verdict_classes():
     nan = math.nan
     # published 1.0 +- 0.005; nominal, numerical error, range over the assumed inputs
-    assert classify(1.0, 0.005, "eq", 1.005, 0.0, nan, nan) == "matches"
-    assert classify(1.0, 0.005, "eq", 1.0051, 0.0, nan, nan) == "deviates"
-    assert classify(1.0, 0.005, "eq", nan, 0.0, nan, nan) == "not reproducible"
+    assert classify(1.0, 0.005, "eq", 1.005, 0.0, nan, nan) == "reproduced"
+    assert classify(1.0, 0.005, "eq", 1.0051, 0.0, nan, nan) == "differs"
+    assert classify(1.0, 0.005, "eq", nan, 0.0, nan, nan) == "not printed"
+    # the causes the values cannot show: an undefined value of a model without the quantity; the paper's model deciding
+    assert classify(1.0, 0.005, "eq", nan, 0.0, nan, nan, absent="model") == "no counterpart in this model"
+    assert classify(1.0, 0.005, "eq", 1.0, 0.0, nan, nan, model_decides=True) == "decided by the paper's model"
     assert (
-        classify(1.0, 0.005, "eq", 1.004, 0.002, 1.004, 1.004) == "undetermined (numerics)"
+        classify(1.0, 0.005, "eq", 1.004, 0.002, 1.004, 1.004) == "undetermined by our numerics"
     )  # the error bar straddles
-    assert classify(1.0, 0.005, "eq", 1.004, 0.0, 0.99, 1.02) == "depends on assumptions"  # the inputs' range straddles
+    # the inputs' range straddles
+    assert classify(1.0, 0.005, "eq", 1.004, 0.0, 0.99, 1.02) == "decided by an unprinted input"
     assert (
-        classify(1.0, 0.005, "eq", 1.010, 0.0, 1.002, 1.02) == "depends on assumptions"
+        classify(1.0, 0.005, "eq", 1.010, 0.0, 1.002, 1.02) == "decided by an unprinted input"
     )  # deviates nominally, not robustly
-    assert classify(1.0, 0.005, "eq", 1.010, 0.001, 1.008, 1.02) == "deviates"
-    assert classify(1.0, 0.005, "eq", 1.000, 0.001, 0.998, 1.003) == "matches"
-    assert classify(3.0, 0.0, "ge", 2.9, 0.01, 2.5, 3.5) == "depends on assumptions"
-    assert classify(3.0, 0.0, "ge", 3.2, 0.01, 3.1, 30.0) == "matches"
+    assert classify(1.0, 0.005, "eq", 1.010, 0.001, 1.008, 1.02) == "differs"
+    assert classify(1.0, 0.005, "eq", 1.000, 0.001, 0.998, 1.003) == "reproduced"
+    assert classify(3.0, 0.0, "ge", 2.9, 0.01, 2.5, 3.5) == "decided by an unprinted input"
+    assert classify(3.0, 0.0, "ge", 3.2, 0.01, 3.1, 30.0) == "reproduced"
     assert acceptance(3.0, 0.0, "ge")[1] == math.inf
 
 
@@ -77,13 +81,13 @@ def test_tables_expand_cell_by_cell_and_compare():
     }
     assert [e["id"] for e in expand_tables(published)] == ["t.b@0", "t.b@10"]
     table = compare(published, DS, model="m").set_index("id")
-    assert table.loc["kmax", "verdict"] == "matches"
-    assert table.loc["gone", "verdict"] == "not reproducible"
-    assert table.loc["t.b@0", "verdict"] == "matches"
-    assert table.loc["t.b@10", "verdict"] == "deviates"
+    assert table.loc["kmax", "verdict"] == "reproduced"
+    assert table.loc["gone", "verdict"] == "not printed"
+    assert table.loc["t.b@0", "verdict"] == "reproduced"
+    assert table.loc["t.b@10", "verdict"] == "differs"
     assert np.isclose(table.loc["t.b@10", "deviation"], -1.0)
     counts = verdict_counts(table.reset_index())
-    assert counts == {v: {"matches": 2, "deviates": 1, "not reproducible": 1}.get(v, 0) for v in counts}
+    assert counts == {v: {"reproduced": 2, "differs": 1, "not printed": 1}.get(v, 0) for v in counts}
     assert (table.role == ["headline", "headline", "table cell", "table cell"]).all()
 
 
@@ -133,7 +137,7 @@ def test_nominal_rows_and_the_verdicts_other_scenarios_change():
     from linkwork.pipeline.compare import nominal_rows, scenario_changes
 
     table = pd.DataFrame({"model": ["A"] * 4, "id": ["x", "y"] * 2, "scenario": ["on", "on", "off", "off"],
-                          "verdict": ["matches", "deviates", "matches", "matches"]})
+                          "verdict": ["reproduced", "differs", "reproduced", "reproduced"]})
     assert list(nominal_rows(table).scenario) == ["on", "on"]
     changed = scenario_changes(table)
     assert list(changed.id) == ["y"] and list(changed.scenario) == ["off"]
@@ -143,7 +147,7 @@ def test_nominal_rows_and_the_verdicts_other_scenarios_change():
 
 def test_each_scenario_can_carry_its_own_numerical_error_bar():
     """``errors`` per scenario index: the second scenario's row is judged with its own error bar (here 0: decided,
-    so 'deviates' where the first scenario's bar of 1 leaves it undetermined) and its source is not marked as
+    so 'differs' where the first scenario's bar of 1 leaves it undetermined) and its source is not marked as
     borrowed; a plain (value, source) pair keeps the old behaviour (the first scenario's, marked)."""
     import numpy as np
     import xarray as xr
@@ -177,12 +181,12 @@ def test_each_scenario_can_carry_its_own_numerical_error_bar():
         coords={"scenario": ["start a", "start b"], "quantity": ["|c"], "input": ["x"]},
     )
     own = compare(published, ds, errors={"c": {0: (1.0, "bar"), 1: (0.0, "bar")}}, uncertainty=study)
-    assert own.verdict.tolist() == ["undetermined (numerics)", "deviates"] and own.numerical_source.tolist() == [
+    assert own.verdict.tolist() == ["undetermined by our numerics", "differs"] and own.numerical_source.tolist() == [
         "bar",
         "bar",
     ]
     borrowed = compare(published, ds, errors={"c": (1.0, "bar")}, uncertainty=study)
-    assert borrowed.verdict.tolist() == ["undetermined (numerics)", "undetermined (numerics)"]
+    assert borrowed.verdict.tolist() == ["undetermined by our numerics", "undetermined by our numerics"]
     assert borrowed.numerical_source.tolist() == ["bar", "bar (the first scenario's)"]
 
 

@@ -338,12 +338,12 @@ def test_the_sources_fingerprint_moves_with_code_config_and_pins_and_not_with_te
 def test_the_readme_check_names_a_changed_number_and_a_changed_word():
     from linkwork.project.readme import END, START, differences, stamp
 
-    fresh = f"{START}\n\nK max 3.4600e+06 N/m, verdict deviates\n\n{END}"
-    readme = f"intro\n{START}\n{stamp('0' * 64)}\n\nK max 3.4601e+06 N/m, verdict deviates\n\n{END}\nend"
+    fresh = f"{START}\n\nK max 3.4600e+06 N/m, verdict differs\n\n{END}"
+    readme = f"intro\n{START}\n{stamp('0' * 64)}\n\nK max 3.4601e+06 N/m, verdict differs\n\n{END}\nend"
     assert differences(readme, fresh) == []  # within 1e-3, the stamp ignored
     changed = differences(readme.replace("3.4601e+06", "3.5e+06"), fresh)
     assert changed == ["README 3.5e+06 against this run's 3.4600e+06"]
-    assert differences(readme.replace("deviates", "matches"), fresh) == ["the findings differ in words"]
+    assert differences(readme.replace("differs", "reproduced"), fresh) == ["the findings differ in words"]
 
 
 def _workflow_rules() -> tuple[set[str], set[str]]:

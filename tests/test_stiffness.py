@@ -332,7 +332,10 @@ def test_material_statement_is_computed_from_the_printed_sections():
     text = fnd.attrs["material_statement"]
     assert "E = 210 MPa with A₁ = 330 cm² does not describe a steel mechanism" in text
     assert "1000 times" in text and f"{np.sqrt(0.0330) * 1e3:.0f} mm on a side on a 15 mm crank" in text
-    assert "210" not in fnd.attrs["answer"]  # the material is the report's detail, not the answer's
+    from linkwork.pipeline import statements
+
+    answer = statements.plain_answer(statements.render("stiffness", fnd, _compared()[0]))
+    assert "1000 times below steel's" in answer and "182 mm square on a 15 mm crank" in answer
 
 
 def test_pinned_stiffness_statement_follows_the_result():
@@ -347,28 +350,27 @@ def test_pinned_stiffness_statement_follows_the_result():
     assert float(fnd.pinned_varies_considerably) == float(float(ds.K_pinned_max_over_min) >= 1.2)
 
 
-def test_the_conclusion_is_one_verdict_per_form_and_counted_once():
+def test_the_conclusion_is_one_verdict_per_form_and_the_counts_count_rows():
     from linkwork.papers.stiffness.findings import CONCLUSION, conclusion_verdicts
 
     table, fnd = _compared()
     forms = [str(f) for f in fnd.form.values]
-    # each form's count holds its eight stiffness numbers and the conclusion once (not its two claims)
+    # each form's count holds its rows as the classifier classed them: eight stiffness numbers and the two claims
     for form in forms:
         counted = int(fnd.verdict_count.sel(count_model=form, role="headline").isel(count_scenario=0).sum())
-        assert counted == int(fnd.headline_total.sel(form=form)) + 1 == 9
-    assert list(fnd.conclusion_verdict.values) == ["matches"] * (len(forms) - 1) + ["deviates"]
+        assert counted == int(fnd.headline_total.sel(form=form)) + 2 == 10
+    assert list(fnd.conclusion_verdict.values) == ["reproduced"] * (len(forms) - 1) + ["differs"]
     assert (
-        int(fnd.verdict_count.sel(count_model="tables", role="headline", verdict="matches").isel(count_scenario=0))
-        == int(fnd.headline_matches.sel(form="tables")) + 1
+        int(fnd.verdict_count.sel(count_model="tables", role="headline", verdict="reproduced").isel(count_scenario=0))
+        == int(fnd.headline_matches.sel(form="tables")) + 2
     )
     # the combined verdict: one stiffness found near constant makes the conclusion deviate
     claims = table[table.id.isin(CONCLUSION)].copy()
     forms = forms[:3]
-    claims.loc[(claims.model == "equilibrium") & (claims.id == "K_c_not_constant"), "verdict"] = "deviates"
-    claims.loc[(claims.model == "tables") & (claims.id == "K_h_not_constant"), "verdict"] = "undetermined (numerics)"
-    assert conclusion_verdicts(claims, forms) == ["deviates", "undetermined (numerics)", "matches"]
-    # the answer counts the paper's own model's stiffness numbers without the conclusion
-    assert f"({int(fnd.headline_matches.sel(form='tables'))} of 8 within rounding)" in fnd.attrs["answer"]
+    claims.loc[(claims.model == "equilibrium") & (claims.id == "K_c_not_constant"), "verdict"] = "differs"
+    undetermined = "undetermined by our numerics"
+    claims.loc[(claims.model == "tables") & (claims.id == "K_h_not_constant"), "verdict"] = undetermined
+    assert conclusion_verdicts(claims, forms) == ["differs", "undetermined by our numerics", "reproduced"]
     # a threshold claim shows our max/min itself, not a percentage of the threshold
     assert str(fnd.deviation_unit.sel(quantity_id="K_h_not_constant").values) == "ratio"
     head = table[table.role == "headline"].set_index(["model", "id"])
@@ -395,8 +397,8 @@ def test_the_pinned_form_judges_the_conclusion_on_the_real_joints():
     assert list(fnd.joints.values) == ["welded", "welded", "welded", "pinned"]
     check_finite(fnd, "findings")  # the writer's check: a NaN says what it means (no pinned K_h)
     assert np.isnan(float(fnd.deviation_shown.sel(form="pinned", quantity_id="K_h_max")))
-    # K_h has no pinned counterpart: every K_h row of the pinned form is 'not reproducible', saying why
-    assert _ids(table, "pinned", "not reproducible") == {
+    # K_h has no pinned counterpart: every K_h row of the pinned form says so (the model's cause, not the paper's)
+    assert _ids(table, "pinned", "no counterpart in this model") == {
         "K_h_max",
         "K_h_argmax",
         "K_h_min",
@@ -416,7 +418,7 @@ def test_the_pinned_form_judges_the_conclusion_on_the_real_joints():
     assert (
         row.reproduced == float(ds.K_pinned.max() / ds.K_pinned.min())
         and 1.0 < row.reproduced < 1.2
-        and row.verdict == "deviates"
+        and row.verdict == "differs"
     )
     # the pinned K_c numbers are the pinned output stiffness's extremes and mean, several times the published K_c
     pinned = table[(table.model == "pinned")].set_index("id")
@@ -425,54 +427,25 @@ def test_the_pinned_form_judges_the_conclusion_on_the_real_joints():
     )
     # the scenario decides the conclusion: it holds welded, deviates pinned
     assert (
-        list(fnd.conclusion_by_joints.values) == ["matches", "deviates"] and int(fnd.conclusion_decided_by_joints) == 1
+        list(fnd.conclusion_by_joints.values) == ["reproduced", "differs"]
+        and int(fnd.conclusion_decided_by_joints) == 1
     )
-    # the defensible model's count holds the conclusion over the joint model, which decides it: depends on assumptions
+    # the defensible model's count holds its rows as classified: every stiffness number differs, both claims hold
     counted = fnd.verdict_count.sel(count_model="equilibrium", role="headline").isel(count_scenario=0)
-    assert int(counted.sel(verdict="matches")) == int(fnd.headline_matches.sel(form="equilibrium")) == 0
-    assert int(counted.sel(verdict="deviates")) == int(fnd.headline_total.sel(form="equilibrium"))
-    assert int(counted.sel(verdict="depends on assumptions")) == 1
-    assert str(fnd.conclusion_counted_for_defensible.values) == "depends on assumptions"
-    # the paper's own model keeps its welded verdict: the conclusion counts as a match there
-    own = fnd.verdict_count.sel(count_model="tables", role="headline", verdict="matches").isel(count_scenario=0)
-    assert int(own) == int(fnd.headline_matches.sel(form="tables")) + 1
+    assert int(fnd.headline_matches.sel(form="equilibrium")) == 0 and int(counted.sel(verdict="reproduced")) == 2
+    assert int(counted.sel(verdict="differs")) == int(fnd.headline_total.sel(form="equilibrium"))
 
 
 def test_a_pinned_mechanism_that_varies_considerably_changes_the_verdict():
     """A longer crank and a stiff rocker make the pinned output vary by more than 1.2: the pinned K_c claim then
-    matches, so the pinned conclusion is 'not reproducible' (K_h has no counterpart), still not a match, and the answer
-    says so."""
+    matches, so the pinned conclusion has no counterpart (K_h has none), still not a match."""
     cfg = load_yaml("config/config.yaml")["stiffness"]
     members = {k: dict(v) for k, v in cfg["members"].items()}
     members["BO"]["second_moment_m4"] *= 1e4
     table, fnd = _compared(linkage=cfg["linkage"] | {"crank_m": 0.03}, members=members)
     assert float(fnd.pinned_max_over_min) > 1.2 and int(fnd.pinned_varies_considerably) == 1
-    assert "K_c_not_constant" in _ids(table, "pinned", "matches")
-    assert list(fnd.conclusion_by_joints.values) == ["matches", "not reproducible"]
-    counted = fnd.verdict_count.sel(count_model="equilibrium", role="headline", verdict="not reproducible").isel(
-        count_scenario=0
-    )
-    assert int(counted) == 1
-    assert "so with the joints pinned it is 'not reproducible'" in fnd.attrs["answer"]
-
-
-def test_the_answer_is_two_plain_sentences_read_from_the_findings():
-    import re
-
-    table, fnd = _compared()
-    text = fnd.attrs["answer"]
-    assert len(re.findall(r"[.!?](?:\s|$)", text)) == 2, text
-    assert not re.search(r"\b[A-Za-z]+_[A-Za-z0-9_]+\b", text) and "{" not in text
-    assert text.startswith("The published stiffness numbers follow the paper's own Tables 1–2")
-    assert (
-        f"({int(fnd.headline_matches.sel(form='tables'))} of {int(fnd.headline_total.sel(form='tables'))} within"
-        " rounding)"
-        in text
-    )
-    assert "statics none of the 8 match" in text and int(fnd.headline_matches.sel(form="equilibrium")) == 0
-    assert "depends on the joint model: it holds with the joints welded" in text
-    assert f"max/min {float(fnd.welded_max_over_min_least):.2f}–{float(fnd.welded_max_over_min_most):.2f}" in text
-    assert f"varies by max/min {float(fnd.pinned_max_over_min):.2f}, below the 1.2" in text
+    assert "K_c_not_constant" in _ids(table, "pinned", "reproduced")
+    assert list(fnd.conclusion_by_joints.values) == ["reproduced", "no counterpart in this model"]
 
 
 def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_path):
@@ -517,7 +490,9 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
         r"\s+", " ",
         html.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<style.*?</style>|<script.*?</script>", "", body, flags=re.S))),
     )
-    answer = re.sub(r"\s+", " ", fnd.attrs["answer"])
+    from linkwork.pipeline import statements
+
+    answer = statements.plain_answer(statements.render("stiffness", fnd, table))
     heading = text.index("The stiffness paper (Huang, Wu, Li 2022)")
     assert text.index(answer) > heading
     # the answer, then the one figure (its caption), then the paper's citation and the rest
@@ -534,22 +509,8 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     assert "stiffness." not in prose.replace("stiffness. ", "") and not re.search(r"\{[^}]*\}", prose)
     # the conclusion judged on the pinned joints is stated, with the joint model as the deciding scenario
     plain = re.sub(r" ([:;,.])", r"\1", text)
-    assert "The joint model decides it: welded joints, matches; pinned joints, deviates." in plain
-    assert (
-        "its 5 numbers are not reproducible" in plain
-    )  # the pinned mechanism's K_h numbers, counted from the comparison
-    assert "On the machine's pinned joints its verdict is deviates" in plain
+    assert "The joint model decides it: welded joints, reproduced; pinned joints, differs (section 6)." in plain
+    assert "its 5 numbers have no counterpart" in plain  # the pinned mechanism's K_h numbers, counted
+    assert "On the machine's pinned joints its verdict is differs" in plain
 
 
-def test_the_conclusion_on_the_machine_depends_on_the_joint_model_where_it_decides():
-    """The conclusion counted for the machine is judged over the joint model (a named scenario): the common verdict
-    where welded and pinned agree, 'depends on assumptions' where they disagree."""
-    from linkwork.papers.stiffness.findings import physical_verdict
-
-    assert (
-        physical_verdict({"equilibrium": "matches", "tables": "matches", "pinned": "deviates"})
-        == "depends on assumptions"
-    )
-    assert physical_verdict({"equilibrium": "matches", "tables": "matches", "pinned": "matches"}) == "matches"
-    assert physical_verdict({"equilibrium": "deviates", "pinned": "deviates"}) == "deviates"
-    assert physical_verdict({"equilibrium": "matches", "pinned": "not reproducible"}) == "not reproducible"

@@ -130,8 +130,8 @@ def test_consistent_set_reconciles_the_rows_that_can_match_together():
     from linkwork.pipeline.compare import compare
 
     table = compare(published, xr.Dataset({"r1": 0.5, "r2": 0.5, "r3": 0.5}), uncertainty=ds).set_index("id")
-    assert table.loc["r1", "verdict"] == table.loc["r2", "verdict"] == "depends on assumptions"
-    assert table.loc["r3", "verdict"] == "not reconciled"
+    assert table.loc["r1", "verdict"] == table.loc["r2", "verdict"] == "decided by an unprinted input"
+    assert table.loc["r3", "verdict"] == "only where other rows fail"
 
 
 def test_a_scenario_gets_its_own_block_of_rows():
@@ -142,13 +142,13 @@ def test_a_scenario_gets_its_own_block_of_rows():
     assert list(ds.scenario.values) == ["plain", "shifted"]
     table = compare(published, xr.Dataset({"y": 0.5}), uncertainty=ds)
     assert list(table.scenario) == ["plain", "shifted"]
-    assert list(table.verdict) == ["matches", "deviates"]
+    assert list(table.verdict) == ["reproduced", "differs"]
     assert table.reproduced.iloc[1] == pytest.approx(10.5)
 
 
 def test_printed_rounding_is_its_own_class():
     """A value inside its tolerance at the printed inputs that only a rounding input moves out: 'matches as
-    printed', not 'depends on assumptions'."""
+    printed', not 'decided by an unprinted input'."""
     ins = [Input("p.value", 1.0, 0.995, 1.005, "printed to 0.01", kind="rounding")]
     published = {"quantities": [_entry("y", 1.0, 0.003)]}
     from linkwork.pipeline.uncertainty import evaluated_dataset, summary
@@ -156,8 +156,8 @@ def test_printed_rounding_is_its_own_class():
     chosen = samples(ins, 0, 1)
     ds = summary([evaluated_dataset([{("", "y"): s.values.get("p.value", 1.0)} for s in chosen], ins, chosen)], ins)
     table = compare(published, xr.Dataset({"y": 1.0}), uncertainty=ds)
-    assert table.verdict.iloc[0] == "matches as printed"
-    assert classify(1.0, 0.003, "eq", 1.004, 0.0, 0.995, 1.005, rounding_only=True) == "deviates as printed"
+    assert table.verdict.iloc[0] == "reproduced at the printed digits"
+    assert classify(1.0, 0.003, "eq", 1.004, 0.0, 0.995, 1.005, rounding_only=True) == "differs at the printed digits"
 
 
 def test_apply_replaces_only_existing_paths_on_a_copy():

@@ -441,7 +441,7 @@ def compare(cfg, published, result):
     """Rule study: the comparison table and the findings."""
     table = compare_datasets(published, [result])
     findings = counts_dataset(table)
-    findings.attrs.update(findings_attrs("Toy 2026", "", "", "It holds up: its one number is ours."))
+    findings.attrs.update(findings_attrs("Toy 2026", "", ""))
     return table, findings
 '''
     ),
@@ -487,8 +487,21 @@ REPORT_INPUTS["toy"] = paper_report("toy", result="results/toy/result.nc")
 from _common import answer, comparison_table, inputs, load
 
 files = inputs()
-answer(load(files["findings"]))
+answer("toy", load(files["findings"]), load(files["comparison"]))
 comparison_table(load(files["comparison"]))
+"""
+    ),
+    "lib/linkwork/papers/toy/statements.yaml": (
+        """findings:
+  - id: holds
+    answer: 1
+    kind: holds
+    text: "It holds up: its one number, {{ ours | num }}, is ours."
+    values:
+      ours: {row: {id: answer}, column: reproduced}
+      verdict: {row: {id: answer}, column: verdict}
+    when:
+      - {test: "verdict == 'reproduced'", says: "the number reproduced"}
 """
     ),
     "config/published/toy.yaml": (
@@ -518,7 +531,8 @@ def test_a_sixth_paper_joins_the_dag_the_index_and_the_findings_without_a_shared
     )
     assert "Toy 2026: one printed number" in (clone / "results/readme_findings.md").read_text()
     assert "toy.html" in (clone / "results/reports/index.html").read_text()
-    assert "It holds up: its one number is ours." in (clone / "results/reports/toy.html").read_text()
+    assert "It holds up: its one number, 42, is ours." in (clone / "results/reports/toy.html").read_text()
+    assert "It holds up: its one number, 42, is ours." in (clone / "results/readme_findings.md").read_text()
     for rules in (clone / "workflow").rglob("*.smk"):
         assert "paper ==" not in rules.read_text(), rules
 
@@ -564,6 +578,62 @@ def test_reports_and_readme_findings_hold_no_code_names_in_prose(built):
         title = page_title((built / f"results/reports/{paper}.html").read_text()).lower()
         words = {w for w in re.findall(r"[a-z]{5,}", PAPERS[paper].lower())}
         assert words & set(re.findall(r"[a-z]{5,}", title)), (paper, title)
+
+
+#: How many words a paper's answer may take: a reader takes it in at once.
+ANSWER_WORDS = 60
+
+
+def _labels_as_labels(text: str, labels: set[str]) -> list[str]:
+    """Model-variant and scenario labels used as labels in ``text``: a phrase of several words anywhere, a one-word
+    label in parentheses, after a '·' or beside 'model'/'variant', a one-letter label as a word."""
+    found = []
+    for label in labels:
+        if not label:
+            continue
+        if " " in label and label.lower() in text.lower():
+            found.append(label)
+        elif len(label) == 1 and re.search(rf"(?<![\w'’]){re.escape(label)}(?![\w'’])", text):
+            found.append(label)
+        elif re.search(rf"\({re.escape(label)}\)|· {re.escape(label)}\b|\b{re.escape(label)} (model|variant)\b"
+                       rf"|\b(model|variant) {re.escape(label)}\b", text, re.I):
+            found.append(label)
+    return found
+
+
+def test_every_answer_is_short_plain_and_every_row_is_the_classifiers_own(built):
+    """Each paper's answer, rendered from its generated findings as the README, the index and its report show it: at
+    most ANSWER_WORDS words, no verdict-class name, no scenario or variant label used as a label, no code name; and
+    every comparison row's class is what the classifier gives from the row alone (no relabelling after it)."""
+    import pandas as pd
+    import xarray as xr
+
+    from linkwork.papers import PAPERS
+    from linkwork.pipeline import statements
+    from linkwork.pipeline.compare import VERDICTS, reclassify
+    from prose import leaks
+
+    for paper in PAPERS:
+        findings = xr.open_dataset(built / f"results/{paper}/findings.nc")
+        table = pd.read_csv(built / f"results/{paper}/comparison.csv", keep_default_na=False, na_values=[""])
+        rendered = statements.render(paper, findings, table)
+        text = " ".join(r.text for r in sorted(rendered, key=lambda r: r.answer or 0) if r.answer is not None)
+        assert 0 < len(text.split()) <= ANSWER_WORDS, (paper, len(text.split()), text)
+        assert not [v for v in VERDICTS if re.search(rf"\b{re.escape(v)}\b", text, re.I)], (paper, text)
+        labels = {str(x) for c in ("model", "scenario") if c in table for x in table[c].dropna().unique()}
+        assert not _labels_as_labels(text, labels), (paper, _labels_as_labels(text, labels), text)
+        assert not leaks(text), (paper, leaks(text))
+        for row in table.to_dict("records"):
+            assert reclassify(row) == row["verdict"], (paper, row["id"], row.get("scenario"), row["verdict"])
+    readme = (built / "results/readme_findings.md").read_text()
+    index = (built / "results/reports/index.html").read_text()
+    for paper in PAPERS:  # the same answer in the README block, the index and the report
+        findings = xr.open_dataset(built / f"results/{paper}/findings.nc")
+        table = pd.read_csv(built / f"results/{paper}/comparison.csv", keep_default_na=False, na_values=[""])
+        rendered = statements.render(paper, findings, table)
+        assert statements.answer(rendered) in readme, paper
+        assert statements.answer_html(rendered) in index, paper
+        assert statements.answer(rendered).split(".")[0] in (built / f"results/reports/{paper}.html").read_text()
 
 
 def test_second_run_has_nothing_to_do(built):

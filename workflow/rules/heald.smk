@@ -69,7 +69,7 @@ rule heald_compare:
         "results/heald/findings.nc",
     params:
         study="linkwork.papers.heald.findings:compare",
-        cfg=section("heald", *HEALD_MODEL, "models", design=True),  # the flip bisections read the ranges
+        cfg=section("heald", *HEALD_MODEL, "models", "loom_band_rpm", design=True),  # the flips read the ranges
     script:
         STUDY
 

@@ -36,12 +36,22 @@ REPORT_INPUTS["index"] = {
 }
 
 
+# Each paper's statements (its findings as text with placeholders and conditions, linkwork.pipeline.statements),
+# rendered by its report, the index and the README block: an edit of a statement re-renders only those.
+STATEMENTS = {p: f"lib/linkwork/papers/{p}/statements.yaml" for p in PAPERS}
+
+
 def report_inputs(wildcards):
     notebook = f"reports/{wildcards.report}.py"
+    statements = (
+        list(STATEMENTS.values()) if wildcards.report == "index" else [STATEMENTS[wildcards.report]]
+        if wildcards.report in STATEMENTS else []
+    )
     return {
         "notebook": notebook,
         "template": "reports/templates/linkwork/index.html.j2",
         "code": code_of(notebook, RENDERER),
+        **({"statements": statements} if statements else {}),
         **REPORT_INPUTS[wildcards.report],
     }
 
@@ -67,6 +77,7 @@ rule readme_findings:
     input:
         **{f"findings_{p}": f"results/{p}/findings.nc" for p in PAPERS},
         **{f"comparison_{p}": f"results/{p}/comparison.csv" for p in PAPERS},
+        statements=list(STATEMENTS.values()),
         code=code("linkwork.project.readme"),
     output:
         "results/readme_findings.md",

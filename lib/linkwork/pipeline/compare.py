@@ -18,26 +18,44 @@ A measure is ``{variable, reduce, dim}`` with ``reduce`` one of ``max``,
 ``range`` (max - min), ``value`` (a scalar variable) or ``at`` (with
 ``at: {coord: value}``); an optional ``scale`` converts the result's unit to the
 published unit.  A ``measure: null`` marks a number the paper does not give
-enough to reproduce (verdict "not reproducible"; say why in ``note``).
+enough to reproduce (verdict "not printed"; say why in ``note``).
 A table column is a variable name, or ``{variable, unit, tolerance}`` when the
 columns differ in unit or precision.
 
-Verdict classes (``classify``): with the acceptance region A of a published value (value +- tolerance, or
-one-sided for ``ge``/``le``), our value N at the nominal inputs of a scenario, our numerical error bar e and the
-range [low, high] of our value over the box of the continuous inputs (``linkwork.pipeline.search``),
+Verdict classes (``classify``) name their cause: the paper's own numbers, an input it does not print, its model, or our
+numerics.  With the acceptance region A of a published value (value +- tolerance, or one-sided for ``ge``/``le``), our
+value N at the nominal inputs of a scenario, our numerical error bar e and the range [low, high] of our value over the
+box of the continuous inputs (``linkwork.pipeline.search``):
 
-``not reproducible``          N is undefined (the paper lacks what is needed);
-``undetermined (numerics)``   [N - e, N + e] is partly inside A and partly outside;
-``matches``                   [low - e, high + e] lies inside A;
-``deviates``                  [low - e, high + e] lies outside A;
-``matches as printed``        N lies in A, and only the rounding of printed values (their last digit) moves it out;
-``deviates as printed``       N lies outside A, and only the rounding of printed values moves it in;
-``depends on assumptions``    the verdict changes within the assumed inputs' ranges, and the row matches in a
-                              consistent set (one point of the box under which as many of the paper's rows
-                              match at once as under the best such point);
-``not reconciled``            the row matches somewhere in the box, but only where other rows of the paper fail:
-                              no consistent set includes it.
+The paper's own numbers decide
 
+``reproduced``                        [low - e, high + e] lies inside A;
+``differs``                           [low - e, high + e] lies outside A (the table says by how much);
+``reproduced at the printed digits``  N lies in A, and only the rounding of printed values (their last digit) moves it
+                                      out;
+``differs at the printed digits``     N lies outside A, and only the rounding of printed values moves it in;
+
+An input the paper does not print decides (the row's 'decided by' names it)
+
+``decided by an unprinted input``     the verdict changes within the assumed inputs' ranges, and the row matches in a
+                                      consistent set (one point of the box under which as many of the paper's rows
+                                      match at once as under the best such point);
+``only where other rows fail``        the row matches somewhere in the box, but only where other rows of the paper
+                                      fail: no consistent set includes it;
+``not printed``                       N is undefined: the paper does not print what the number needs;
+
+The model decides
+
+``decided by the paper's model``      the paper's own model leaves the row open whatever the inputs (the caller names
+                                      the cause, e.g. a contact law's memory of its first impact: ``model_decides``);
+``no counterpart in this model``      N is undefined because this model variant has no such quantity
+                                      (``absent="model"``), not because the paper omits an input;
+
+Our numerics decide
+
+``undetermined by our numerics``      [N - e, N + e] is partly inside A and partly outside.
+
+The class is the classifier's own: no step after ``classify`` changes it.
 A modelling choice is a named scenario (one block of rows each), never a range.
 
 Published numbers are read here and nowhere else in the library; they never
@@ -54,44 +72,74 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+#: Every class, most favourable first; each names its cause (``CAUSE``).
 VERDICTS = (
-    "matches", "matches as printed", "depends on assumptions", "not reconciled", "undetermined (numerics)",
-    "deviates as printed", "deviates", "not reproducible",
+    "reproduced", "reproduced at the printed digits", "decided by an unprinted input", "only where other rows fail",
+    "decided by the paper's model", "undetermined by our numerics", "differs at the printed digits", "differs",
+    "no counterpart in this model", "not printed",
 )
-#: Each class in a few plain words, for legends and the index.
+#: What decides each class: the paper's numbers, an input it does not print, a model, or our numerics.
+CAUSE = {
+    "reproduced": "the paper's numbers",
+    "reproduced at the printed digits": "the paper's numbers",
+    "differs at the printed digits": "the paper's numbers",
+    "differs": "the paper's numbers",
+    "decided by an unprinted input": "an input the paper does not print",
+    "only where other rows fail": "an input the paper does not print",
+    "not printed": "an input the paper does not print",
+    "decided by the paper's model": "the paper's model",
+    "no counterpart in this model": "our model",
+    "undetermined by our numerics": "our numerics",
+}
+#: Each class in a few plain words, for legends and the index: the one verdict-to-word map.
 VERDICT_MEANING = {
-    "matches": (
+    "reproduced": (
         "within the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit,"
         " within it), with our error bar"
     ),
-    "matches as printed": "within the tolerance at the printed values; the last printed digit of an input moves it out",
-    "depends on assumptions": "matches under a consistent set of assumptions, fails under others",
-    "not reconciled": "matches only under assumptions where other rows of the paper fail",
-    "undetermined (numerics)": "our own numerical error bar straddles the tolerance",
-    "deviates as printed": "outside the tolerance at the printed values; only the last printed digit moves it in",
-    "deviates": (
+    "reproduced at the printed digits": (
+        "within the tolerance at the printed values; the last printed digit of an input moves it out"
+    ),
+    "decided by an unprinted input": (
+        "an input the paper does not print decides: within the tolerance for some of its values, outside for others"
+    ),
+    "only where other rows fail": (
+        "within the tolerance only for unprinted inputs under which other rows of the paper fail"
+    ),
+    "decided by the paper's model": "the paper's own model leaves it open whatever the inputs (the row says why)",
+    "undetermined by our numerics": "our own numerical error bar straddles the tolerance",
+    "differs at the printed digits": (
+        "outside the tolerance at the printed values; only the last printed digit moves it in"
+    ),
+    "differs": (
         "outside the tolerance over the whole range of the assumed inputs judged (where 'decided by' names a limit,"
         " within it), with our error bar"
     ),
-    "not reproducible": "the paper lacks what reproducing it needs",
+    "no counterpart in this model": "this model variant has no such quantity",
+    "not printed": "the paper does not print what reproducing it needs",
 }
 #: One colour per class, for tables and the index's matrix.
 VERDICT_COLOURS = {
-    "matches": "#a6dba0",
-    "matches as printed": "#d9f0d3",
-    "depends on assumptions": "#c6dbef",
-    "not reconciled": "#9e9ac8",
-    "undetermined (numerics)": "#fee391",
-    "deviates as printed": "#fcbba1",
-    "deviates": "#ef8a62",
-    "not reproducible": "#d9d9d9",
+    "reproduced": "#a6dba0",
+    "reproduced at the printed digits": "#d9f0d3",
+    "decided by an unprinted input": "#c6dbef",
+    "only where other rows fail": "#9e9ac8",
+    "decided by the paper's model": "#dadaeb",
+    "undetermined by our numerics": "#fee391",
+    "differs at the printed digits": "#fcbba1",
+    "differs": "#ef8a62",
+    "no counterpart in this model": "#f0f0f0",
+    "not printed": "#d9d9d9",
 }
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
     "model", "scenario", "id", "role", "quantity", "where", "published", "relation", "unit", "tolerance",
     "tolerance_source", "reproduced", "deviation", "relative_deviation", "numerical_error", "numerical_source",
-    "input_low", "input_high", "input_source", "decided_by", "in_consistent_set", "verdict",
+    "input_low", "input_high", "input_source", "decided_by", "in_consistent_set", "told", "verdict",
 ]
+#: What a row's ``told`` column may hold: what the classifier was told beyond the row's numbers (';'-joined), so that
+#: its class can be recomputed from the row alone (``reclassify``).
+TOLD = ("rounding only", "model decides", "absent from the model")
 
 
 def evaluate_measure(ds: xr.Dataset, measure: Mapping[str, Any]) -> float:
@@ -157,26 +205,32 @@ def _outside(lo: float, hi: float, region: tuple[float, float]) -> bool:
 
 
 def classify(published: float, tolerance: float, relation: str, nominal: float, error: float, low: float, high: float,
-             rounding_only: bool = False, consistent: bool | None = None) -> str:
+             rounding_only: bool = False, consistent: bool | None = None, model_decides: bool = False,
+             absent: str = "paper") -> str:
     """The verdict class of one comparison (see the module docstring); NaN ``error`` counts as 0.
 
     ``rounding_only``: only the rounding of printed values moves the row across its boundary; ``consistent``:
-    whether the row matches in a maximal consistent assumption set (None: not searched, taken as yes)."""
+    whether the row matches in a maximal consistent assumption set (None: not searched, taken as yes);
+    ``model_decides``: the paper's model leaves the row open whatever the inputs (the caller names why);
+    ``absent``: why an undefined value is undefined, 'paper' (not printed) or 'model' (no counterpart)."""
     if not np.isfinite(nominal):
-        return "not reproducible"
+        return "no counterpart in this model" if absent == "model" else "not printed"
+    if model_decides:
+        return "decided by the paper's model"
     region = acceptance(published, tolerance, relation)
     e = 0.0 if not np.isfinite(error) else abs(error)
     if not _inside(nominal - e, nominal + e, region) and not _outside(nominal - e, nominal + e, region):
-        return "undetermined (numerics)"
+        return "undetermined by our numerics"
     lo = min(nominal, low if np.isfinite(low) else nominal) - e
     hi = max(nominal, high if np.isfinite(high) else nominal) + e
     if _inside(lo, hi, region):
-        return "matches"
+        return "reproduced"
     if _outside(lo, hi, region):
-        return "deviates"
+        return "differs"
     if rounding_only:
-        return "matches as printed" if _inside(nominal - e, nominal + e, region) else "deviates as printed"
-    return "not reconciled" if consistent is False else "depends on assumptions"
+        inside = _inside(nominal - e, nominal + e, region)
+        return "reproduced at the printed digits" if inside else "differs at the printed digits"
+    return "only where other rows fail" if consistent is False else "decided by an unprinted input"
 
 
 def crossing_inputs(
@@ -241,8 +295,13 @@ def compare(
     model: str = "",
     errors: Mapping[str, tuple[float, str]] | None = None,
     uncertainty: xr.Dataset | None = None,
+    causes: Mapping[str, Any] | None = None,
 ) -> pd.DataFrame:
     """The comparison table for one result Dataset (one model variant), one block of rows per scenario.
+
+    ``causes`` tells the classifier what the values cannot: ``{"model_decides": {id: why}}`` names rows the paper's
+    model leaves open whatever the inputs ('decided by' says why), ``{"absent": why}`` that an undefined value has no
+    counterpart in this model variant (else it is taken as not printed by the paper).
 
     ``errors``: published id -> (our numerical error bar in the published unit, where it comes from), or -> {scenario
     index: (error bar, source)} where each scenario has its own; an id missing here has no estimate (NaN; it cannot
@@ -259,7 +318,7 @@ def compare(
     rows = [
         row
         for n, label in enumerate(scenario_labels)
-        for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label)
+        for row in _scenario_rows(published, ds, model, errors or {}, uncertainty, n, label, causes or {})
     ]
     return pd.DataFrame(rows, columns=COLUMNS)
 
@@ -304,7 +363,8 @@ def _scenario_samples(uncertainty: xr.Dataset, n: int) -> int:
 
 
 def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, errors: Mapping[str, tuple[float, str]],
-                   uncertainty: xr.Dataset | None, n: int, scenario: str) -> list[dict[str, Any]]:
+                   uncertainty: xr.Dataset | None, n: int, scenario: str,
+                   causes: Mapping[str, Any]) -> list[dict[str, Any]]:
     """The comparison rows of one model variant in scenario ``n`` (named ``scenario``)."""
     rows = []
     for entry in [*published.get("quantities", []), *expand_tables(published)]:
@@ -335,9 +395,18 @@ def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, err
             )
         elif entry["measure"] is None:
             source = "not reproducible: nothing to propagate"
-        verdict_class = classify(value, tol, relation, reproduced, error, low, high, rounding_only, consistent)
-        if verdict_class in ("depends on assumptions", "not reconciled", "matches as printed", "deviates as printed"):
+        model_decides = (causes.get("model_decides") or {}).get(entry["id"])
+        absent = "model" if causes.get("absent") else "paper"
+        verdict_class = classify(value, tol, relation, reproduced, error, low, high, rounding_only, consistent,
+                                 model_decides=bool(model_decides), absent=absent)
+        told = [name for name, flag in zip(TOLD, (rounding_only, bool(model_decides), absent == "model")) if flag]
+        if verdict_class in ("decided by an unprinted input", "only where other rows fail",
+                             "reproduced at the printed digits", "differs at the printed digits"):
             decider = decided_by(acceptance(value, tol, relation), reproduced, error, study["oat"])
+        elif verdict_class == "decided by the paper's model":
+            decider = str(model_decides)
+        elif verdict_class == "no counterpart in this model":
+            source = str(causes["absent"])
         deviation = reproduced - value
         rows.append(
             {
@@ -362,10 +431,25 @@ def _scenario_rows(published: Mapping[str, Any], ds: xr.Dataset, model: str, err
                 "input_source": source,
                 "decided_by": decider,
                 "in_consistent_set": np.nan if consistent is None else float(consistent),
+                "told": "; ".join(told),
                 "verdict": verdict_class,
             }
         )
     return rows
+
+
+def reclassify(row: Mapping[str, Any]) -> str:
+    """The class ``classify`` gives a comparison row from the row alone (its numbers and what it was told): a test
+    that every row's final class is the classifier's own, with no relabelling after it."""
+    told = {x.strip() for x in str(row.get("told") or "").split(";") if x.strip()}
+    consistent = row.get("in_consistent_set")
+    consistent = None if consistent is None or not np.isfinite(float(consistent)) else bool(consistent)
+    return classify(
+        float(row["published"]), float(row["tolerance"]), str(row["relation"]), float(row["reproduced"]),
+        float(row["numerical_error"]), float(row["input_low"]), float(row["input_high"]),
+        rounding_only="rounding only" in told, consistent=consistent, model_decides="model decides" in told,
+        absent="model" if "absent from the model" in told else "paper",
+    )
 
 
 def verdict_counts(table: pd.DataFrame) -> dict[str, int]:
@@ -383,10 +467,12 @@ def compare_datasets(
     datasets: list[xr.Dataset],
     errors: Mapping[str, Mapping[str, tuple[float, str]]] | None = None,
     uncertainty: xr.Dataset | None = None,
+    causes: Mapping[str, Mapping[str, Any]] | None = None,
 ) -> pd.DataFrame:
     """The comparison table over the merged result Datasets, one block per model variant.
 
-    ``errors``: model variant -> published id -> (numerical error bar, source); see ``compare``.
+    ``errors``: model variant -> published id -> (numerical error bar, source); ``causes``: model variant -> what
+    the classifier is told beyond the values; see ``compare``.
     """
     ds = xr.merge(datasets, combine_attrs="drop")
     dim = next((d for d in VARIANT_DIMS if d in ds.dims), None)
@@ -394,7 +480,8 @@ def compare_datasets(
     errors = errors or {}
     return pd.concat(
         [
-            compare(published, ds.sel({dim: v}) if dim else ds, model=v, errors=errors.get(v), uncertainty=uncertainty)
+            compare(published, ds.sel({dim: v}) if dim else ds, model=v, errors=errors.get(v), uncertainty=uncertainty,
+                    causes=(causes or {}).get(v))
             for v in variants
         ],
         ignore_index=True,
@@ -449,19 +536,6 @@ def counts_dataset(table: pd.DataFrame) -> xr.Dataset:
     )
 
 
-#: Each class as a count reads in prose ('3 match').
-COUNT_WORDS = {
-    "matches": "match",
-    "matches as printed": "match as printed",
-    "depends on assumptions": "depend on assumptions",
-    "not reconciled": "not reconciled with the other rows",
-    "undetermined (numerics)": "undetermined by numerics",
-    "deviates as printed": "deviate as printed",
-    "deviates": "deviate",
-    "not reproducible": "not reproducible",
-}
-
-
 def scenario_of(table: pd.DataFrame) -> pd.Series:
     """Each row's scenario as text ('' where it has none; a column empty in every row reads back from CSV as NaN)."""
     if "scenario" not in table:
@@ -489,43 +563,15 @@ def scenario_changes(table: pd.DataFrame) -> pd.DataFrame:
     return rest[[first.get(k) is not None and first.get(k) != v for k, v in zip(keys, rest.verdict, strict=True)]]
 
 
-def count_text(table: pd.DataFrame, model: str, role: str = "headline", scenario: str | None = None) -> str:
-    """'3 match, 1 deviates, 2 depend on assumptions' for one model's rows of one role (classes that occur) in one
-    scenario (default: the first, the nominal choices)."""
-    part = table[(table.model == model) & (table.role == role)]
-    if "scenario" in part and len(part):
-        part = part[part.scenario == (part.scenario.iloc[0] if scenario is None else scenario)]
-    return ", ".join(
-        f"{int((part.verdict == v).sum())} {COUNT_WORDS[v]}" for v in VERDICTS if (part.verdict == v).any()
-    )
-
-
-def lead_word(rows: pd.DataFrame) -> str:
-    """The first word of an answer from a set of verdicts: 'Yes.' if every row matches, 'No.' if none
-    matches and none could (no row depends on assumptions or is undetermined), 'Partly.' otherwise."""
-    verdicts = set(rows.verdict)
-    if verdicts <= {"matches", "matches as printed"}:
-        return "Yes."
-    if not verdicts & {
-        "matches",
-        "matches as printed",
-        "depends on assumptions",
-        "undetermined (numerics)",
-        "deviates as printed",
-        "not reconciled",
-    }:
-        return "No."
-    return "Partly."
-
-
 def input_name(path: str) -> str:
     """The short name of an uncertain input's key path ('parameters.M_P.value' -> 'M_P')."""
     return path.removesuffix(".value").rsplit(".", 1)[-1]
 
 
-def findings_attrs(title: str, defensible: str, paper_model: str, answer: str) -> dict[str, str]:
-    """The attributes every paper's findings carry: which model is defensible, which is the paper's own, the answer."""
-    return {"title": title, "defensible_model": defensible, "paper_model": paper_model, "answer": answer}
+def findings_attrs(title: str, defensible: str, paper_model: str) -> dict[str, str]:
+    """The attributes every paper's findings carry: which model is defensible and which is the paper's own (the
+    answer is rendered from the paper's statements, ``linkwork.pipeline.statements``)."""
+    return {"title": title, "defensible_model": defensible, "paper_model": paper_model}
 
 
 def scalar(value: float, unit: str, long_name: str) -> tuple:

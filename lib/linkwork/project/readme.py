@@ -24,6 +24,7 @@ START, END = (
 #: The sources a reproduction's results are computed from (relative to the project root): the workflow, its
 #: config and published numbers, the library and the pinned versions.  Tests, docs and benchmarks are not among them.
 SOURCES = ("Snakefile", "constraints.txt", "pyproject.toml", "config/**/*.yaml", "lib/linkwork/**/*.py",
+           "lib/linkwork/**/*.yaml",
            "workflow/**/*.smk", "workflow/**/*.py")
 STAMP = re.compile(r"<!-- sources sha256 ([0-9a-f]{64}) ")
 NUMBER = re.compile(r"[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
@@ -121,10 +122,12 @@ def _range(low: float, high: float, source: str) -> str:
 
 
 def _published(row: Any) -> str:
-    """'≥ 3', '41.89 rad/s': the published value with its relation and unit (none for a pure number)."""
+    """'≥ 3', '41.89 rad/s': the published value with its relation and unit (none for a pure number); a threshold
+    that is our reading of a claim in words says so."""
     sign = {"ge": "≥ ", "le": "≤ "}.get(str(row.relation), "")
     unit = "" if str(row.unit) == "1" else f" {row.unit}"
-    return f"{sign}{_num_like(row.published, row.published)}{unit}"
+    ours = " (our reading)" if sign and str(getattr(row, "tolerance_source", "")).startswith("our reading") else ""
+    return f"{sign}{_num_like(row.published, row.published)}{unit}{ours}"
 
 
 def _blocks(comparison: Any, defensible: str, own: str) -> list[tuple[str, str]]:
@@ -137,38 +140,32 @@ def _blocks(comparison: Any, defensible: str, own: str) -> list[tuple[str, str]]
 
 
 def paper_block(paper: str, title: str, findings: Any, comparison: Any) -> str:
-    """Markdown for one paper: the answer, then every headline number: ours on the defensible model in its first
-    scenario with its range over the assumed inputs, and the verdict in every model variant and named scenario."""
+    """Markdown for one paper: its answer (rendered from its statements), then one compact table of every headline
+    number: ours on the defensible model in its first scenario (the nominal reading), its range over the assumed
+    inputs and its verdict; the other variants and scenarios are the report's."""
+    from ..pipeline import statements
+
     defensible = findings.attrs["defensible_model"]
     own = findings.attrs["paper_model"]
     if "scenario" not in comparison:
         comparison = comparison.assign(scenario="")
     comparison = comparison.assign(scenario=comparison.scenario.fillna("").astype(str))
-    blocks = _blocks(comparison, defensible, own)
-    first = blocks[0]
+    first = _blocks(comparison, defensible, own)[0]
     rows = comparison[
         (comparison.role == "headline") & (comparison.model == first[0]) & (comparison.scenario == first[1])
     ]
-    name = lambda b: " · ".join(x for x in b if x)  # noqa: E731
-    lines = [f"### {paper}: {title}", "", findings.attrs["answer"], ""]
-    label = f" ({name(first)})" if name(first) else ""
-    verdicts = [f"verdict ({name(b)})" if name(b) else "verdict" for b in blocks]
-    head = f"| published number | published | ours{label} | over the assumed inputs | " + " | ".join(verdicts) + " |"
-    lines += [head, "|" + "---|" * (head.count("|") - 1)]
-    indexed = {
-        b: (
-            comparison[
-                (comparison.role == "headline") & (comparison.model == b[0]) & (comparison.scenario == b[1])
-            ].set_index("id")
-        )
-        for b in blocks
-    }
+    reading = " · ".join(x for x in first if x)
+    answer = statements.answer(statements.render(paper, findings, comparison))
+    lines = [f"### {paper}: {title}", "", answer, ""]
+    if reading:
+        lines += [f"Nominal reading: {reading}.", ""]
+    head = "| published number | published | ours | over the assumed inputs | verdict |"
+    lines += [head, "|---|---|---|---|---|"]
     for row in rows.itertuples():
         cells = [
             row.quantity, _published(row), _num_like(row.reproduced, row.published),
-            _range(row.input_low, row.input_high, row.input_source),
+            _range(row.input_low, row.input_high, row.input_source), row.verdict,
         ]
-        cells += [indexed[b].loc[row.id, "verdict"] if row.id in indexed[b].index else "–" for b in blocks]
         lines.append("| " + " | ".join(str(c).replace("|", "∣") for c in cells) + " |")
     return "\n".join(lines)
 

@@ -11,7 +11,7 @@ import xarray as xr
 
 from ...pipeline.compare import compare_datasets, counts_dataset, findings_attrs
 from .validity import elastic_law_validity, penetration_limit
-from .words import CLAIM_WORDS, SCENE_WORDS, VARIANT_WORDS, in_words, ripple_bounds, sample_in_words
+from .words import SCENE_WORDS, VARIANT_WORDS, in_words, ripple_bounds, sample_in_words
 
 
 #: The slender-rod inertias are the defensible variant: with the decoded (printed) ones the Hertz
@@ -52,18 +52,18 @@ def compare(
 ) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table per variant and its verdict counts, the physics that interprets them and the verdicts'
     sensitivity to the contact law and its memory (``laws``: ``sensitivity.model_sensitivity`` per variant)."""
-    table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty)
-    table = undetermined_ranges(nominal_only(with_reasons(table, claims)), uncertainty)
     phys = physics(claims, cfg, uncertainty).merge(claim3_parts(claims))
     law_attrs = {}
     if laws:
         law = law_sensitivity(claims, laws, cfg, phys)
         phys, law_attrs = phys.merge(law), law.attrs
-        table = memory_relabel(table, claims, phys)
+    table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty,
+                             causes=memory_causes(claims, phys))
+    table = undetermined_ranges(nominal_only(with_reasons(table, claims)), uncertainty)
     findings = counts_dataset(table).merge(phys)
     findings.attrs.update(law_attrs)
     findings.attrs.update(
-        findings_attrs("Clearance paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings))
+        findings_attrs("Clearance paper: comparison findings", DEFENSIBLE, PAPER_MODEL)
     )
     findings.attrs["film_cap_note"] = film_cap_text(findings)
     return table, findings
@@ -76,20 +76,25 @@ MEMORY_DECIDES = (
 )
 
 
-def memory_relabel(table: pd.DataFrame, claims: xr.Dataset, phys: xr.Dataset) -> pd.DataFrame:
-    """A claim (per variant) that holds decidedly from one start and fails decidedly from another, where swapping the
-    latched impact velocities swaps the dry scenes' states (``memory_explains``), is decided by that memory, not by the
-    linkage: every scenario's row of it becomes 'depends on assumptions', decided by the memory.  A claim undetermined
-    from one start and failing from the other is not (no start shows it holding)."""
-    out = table.copy()
+def memory_causes(claims: xr.Dataset, phys: xr.Dataset) -> dict[str, dict[str, dict[str, str]]]:
+    """What the classifier is told per variant: a claim that holds decidedly from one start and fails decidedly from
+    another, where swapping the latched impact velocities swaps the dry scenes' states (``memory_explains``), is
+    decided by the contact damping's memory, a part of the paper's model, not by the linkage: every scenario's row of
+    it is 'decided by the paper's model'.  A claim undetermined from one start and failing from the other is not (no
+    start shows it holding).  Needs the law sensitivity's ``memory_explains`` (none: nothing is said)."""
+    out: dict[str, dict[str, dict[str, str]]] = {}
+    if "memory_explains" not in phys:
+        return out
     for v in claims.variant.values:
         if not int(phys.memory_explains.sel(variant=v).sum()):
             continue
-        for c in claims.claim.values:
-            if {0, 1} <= set(claims.outcome_by_start.sel(variant=v, claim=c).values.tolist()):
-                rows = (out.model == v) & (out["id"] == c)
-                out.loc[rows, "verdict"] = "depends on assumptions"
-                out.loc[rows, "decided_by"] = MEMORY_DECIDES
+        decided = {
+            str(c): MEMORY_DECIDES
+            for c in claims.claim.values
+            if {0, 1} <= set(claims.outcome_by_start.sel(variant=v, claim=c).values.tolist())
+        }
+        if decided:
+            out[str(v)] = {"model_decides": decided}
     return out
 
 
@@ -116,7 +121,7 @@ def nominal_only(table: pd.DataFrame) -> pd.DataFrame:
     first = out.scenario.iloc[0] if len(out) else None
     other = (out.scenario != first) & out.input_low.isna()
     out.loc[other, "input_source"] = NOT_PROPAGATED
-    rows = other & out.verdict.isin(["deviates", "matches"]) & out.decided_by.fillna("").eq("")
+    rows = other & out.verdict.isin(["differs", "reproduced"]) & out.decided_by.fillna("").eq("")
     out.loc[rows, "decided_by"] = NOMINAL_ONLY
     return out
 
@@ -126,7 +131,7 @@ def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> 
     within their own margins show no input range: their range cells would hold only the nominal run's outcome on its
     means, which its margins do not decide.  The verdict does not change (such a range is the nominal value alone).  An
     undetermined row some of whose samples are decided shows no range either: the decided few span no range of the
-    inputs (the cell says how many).  A decided verdict ('deviates', 'matches') some of whose samples are undetermined
+    inputs (the cell says how many).  A decided verdict ('differs', 'reproduced') some of whose samples are undetermined
     holds at the decided ones only: 'decided by' names the others."""
     if uncertainty is None or "sample_claim_outcome" not in uncertainty:
         return table
@@ -156,7 +161,7 @@ def undetermined_ranges(table: pd.DataFrame, uncertainty: xr.Dataset | None) -> 
             ]
         elif (
             (outcomes == -1).any()
-            and row.verdict in ("deviates", "matches")
+            and row.verdict in ("differs", "reproduced")
             and not (isinstance(row.decided_by, str) and row.decided_by)
         ):
             left = [sample_in_words(str(x)) for x in uncertainty.sample.values[of == row.scenario][outcomes == -1]]
@@ -173,7 +178,7 @@ def with_reasons(table: pd.DataFrame, claims: xr.Dataset) -> pd.DataFrame:
     starts = [str(s) for s in claims.start.values] if "claim_decided_by_start" in claims else []
     for i, row in out.iterrows():
         if (
-            row.verdict == "undetermined (numerics)"
+            row.verdict == "undetermined by our numerics"
             and row.model in claims.variant.values
             and row["id"] in claims.claim.values
         ):
@@ -481,130 +486,6 @@ def law_sensitivity(
         other_law_condition=other.condition, other_law_valid=int(other.limits["clearance_in_range"]),
     )
     return out
-
-
-#: A claim's verdict class as a predicate of the claim(s) in plain words.
-VERDICT_PREDICATE = {
-    "matches": ("holds", "hold"),
-    "deviates": ("fails", "fail"),
-    "depends on assumptions": ("depends on assumptions", "depend on assumptions"),
-    "undetermined (numerics)": ("is undetermined by the numerics", "are undetermined by the numerics"),
-}
-
-
-def verdicts_text(table: pd.DataFrame, variant: str, short: bool = False) -> str:
-    """One variant's headline claims grouped by verdict, in words, the failing ones first ('claim 2 (...) fails, while
-    claim 1 (...) and claim 3 (...) are undetermined by the numerics'); ``short``: the claims by number alone."""
-    rows = table[(table.role == "headline") & (table.model == variant)]
-    parts = []
-    for verdict in sorted(dict.fromkeys(rows.verdict), key=lambda v: v != "deviates"):
-        ids = [CLAIM_WORDS.get(str(c), str(c)) for c in rows[rows.verdict == verdict]["id"]]
-        ids = [c.split(" (")[0] for c in ids] if short else ids
-        singular, plural = VERDICT_PREDICATE.get(verdict, (verdict, verdict))
-        parts.append(f"{' and '.join(ids)} {singular if len(ids) == 1 else plural}")
-    return parts[0] + (", while " + ", ".join(parts[1:]) if len(parts) > 1 else "")
-
-
-def answer(table: pd.DataFrame, findings: xr.Dataset) -> str:
-    """Does the paper hold up? Sentences filled from the results: the claims' verdicts per variant from the nominal
-    start, which claims the initial state decides, and whether the verdicts rest on the sphere law outside its range."""
-    from ...pipeline.compare import nominal_rows, scenario_changes
-
-    nominal = nominal_rows(table)
-    headline = nominal[nominal.role == "headline"]
-    confirmed = headline[headline.verdict == "matches"]
-    lead = (
-        "No claim of the paper is confirmed"
-        if confirmed.empty
-        else (
-            f"{confirmed['id'].nunique()} of the paper's {headline['id'].nunique()} claims are confirmed on at least"
-            " one variant"
-        )
-    )
-    first = (f"{lead} (journals starting centred): {VARIANT_WORDS[DEFENSIBLE]} {verdicts_text(nominal, DEFENSIBLE)}; "
-             f"{VARIANT_WORDS[PAPER_MODEL]} {verdicts_text(nominal, PAPER_MODEL, short=True)}.")
-    changed = scenario_changes(table)
-    changed = changed[changed.role == "headline"] if len(changed) else changed
-    if (
-        len(changed) and "law_outcome_sphere" in findings
-    ):  # the state decides only where it holds from one start and fails from another
-        differs = [
-            {0, 1} <= set(findings.law_outcome_sphere.sel(variant=r["model"], claim=r["id"]).values.tolist())
-            for _, r in changed.iterrows()
-        ]
-        changed = changed[differs]
-    second = ""
-    if len(changed):
-        parts = [
-            f"{CLAIM_WORDS.get(str(r['id']), str(r['id'])).split(' (')[0]} ({r['model']})"
-            f" {VERDICT_PREDICATE.get(r['verdict'], (r['verdict'],))[0]} from the {r['scenario']}"
-            for _, r in changed.iterrows()
-        ]
-        second = (
-            " The initial state decides: "
-            + "; ".join(parts)
-            + ", so those claims depend on the state the linkage settles into."
-        )
-    memory = (
-        headline[headline.decided_by.fillna("") == MEMORY_DECIDES] if "decided_by" in headline else headline.iloc[:0]
-    )
-    if len(memory):
-        claims_ = sorted(
-            {
-                f"{CLAIM_WORDS.get(str(r['id']), str(r['id'])).split(' (')[0]} ({r['model']})"
-                for _, r in memory.iterrows()
-            }
-        )
-        second += (
-            f" {' and '.join(claims_).capitalize()}"
-            + (
-                " holds from one start and fails from the other,"
-                if len(claims_) == 1
-                else " hold from one start and fail from the other,"
-            )
-            + " and the starts settle apart only through the impact velocity the contact damping latched at the first"
-            " impact (swapping it swaps the states in "
-            + ", ".join(
-                f"{int(findings.memory_explains.sel(variant=v).sum())} of"
-                f" {findings.memory_explains.sel(variant=v).size} dry scenes of the {v} variant"
-                for v in sorted(set(memory.model))
-            )
-            + "): "
-            "a memory of the printed contact law that no physical input controls, so the paper's model cannot decide "
-            f"{'it' if len(claims_) == 1 else 'them'}."
-        )
-    third = ""
-    if "sphere_law_valid" in findings:
-        depth = {v: float(findings.dry_penetration_max.sel(variant=v)) for v in findings.variant.values}
-        invalid = [str(v) for v in findings.variant.values if not int(findings.sphere_law_valid.sel(variant=v))]
-        lost = [
-            f"{CLAIM_WORDS.get(str(c), str(c)).split(' (')[0]} ({v}, start {st})"
-            for v in findings.variant.values
-            for st in findings.start.values
-            for c in findings.claim.values
-            if not int(findings.law_survives.sel(variant=v, start=st, claim=c))
-        ]
-        limit = float(findings.attrs["sphere_law_limit_over_clearance"])
-        if invalid:
-            third = (
-                f" The dry penetration ({', '.join(f'{v}: {depth[v]:.2f} c' for v in invalid)}) is beyond the sphere"
-                f" law's validity ({limit:.3g} c); under the conformal law of Pereira et al. "
-                + (
-                    "every claim keeps its outcome, so the verdicts stand."
-                    if not lost
-                    else (
-                        f"{', '.join(lost)} {'changes' if len(lost) == 1 else 'change'} outcome:"
-                        f" {'that verdict rests' if len(lost) == 1 else 'those verdicts rest'} on the sphere law"
-                        " outside its range and is not counted as the paper's."
-                        if len(lost) == 1
-                        else (
-                            f"{', '.join(lost)} change outcome: those verdicts rest on the sphere law outside its range"
-                            " and are not counted as the paper's."
-                        )
-                    )
-                )
-            )
-    return f"{first}{second}{third}{ripples_text(findings)}"
 
 
 #: The lubricated scenes claim 3's ripple part compares: joint 2 lubricated (alone, and with joint 1) against joint 1

@@ -103,28 +103,13 @@ def conclusion_verdicts(table: pd.DataFrame, forms: list[str]) -> list[str]:
     out = []
     for form in forms:
         verdicts = set(table[(table.model == form) & table.id.isin(CONCLUSION)].verdict)
-        if verdicts == {"matches"}:
-            out.append("matches")
-        elif "deviates" in verdicts:
-            out.append("deviates")
+        if verdicts == {"reproduced"}:
+            out.append("reproduced")
+        elif "differs" in verdicts:
+            out.append("differs")
         else:
-            out.append(next(v for v in VERDICTS if v in verdicts - {"matches"}))
+            out.append(next(v for v in VERDICTS if v in verdicts - {"reproduced"}))
     return out
-
-
-def conclusion_counted_once(table: pd.DataFrame, forms: list[str],
-                            physical: dict[str, str] | None = None) -> pd.DataFrame:
-    """The comparison rows to count: the conclusion's two claims (K_h, K_c) replaced by one row per form with its
-    combined verdict, so each form's count holds the conclusion once, beside its stiffness numbers.
-
-    ``physical`` names the forms that count the conclusion as judged over the joint model (``physical_verdict``):
-    the defensible model's numbers are the statics-consistent frame's, but a conclusion about the machine is judged
-    on both joint models, the scenario that decides it."""
-    verdicts = dict(zip(forms, conclusion_verdicts(table, forms), strict=True))
-    counted = [verdicts[f] if f not in (physical or {}) else physical_verdict(verdicts) for f in forms]
-    rest = table[~table.id.isin(CONCLUSION)]
-    rows = pd.DataFrame({"model": forms, "id": "conclusion", "role": "headline", "verdict": counted})
-    return pd.concat([rest, rows], ignore_index=True)
 
 
 def axial_statement(cfg: Mapping[str, Any], result: xr.Dataset) -> dict[str, Any]:
@@ -213,7 +198,7 @@ def pinned_dataset(result: xr.Dataset) -> xr.Dataset:
     Its output rotational stiffness (the rocker's at O' per unit torque, crank held; N m/rad) stands where the
     rigid frame has K_c; the kinematics (beta, gamma) are the same linkage's.  K_h is left out on purpose: with O'
     free the pinned chain is a mechanism (mobility 2), so no elastic stiffness resists the horizontal force and
-    every K_h row of this form reads 'not reproducible' rather than a made-up number.
+    every K_h row of this form reads 'no counterpart in this model' rather than a made-up number.
     """
     k = result.K_pinned.expand_dims(form=np.array([PINNED], dtype=object))
     return xr.Dataset({"K_c": k, "beta": result.beta, "gamma": result.gamma})
@@ -222,24 +207,15 @@ def pinned_dataset(result: xr.Dataset) -> xr.Dataset:
 def pinned_comparison(published: Mapping[str, Any], result: xr.Dataset,
                       errors: Mapping[str, tuple[float, str]]) -> pd.DataFrame:
     """The comparison block of the pinned form; its K_h rows say why they have no value (the mobility)."""
-    rows = compare_datasets(published, [pinned_dataset(result)], errors={PINNED: errors})
     free = int(result.mobility.isel(mobility_case=0))
+    absent = (f"no pinned counterpart: with pins at A and B and O' free the chain has mobility {free}, so no member"
+              " resists a horizontal force at O'")
+    rows = compare_datasets(published, [pinned_dataset(result)], errors={PINNED: errors},
+                            causes={PINNED: {"absent": absent}})
     missing = ~np.isfinite(rows.reproduced.to_numpy(dtype=float))
-    rows.loc[missing, "input_source"] = (f"no pinned counterpart: with pins at A and B and O' free the chain has "
-                                         f"mobility {free}, so no member resists a horizontal force at O'")
     rows.loc[missing, "numerical_error"] = np.nan
     rows.loc[missing, "numerical_source"] = "none (no value)"
     return rows
-
-
-def physical_verdict(verdicts: Mapping[str, str]) -> str:
-    """The conclusion's verdict on the machine, over the joint model (a named scenario): the joint models' common
-    verdict, 'not reproducible' where either cannot be judged, and 'depends on assumptions' where welded and pinned
-    joints disagree (the joint model decides it)."""
-    by_joints = joint_verdicts(verdicts)
-    if "not reproducible" in by_joints.values():
-        return "not reproducible"
-    return by_joints["welded"] if by_joints["welded"] == by_joints["pinned"] else "depends on assumptions"
 
 
 def joint_verdicts(verdicts: Mapping[str, str]) -> dict[str, str]:
@@ -274,7 +250,7 @@ def compare(
     used = float(cfg["members"]["OA"]["youngs_modulus_Pa"])
     data: dict[str, Any] = {
         "table3_matches": scalar(
-            (first.verdict == "matches").sum(), "1", "Table 3 angles within half the printed digit"
+            (first.verdict == "reproduced").sum(), "1", "Table 3 angles within half the printed digit"
         ),
         "table3_total": scalar(len(first), "1", "Table 3 angles compared"),
         "table3_max_deviation_beta": scalar(
@@ -286,7 +262,7 @@ def compare(
         ),
         "headline_matches": (
             "form",
-            [int((numbers[numbers.model == f].verdict == "matches").sum()) for f in forms],
+            [int((numbers[numbers.model == f].verdict == "reproduced").sum()) for f in forms],
             {
                 "units": "1",
                 "long_name": (
@@ -304,6 +280,10 @@ def compare(
             float(cfg["steel_youngs_modulus_Pa"]["value"]) / used, "1",
             "steel's modulus over the printed one: the factor every stiffness would grow by",
         ),
+        "crank_section_side": scalar(
+            float(result.section_side.sel(member="OA")), "m", "side of a square of the crank's printed section area"
+        ),
+        "crank_length": scalar(float(result.member_length.sel(member="OA")), "m", "crank length OA"),
     }
     if "printed" in forms:
         kc = headline[
@@ -342,7 +322,7 @@ def compare(
     conclusion = headline[headline.id.isin(CONCLUSION)]
     verdicts = conclusion_verdicts(table, forms)
     data["conclusion_holds"] = (
-        "form", [int((conclusion[conclusion.model == f].verdict == "matches").all()) for f in forms],
+        "form", [int((conclusion[conclusion.model == f].verdict == "reproduced").all()) for f in forms],
         {"units": "1", "long_name": "1 if both stiffnesses are judged not constant (the paper's conclusion), per form"},
     )
     data["conclusion_verdict"] = (
@@ -365,17 +345,6 @@ def compare(
         len(set(by_joints.values())) > 1, "1",
         "1 if the joint model (welded or pinned) changes the conclusion's verdict",
     )
-    data["conclusion_counted_for_defensible"] = (
-        (),
-        physical_verdict(dict(zip(forms, verdicts, strict=True))),
-        {
-            "units": "1",
-            "long_name": (
-                "the conclusion's verdict counted in the defensible model's block: over the joint model (welded or"
-                " pinned), which decides it"
-            ),
-        },
-    )
     data["pinned_K_h_exists"] = scalar(
         0, "1", "0: K_h has no pinned counterpart (the pinned chain with O' free is a mechanism)"
     )
@@ -391,7 +360,7 @@ def compare(
     data["pinned_max_over_min"] = scalar(float(result.K_pinned_max_over_min), "1",
                                          "max/min of the pinned output stiffness over the paper's frames")
     data["table3_all_match"] = scalar(
-        bool((first.verdict == "matches").all()), "1",
+        bool((first.verdict == "reproduced").all()), "1",
         "1 if every Table 3 angle is reproduced within half the printed digit",
     )
     if "implied_youngs_modulus_tables_min" in data:
@@ -429,14 +398,10 @@ def compare(
     }
     coords.update({c: result[c] for c in ("force_form", "load_case")})
     findings = xr.Dataset({**data, **deviations}, coords=coords)
-    counts = counts_dataset(conclusion_counted_once(table, forms, physical={DEFENSIBLE: PINNED}))
-    counts.verdict_count.attrs["long_name"] = (
-        "comparison rows per model, role and verdict class; the conclusion's two claims count as one row "
-        "per form, and the defensible model's block counts it over the joint model (welded or pinned)"
-    )
+    counts = counts_dataset(table)
     findings = findings.merge(counts)
     attrs = findings_attrs(
-        "Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL, answer(table, findings, result)
+        "Stiffness paper: comparison findings", DEFENSIBLE, PAPER_MODEL
     )
     attrs["material_statement"] = material_statement(findings, result)
     attrs["extremes_grid"] = result.attrs["extremes_grid"]
@@ -454,48 +419,3 @@ EQUILIBRIUM_JUMP = 1e-9
 IMPLIED_MODULUS_RTOL = 0.01
 
 
-def answer(table: pd.DataFrame, findings: xr.Dataset, result: xr.Dataset) -> str:
-    """The paper's answer in two plain sentences, decisive fact first: whose numbers the published ones are, and on
-    which joint model the conclusion holds.  Every number is read from the comparison and the findings; the detail
-    (the erratum's size, the axial terms, the material) is the report's."""
-    numbers = table[(table.role == "headline") & ~table.id.isin(CONCLUSION)]
-    own, fair = (numbers[numbers.model == m] for m in (PAPER_MODEL, DEFENSIBLE))
-    n_own, n_fair, total = int((own.verdict == "matches").sum()), int((fair.verdict == "matches").sum()), len(own)
-    follows = n_own > total / 2
-    first = (f"The published stiffness numbers {'follow' if follows else 'do not follow'} the paper's own Tables 1–2 "
-             f"({n_own} of {total} within rounding)")
-    if not bool(findings.tables_in_equilibrium):
-        size = fair.set_index("id").relative_deviation.abs()
-        stiff = [i for i in size.index if i in ("K_h_max", "K_h_min", "K_c_min", "K_c_max")]
-        means = [i for i in size.index if i.endswith("_mean")]
-        first += (
-            ", which are not in equilibrium (a sign error in the coupler's bending moment): with internal forces from "
-            f"statics {'none' if n_fair == 0 else n_fair} of the {total} match (the means within "
-            f"{100 * size[means].max():.1f} %, the extremes off by up to {100 * size[stiff].max():.0f} %)."
-        )
-    else:
-        first += ", and those tables are in equilibrium."
-    by_joints = dict(zip(JOINT_MODELS, findings.conclusion_by_joints.values, strict=True))
-    limit = float(findings.conclusion_ratio_threshold)
-    span = (
-        f"max/min {float(findings.welded_max_over_min_least):.2f}–{float(findings.welded_max_over_min_most):.2f} over"
-        " the turn"
-    )
-    pinned = (
-        "in a model with pinned joints and the crank held the rotational stiffness at the output shaft varies by"
-        f" max/min {float(findings.pinned_max_over_min):.2f},"
-        f" {'at least' if bool(findings.pinned_varies_considerably) else 'below'} the {limit:g} we read as 'varies"
-        " considerably', and the linear stiffness has no counterpart"
-    )
-    if by_joints["welded"] == "matches" and by_joints["pinned"] == "deviates":
-        second = (
-            "Whether the conclusion that neither stiffness is constant holds depends on the joint model: it holds with"
-            f" the joints welded, as the paper models them ({span}), while {pinned}."
-        )
-    else:
-        welded = "holds" if by_joints["welded"] == "matches" else f"is '{by_joints['welded']}'"
-        second = (
-            f"The conclusion that neither stiffness is constant {welded} with the joints welded ({span}); {pinned}, "
-            f"so with the joints pinned it is '{by_joints['pinned']}'."
-        )
-    return f"{first} {second}"

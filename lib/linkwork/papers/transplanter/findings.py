@@ -15,7 +15,7 @@ import pandas as pd
 import xarray as xr
 
 from ...pipeline.compare import (
-    classify, compare_datasets, counts_dataset, findings_attrs, nominal_rows, scalar, scenario_changes,
+    classify, compare_datasets, counts_dataset, findings_attrs, scalar,
 )
 
 def numerical_errors(optim: xr.Dataset, at_published: xr.Dataset, accuracy: xr.Dataset) -> dict[str, tuple[float, str]]:
@@ -53,6 +53,7 @@ def compare(
         uncertainty=uncertainty,
     )
     table = label_compared_solution(table, at_published)
+    density = reproducing_density(table, at_published)
     allowable = float(optim.allowable)
     dynamic = float(ked.peak_stress.sel(diameters="optimal", solution="dynamic"))
     quasi = float(ked.peak_stress.sel(diameters="optimal", solution="quasi-static"))
@@ -89,33 +90,63 @@ def compare(
             "loaded": at_published.loaded,
             "response": at_published.response,
         },
-    ).merge(counts_dataset(table))
+    ).merge(counts_dataset(table)).merge(density)
     findings.damping_threshold.attrs["nan_meaning"] = (
         "no damping ratio in the assumed range brings the peak to the allowable"
     )
     findings.attrs["optimum_dynamic_finding"] = claim["status"]
-    findings.attrs.update(findings_attrs("Transplanter paper: comparison findings", "", "",
-                                         answer(table, findings, float(cfg["minimum_diameter_m"]))))
+    findings.attrs.update(findings_attrs("Transplanter paper: comparison findings", "", ""))
     return table, findings
+
+
+#: The responses at the published optimum that scale with the density alone in the nominal reading (gravity off,
+#: quasi-static: the loads are the inertia loads, proportional to the density; the stiffness does not depend on it).
+DENSITY_ROWS = ("Ux", "Uy", "distortion", "stress_max")
+
+
+def reproducing_density(table: pd.DataFrame, at_published: xr.Dataset) -> xr.Dataset:
+    """The density (kg/m^3) at which each response of the nominal reading would equal its printed value, beside the
+    nominal density: in that reading every response is proportional to the density, so it is nominal x printed / ours.
+    Says which printed rows one density could reproduce, and whether the densities agree."""
+    import json
+
+    cfg = json.loads(at_published.attrs["config_json"])
+    rho = float(cfg["materials"][cfg["material"]["name"]]["density_kg_m3"]["value"])
+    first = table[table.scenario == table.scenario.iloc[0]].set_index("id")
+    values = [rho * float(first.published[q]) / float(first.reproduced[q]) for q in DENSITY_ROWS]
+    return xr.Dataset(
+        {
+            "density_nominal": scalar(rho, "kg m-3", "nominal density of the bars"),
+            "density_reproducing": ("density_row", values, {
+                "units": "kg m-3",
+                "long_name": "density at which the response equals its printed value (gravity off, quasi-static: "
+                             "responses proportional to the density)",
+            }),
+        },
+        coords={"density_row": ("density_row", list(DENSITY_ROWS), {"units": "1", "long_name": "published id"})},
+    )
 
 
 def label_compared_solution(table: pd.DataFrame, at_published: xr.Dataset) -> pd.DataFrame:
     """The paper calls its printed stress 'dynamic' (stress under the inertia loads); our number in that row is the
-    compared solution (config fe.compared_solution, quasi-static or the time-integrated dynamic one): say which."""
+    compared solution of the row's own scenario (quasi-static or the time-integrated dynamic one; where the scenario
+    does not name it, config fe.compared_solution): say which."""
     solution = json.loads(at_published.attrs["config_json"])["fe"]["compared_solution"]["value"]
     out = table.copy()
-    row = out.id == "stress_max"
-    out.loc[row, "quantity"] = out.loc[row, "quantity"].str.rstrip(")") + f"; ours: the {solution} solution)"
+    for i in out.index[out.id == "stress_max"]:
+        scenario = str(out.at[i, "scenario"]) if "scenario" in out else ""
+        own = next((s for s in ("quasi-static", "dynamic") if f"{s} solution" in scenario), solution)
+        out.at[i, "quantity"] = str(out.at[i, "quantity"]).rstrip(")") + f"; ours: the {own} solution)"
     return out
 
 
 #: Our finding on the dynamic safety of our optimum, in words, by the class it would have as a one-sided number
 #: (dynamic peak >= the allowable). Not a verdict: the paper makes no claim about it.
 DYNAMIC_STATUS = {
-    "matches": "unsafe at every damping ratio in the assumed range",
-    "deviates": "safe at every damping ratio in the assumed range",
-    "depends on assumptions": "the damping ratio decides",
-    "undetermined (numerics)": "our numerical error decides",
+    "reproduced": "unsafe at every damping ratio in the assumed range",
+    "differs": "safe at every damping ratio in the assumed range",
+    "decided by an unprinted input": "the damping ratio decides",
+    "undetermined by our numerics": "our numerical error decides",
 }
 
 
@@ -234,96 +265,6 @@ def claim_evidence(optim: xr.Dataset, at_published: xr.Dataset) -> dict[str, tup
     return out
 
 
-def dynamic_clause(findings: xr.Dataset) -> str:
-    """How our dynamic finding stands over the damping range, in words."""
-    lo, hi, allowable = (
-        float(findings.optimum_dynamic_low), float(findings.optimum_dynamic_high), float(findings.allowable),
-    )
-    span = f"{lo / allowable - 1:+.0%} to {hi / allowable - 1:+.0%} over the damping range"
-    status = findings.attrs["optimum_dynamic_finding"]
-    threshold = float(findings.damping_threshold)
-    if np.isfinite(threshold):
-        return f" ({span}: {status}, the threshold is a damping ratio of {threshold:.3f})."
-    return f" ({span}: {status})."
-
-
-def _verdict(table: pd.DataFrame, row: str) -> str:
-    return str(table.set_index("id").loc[row, "verdict"])
-
-
-#: The claims in words, by published id, in the order the answer names them.
-CLAIM_IDS = ("mass_reduced", "lighter_distorts_more", "sections_govern_deflection", "sections_govern_stress")
-#: How the answer names a verdict class of the claims.
-CLAIM_VERDICT_WORDS = {
-    "matches": "hold",
-    "deviates": "fail",
-    "depends on assumptions": "depend on the assumptions",
-    "undetermined (numerics)": "are undetermined by our numerics",
-    "not reproducible": "cannot be judged",
-}
-
-
-def claim_phrase(row: pd.Series, findings: xr.Dataset) -> str:
-    """One claim's measured fact, in words, worded for whether it holds (``row``: its comparison row)."""
-    holds = row.verdict == "matches"
-    if row.id == "mass_reduced":
-        start, end = float(findings.mass_initial), float(findings.mass_published)
-        return f"the mass {'falls' if holds else 'falls only'} from {start:.1f} g to {end:.1f} g"
-    if row.id == "lighter_distorts_more":
-        return (
-            f"the lighter design distorts {'' if holds else 'only '}{float(findings.distortion_ratio):.1f} times as"
-            " much"
-        )
-    response = "tip deflection" if row.id == "sections_govern_deflection" else "peak stress"
-    if holds:
-        return f"the arm's and the coupler's diameters govern the {response}"
-    e = findings.elasticity.sel(response="largest tip displacement" if response == "tip deflection" else "peak stress")
-    weaker = "coupler" if abs(float(e.sel(member="coupler"))) <= abs(float(e.sel(member="arm"))) else "arm"
-    high = float(row.input_high)
-    return (
-        f"1 % on the {weaker}'s diameter moves the {response} by at most {high:.2f} %"
-        if high >= 0.005
-        else (
-            f"at the published optimum, where the arm alone governs, 1 % on the {weaker}'s diameter leaves the"
-            f" {response} unchanged (at most {high:.1e} %)"
-        )
-    )
-
-
-#: The same for numbers compared with printed ones.
-NUMBER_VERDICT_WORDS = {**CLAIM_VERDICT_WORDS, "matches": "match", "deviates": "deviate"}
-#: The singular of each plural verb above.
-SINGULAR = {
-    "hold": "holds",
-    "fail": "fails",
-    "match": "matches",
-    "deviate": "deviates",
-    "depend on the assumptions": "depends on the assumptions",
-    "are undetermined by our numerics": "is undetermined by our numerics",
-    "cannot be judged": "cannot be judged",
-}
-
-
-def in_words(rows: pd.DataFrame, details=None, words=CLAIM_VERDICT_WORDS) -> str:
-    """Verdict counts in words, 'three hold (...) and one fails (...)'; ``details(row)`` adds each row's fact."""
-    groups = []
-    for verdict, word in words.items():
-        part = rows[rows.verdict == verdict]
-        if len(part):
-            verb = word if len(part) > 1 else SINGULAR[word]
-            facts = f" ({'; '.join(details(r) for _, r in part.iterrows())})" if details else ""
-            groups.append(f"{NUMBER_WORDS.get(len(part), str(len(part)))} {verb}{facts}")
-    return " and ".join([", ".join(groups[:-1]), groups[-1]] if len(groups) > 1 else groups)
-
-
-def claims_clause(table: pd.DataFrame, findings: xr.Dataset) -> str:
-    """The claims in words grouped by verdict, each with its measured fact."""
-    return in_words(table.set_index("id").loc[list(CLAIM_IDS)].reset_index(), lambda r: claim_phrase(r, findings))
-
-
-NUMBER_WORDS = {1: "one", 2: "two", 3: "three", 4: "four"}
-
-
 #: The members whose printed optimal diameters a finite penalty factor can explain (the coupler is compared apart).
 NOT_COUPLER = ("crank", "rocker", "arm")
 
@@ -352,34 +293,3 @@ def closest_iterate(optim: xr.Dataset, published: Mapping[str, Any]) -> dict[str
     }
 
 
-def answer(table: pd.DataFrame, findings: xr.Dataset, minimum_diameter_m: float) -> str:
-    """Does the paper hold up? Two plain sentences: the optimum and why it is not reproducible (the bound
-    ``minimum_diameter_m``, m); our deflections and stress at the published optimum and the claims in words."""
-    frac = findings.inertia_fraction_published
-    allowable = float(findings.allowable)
-    first = (
-        "The published optimal diameters cannot be reproduced, because the paper prints neither the penalty factor at"
-        " which its optimiser stopped nor its objective's reference diameter, nor any load beyond the inertia loads:"
-        f" our optimiser passes within {float(findings.closest_gap_mm):.3g} mm of the printed crank, rocker and arm"
-        f" diameters at a penalty factor of {float(findings.closest_r):g}, but its coupler is"
-        f" {float(findings.closest_coupler_mm):.2f} mm there against the printed"
-        f" {float(findings.printed_coupler_mm):.2f}, and under the inertia loads alone the printed rocker and crank"
-        f" carry only {float(frac.sel(member='rocker')) * allowable:.1f} and"
-        f" {float(frac.sel(member='crank')) * allowable:.1f} MPa of the allowable {allowable:.1f} MPa, so a converged"
-        f" optimiser takes them to the {minimum_diameter_m * 1e3:g} mm bound."
-    )
-    nominal = nominal_rows(table)
-    response = nominal[nominal.id.isin(["Ux", "Uy", "distortion", "stress_max"])]
-    words = in_words(response, words=NUMBER_VERDICT_WORDS)
-    scenario = str(nominal.scenario.iloc[0]) if "scenario" in nominal and len(nominal) else ""
-    changed = scenario_changes(table[table.id.isin(["Ux", "Uy", "distortion", "stress_max", *CLAIM_IDS])])
-    others = table.scenario.nunique() - 1 if "scenario" in table else 0
-    readings = f"the other {NUMBER_WORDS.get(others, str(others))} readings of gravity and of the solution"
-    other = (
-        f"; {readings} change {NUMBER_WORDS.get(changed.id.nunique(), str(changed.id.nunique()))} of these verdicts"
-        if len(changed)
-        else f"; {readings} change none of them" if others else ""
-    )
-    second = (f"With {scenario} (our nominal reading), of our deflections and stress at the published optimum {words}, "
-              f"and of the paper's claims in words {claims_clause(nominal, findings)}{other}.")
-    return f"{first} {second}"
