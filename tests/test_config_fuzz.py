@@ -96,8 +96,10 @@ CASES = [
         ["clearance.scenes.1", "not allowed"],
     ),
     (
-        "scene-too-long", "    dry_1: {clearance_joints: [1]", "    " + "d" * 41 + ": {clearance_joints: [1]",
-        ["clearance.scenes." + "d" * 41, "40 characters"],
+        "scene-too-long",
+        "    dry_1: {clearance_joints: [1]",
+        "    dry_" + "abcdefghij" * 3 + ": {clearance_joints: [1]",
+        ["clearance.scenes.dry_" + "abcdefghij" * 3, "32 characters"],
     ),
     (
         "variant-space", "    slender: {inertia: slender}", "    'sl ender': {inertia: slender}",
@@ -396,6 +398,25 @@ CASES = [
         "impact_velocity_floor_m_s: 1.0e-3, viscosity_Pa_s: 0.1, friction: 0.05",
         ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.viscosity_Pa_s", "unknown key"],
     ),
+    # a linkage's names: the one name rule, which Snakemake's wildcards accept (a name of 40 a's or ending in 20
+    # repeated digits used to pass, then stop the dry run with a PeriodicWildcardError), and no code in a name
+    (
+        "linkage-name-forty-a", "  watt_six_bar_worn_pin:", "  " + "a" * 40 + ":",
+        ["linkages." + "a" * 40, "not allowed", "32 characters"],
+    ),
+    (
+        "linkage-name-periodic", "  watt_six_bar_worn_pin:", "  watt" + "7" * 20 + ":",
+        ["linkages.watt" + "7" * 20, "not allowed", "repeated 20 times"],
+    ),
+    (
+        "linkage-joint-name-code", "        D:\n          journal: link.D",
+        "        \"D\\nopen('pwned.txt','w').write('pwned')\\nif True:\":\n          journal: link.D",
+        ["linkages.watt_six_bar_worn_pin.linkage.joints.\"D\\nopen(", "not allowed"],
+    ),
+    (
+        "linkage-body-name-path", "        link: {mass_kg: 0.9", "        ../link: {mass_kg: 0.9",
+        ["linkages.watt_six_bar_worn_pin.linkage.bodies.../link", "not allowed"],
+    ),
     (
         "linkage-turns-guard", "    turns: 1\n    points_per_turn: 3600", "    turns: 2000\n    points_per_turn: 3600",
         ["linkages.watt_six_bar_worn_pin.turns", "2000"],
@@ -561,6 +582,7 @@ SNAKEMAKE_SAMPLE = {
     "clearance-drag-link",
     "stiffness-change-point",
     "linkage-unknown-point",
+    "linkage-name-periodic",
     "heald-contact-case-unknown",
     "published-negative-tolerance",
     "published-value-twice",
@@ -650,6 +672,72 @@ def test_command_line_text_is_read_as_the_schema_asks(schema):
     assert config["sweeps"]["clearance"]["small"]["clearance_m"] == [1.0e-5, 2.0e-5]
     assert config["clearance"]["scenes"]["dry_1"]["integrator"] == "explicit"  # text where the schema wants text
     assert config["transplanter"]["crank_speed_rpm"] == "fast"  # no number: the schema check names the key
+
+
+#: Names a hostile user might choose: code after a newline (it ran when a joint's name was written into the generated
+#: scene's source), markup for the reports, a path out of results/.
+HOSTILE_NAMES = ["D\nopen('pwned.txt','w').write('pwned')\nif True:", "</script><script>alert(1)</script>", "../x"]
+NAME_FIELDS = ["linkage", "body", "point", "ground point", "joint", "spring"]
+
+
+def _named(config: dict, field: str, name: str) -> tuple[dict, str]:
+    """``config`` with one name of the shipped linkage replaced by ``name`` (a spring added for ``spring``), and the key
+    path of the section that holds the name."""
+    config = copy.deepcopy(config)
+    old = "watt_six_bar_worn_pin"
+    linkage = config["linkages"][old]["linkage"]
+    sections = {
+        "linkage": (config, "linkages", old),
+        "body": (linkage, "bodies", "link"),
+        "point": (linkage["bodies"]["link"], "points", "C"),
+        "ground point": (linkage, "ground", "O2"),
+        "joint": (linkage, "joints", "D"),
+    }
+    if field == "spring":
+        linkage["springs"] = {name: {"point": "link.C", "rest_m": [0.0, 0.0], "stiffness_N_m": [1.0, 1.0]}}
+        return config, f"linkages.{old}.linkage.springs"
+    holder, section, was = sections[field]
+    holder[section] = {name if k == was else k: v for k, v in holder[section].items()}
+    where = {"linkage": "linkages", "point": f"linkages.{old}.linkage.bodies.link.points"}
+    return config, where.get(field, f"linkages.{old}.linkage.{section}")
+
+
+@pytest.mark.parametrize("name", HOSTILE_NAMES, ids=["code", "markup", "path"])
+@pytest.mark.parametrize("field", NAME_FIELDS)
+def test_a_hostile_name_in_any_name_field_is_refused_before_any_job(config, schema, field, name):
+    """A name with code, markup or a path in every field where a linkage's author chooses a name: refused by the
+    validation the Snakefile runs before any job, in one line naming the key path and the name."""
+    edited, section = _named(config, field, name)
+    with pytest.raises(ConfigError) as info:
+        validate_config(edited, schema)
+    message = str(info.value)
+    assert len(message.splitlines()) == 1, message
+    assert message.startswith(f"config key {section}.") and repr(name) in message and "not allowed" in message, message
+
+
+def test_the_name_rule_admits_no_wildcard_value_snakemake_takes_for_a_cycle():
+    """The name rule is the plain pattern (a letter, then letters, digits or _, at most 32) less exactly the values
+    Snakemake's own detector calls periodic (PeriodicWildcardError in a dry run), on names built to end in repeats."""
+    import re
+
+    from snakemake.io import PeriodicityDetector
+
+    from linkwork.project.validate import SAFE_NAME
+
+    detector = PeriodicityDetector()
+    names = [
+        prefix + unit * k
+        for prefix in ("", "a", "w_", "watt_six_")
+        for unit in ("a", "7", "ab", "_1", "abc")
+        for k in range(1, 26)
+    ]
+    refused_for_repeats = 0
+    for name in names:
+        plain = re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", name) is not None
+        periodic = detector.is_periodic(name) is not None
+        assert (SAFE_NAME.fullmatch(name) is not None) == (plain and not periodic), name
+        refused_for_repeats += plain and periodic
+    assert refused_for_repeats >= 10  # the rows exercise the repeats, not only the length
 
 
 @pytest.mark.workflow

@@ -109,9 +109,16 @@ def check_finite(node: Any, path: tuple = ()) -> None:
         raise ConfigError(f"config key {_key(path)}: value {node!r} is not a finite number")
 
 
-#: A name the user chooses (a scene, a variant, a material, ...) becomes part of file paths and Snakemake
-#: wildcards: a letter, then letters, digits or underscores, at most 40 characters.
-SAFE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,39}")
+#: A name the user chooses (a scene, a variant, a material, a linkage and its bodies, points, joints and springs, ...)
+#: becomes part of file paths and Snakemake wildcards: a letter, then letters, digits or underscores, at most 32
+#: characters, and not ending in one piece repeated 20 times (Snakemake takes a wildcard value that does for a cycle of
+#: rules and stops the dry run: PeriodicWildcardError, whose detector looks for 20 to 100 repeats at the end).
+#: The one pattern of every name; the schema says which keys are names (``additionalProperties`` with a schema).
+SAFE_NAME = re.compile(r"(?!.*(.+)\1{19}\Z)[A-Za-z][A-Za-z0-9_]{0,31}")
+NAME_RULE = (
+    "names become file paths, wildcards and labels: a letter, then letters, digits or _, at most 32 characters,"
+    " not ending in one piece repeated 20 times"
+)
 
 
 def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str, Any]:
@@ -121,6 +128,14 @@ def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str,
             target = target[part]
         node = target
     return node
+
+
+def _shown_key(path: tuple, key: Any) -> str:
+    """The key path of a name as one line of text: the name as written where it is printable and short, else its repr
+    (cut), so that a name holding a newline or a megabyte cannot break the message."""
+    text = str(key)
+    shown = text if text.isprintable() and len(text) <= 80 else _short(key)
+    return f"{_key(path)}.{shown}" if path else shown
 
 
 def check_names(
@@ -139,8 +154,7 @@ def check_names(
             elif isinstance(extra, Mapping):
                 if not isinstance(key, str) or not SAFE_NAME.fullmatch(key):
                     raise ConfigError(
-                        f"config key {_key((*path, key))}: name {key!r} is not allowed (names become file paths and "
-                        "wildcards: a letter, then letters, digits or _, at most 40 characters)"
+                        f"config key {_shown_key(path, key)}: name {_short(key)} is not allowed ({NAME_RULE})"
                     )
                 check_names(value, schema, extra, (*path, key))
     elif isinstance(config, list) and isinstance(node.get("items"), Mapping):
@@ -221,13 +235,13 @@ def check_labelled(node: Any, path: tuple = ()) -> None:
 
 
 def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any], memo: Memo | None = None) -> None:
-    """Finite numbers and safe names first, then the schema, then the physical checks of every paper section
+    """Safe names and finite numbers first, then the schema, then the physical checks of every paper section
     (their messages name the physics), then every labelled entry against its own range or choices.
 
     ``memo``: where the physical checks (a paper section's, the linkages') remember that they passed, each by its own
     inputs; without it every check runs."""
-    check_finite(config)
     check_names(config, schema)
+    check_finite(config)
     validate_schema(config, schema)
     check_integers(config, schema)
     check_states(config)
