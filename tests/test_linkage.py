@@ -14,7 +14,7 @@ import copy
 import numpy as np
 import pytest
 import yaml
-from conftest import assert_rhs_solves_the_numpy_equations
+from conftest import assert_rhs_solves_the_numpy_equations, load_yaml
 
 from linkwork.engines.kinematics import Chain, Dyad, solve_chain
 from linkwork.engines.multibody import assembly, describe
@@ -336,7 +336,6 @@ def test_exudyn_drives_a_sprung_rocking_six_bar_alike():
 def test_the_registries_are_one_table_each():
     """Contact laws and integrators: the schema's choices, the compiled kernels' codes and the Exudyn route's laws are
     the keys of ``linkage.CONTACT_LAWS`` and ``simulate.METHODS``."""
-    from conftest import load_yaml
     from linkwork.engines.multibody.exudyn_route import HYSTERESIS
     from linkwork.engines.multibody.linkage import CONTACT_LAWS
     from linkwork.engines.multibody.simulate import METHODS
@@ -396,3 +395,66 @@ output: rocker
     message = str(err.value)
     assert err.value.key == "linkages.change_point" and ("change point" in message or "locks up" in message), message
     assert "driver angle" in message
+
+
+def _renamed(spec: dict, new) -> dict:
+    """``spec`` with every name it chooses (bodies, their points, ground points, joints, springs) replaced by
+    ``new(name)``, and every reference to them with it."""
+
+    def ref(text: str) -> str:
+        body, point = text.split(".")
+        return f"{body if body == 'ground' else new(body)}.{new(point)}"
+
+    out = copy.deepcopy(spec)
+    out["bodies"] = {
+        new(b): {**v, "points": {new(p): xy for p, xy in v["points"].items()}} for b, v in spec["bodies"].items()
+    }
+    out["ground"] = {new(g): xy for g, xy in spec["ground"].items()}
+    out["joints"] = {
+        new(j): {**v, "journal": ref(v["journal"]), "bearing": ref(v["bearing"])} for j, v in spec["joints"].items()
+    }
+    out["springs"] = {new(s): {**v, "point": ref(v["point"])} for s, v in spec.get("springs", {}).items()}
+    out["driver"] = {**spec["driver"], "body": new(spec["driver"]["body"])}
+    out["output"] = new(spec["output"])
+    return out
+
+
+def _names(spec: dict) -> set[str]:
+    """Every name a description chooses."""
+    points = {p for b in spec["bodies"].values() for p in b["points"]}
+    return {*spec["bodies"], *points, *spec["ground"], *spec["joints"], *spec.get("springs", {})}
+
+
+#: The shipped linkage (a clearance joint with contact and friction) with a spring: every kind of part the generated
+#: source has a line for.
+SHIPPED = {
+    **load_yaml("config/config.yaml")["linkages"]["watt_six_bar_worn_pin"]["linkage"],
+    "springs": {"guide": {"point": "rocker.D", "rest_m": [0.4, 0.3], "stiffness_N_m": [400.0, 900.0]}},
+}
+
+
+def test_the_generated_source_holds_no_name_of_the_description():
+    """The scene's source names bodies, joints and springs by their index: with names no code could contain by chance
+    (a prefix and suffix around each), none of them is in the source; and the same topology under other names is the
+    same source (one compiled scene)."""
+    from linkwork.engines.multibody.model import generate_source
+
+    spec = _renamed(SHIPPED, lambda n: f"Qz{n}zQ")
+    source = generate_source(describe.from_config(spec, "linkages.named"), True)
+    assert "clearance joint 0" in source and "spring 0" in source
+    assert not [n for n in _names(spec) if n in source] and "QzD" not in source
+    assert generate_source(describe.from_config(SHIPPED, "linkages.shipped"), True) == source
+
+
+def test_a_name_with_code_never_reaches_the_generated_source():
+    """Behind the validation that refuses it: a joint and a spring named with code after a newline (the description
+    read without the config's name rule) give the source of the same scene with plain names, so nothing of them runs."""
+    from linkwork.engines.multibody.model import generate_source
+
+    hostile = "D\nopen('pwned.txt','w').write('pwned')\nif True:"
+    spec = copy.deepcopy(SHIPPED)
+    spec["joints"] = {hostile if j == "D" else j: v for j, v in spec["joints"].items()}
+    spec["springs"] = {"</script>pwned": spec["springs"]["guide"]}
+    source = generate_source(describe.from_config(spec, "linkages.hostile"), True)
+    assert "pwned" not in source and "script" not in source
+    assert source == generate_source(describe.from_config(SHIPPED, "linkages.shipped"), True)

@@ -10,7 +10,8 @@ bearing (on its second).  Each clearance joint names its effects; the right-hand
 containing exactly those effects (no branch, no call for an effect left out), compiled by numba and cached on disk by
 the hash of its source.  The source holds the topology only (which bodies each joint joins, which effects act
 where); every dimension and property is data in the packed parameters (``pack``), so one compiled scene serves every
-linkage of the same topology.  Each effect increments its own evaluation counter, so a
+linkage of the same topology.  No text of the description reaches the source: bodies, joints and springs are named by
+their index (a name chosen in config is never code).  Each effect increments its own evaluation counter, so a
 test can prove that an effect left out is never evaluated.
 
 The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law) is chosen
@@ -160,7 +161,7 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
         bj, bb = linkage.body_index(joint.journal[0]), linkage.body_index(joint.bearing[0])
         jx, jy, bx, by = P["jx"], P["jy"], P["bx"], P["by"]
         d = DIAG_FIXED + DIAG_PER_JOINT * k
-        a(f"    # clearance joint {joint.name}")
+        a(f"    # clearance joint {k}")
         a(
             f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx},"
             f" {by}, {P['clearance']}, {P['r_journal']}, {P['r_bearing']})"
@@ -207,10 +208,8 @@ def _spring_lines(linkage: Linkage, idx) -> list[str]:
     for k, spring in enumerate(linkage.springs):
         o = idx[f"spring{k}"]
         args = ", ".join(f"p[{o + m}]" for m in range(8))
-        lines.append(
-            f"    potential += ground_spring(q, qd, cs, g, {linkage.body_index(spring.point[0])}, {args})  # spring"
-            f" {spring.name}"
-        )
+        body = linkage.body_index(spring.point[0])
+        lines.append(f"    potential += ground_spring(q, qd, cs, g, {body}, {args})  # spring {k}")
     return lines
 
 
@@ -264,7 +263,6 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     a(f"NY = {2 * nq + 1}")
     a(f"NC = {nc}")
     a(f"N_DIAG = {DIAG_FIXED + DIAG_PER_JOINT * len(joints)}")
-    a(f"JOINTS = {tuple(j.name for j in joints)}")
     scene_effects = [
         e for e in EFFECTS if any(e in j.clearance.effects for j in joints) or (e == "gravity" and gravity)
     ]
