@@ -31,9 +31,9 @@ Sign conventions resolved here (the clearance paper's printed model differs):
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import os
 import sys
+import types
 from pathlib import Path
 
 import numpy as np
@@ -366,7 +366,9 @@ def compile_scene(linkage: Linkage, gravity: bool):
     """The compiled module of a scene (its right-hand side), cached on disk by the hash of its source.
 
     The source holds the topology and the effects only; dimensions, properties and the elastic law are data
-    (``pack``), so one compiled module serves every linkage of the same topology and effects.
+    (``pack``), so one compiled module serves every linkage of the same topology and effects.  The module is run from
+    the source generated here, never from what the cache holds: a file whose text does not match its key (the digest
+    in its name) is written anew (``_keep_file``), and no bytecode file is read (``_run_module``).
     """
     source = generate_source(linkage, gravity)
     digest = hashlib.sha256(source.encode()).hexdigest()[:16]
@@ -376,12 +378,34 @@ def compile_scene(linkage: Linkage, gravity: bool):
     folder = cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"{name}.py"
-    if not path.exists() or path.read_text() != source:
+    _keep_file(path, source)
+    return _run_module(name, path, source)
+
+
+def _keep_file(path: Path, source: str) -> None:
+    """Make the file ``path`` hold exactly ``source``: one that is missing, unreadable or holds other text (damaged,
+    edited, or written by anything else) is written anew, atomically.  numba's cache stamps the compiled code with this
+    file (its time and size), so a file written anew is compiled anew."""
+    try:
+        same = path.read_bytes() == source.encode()
+    except OSError:
+        same = False
+    if not same:
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(source)
+        tmp.write_bytes(source.encode())
         os.replace(tmp, path)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
+
+
+def _run_module(name: str, path: Path, source: str) -> types.ModuleType:
+    """The module ``name`` run from the text ``source`` (filed under ``path``: numba's cache and tracebacks read it
+    there), registered in ``sys.modules``.  Neither the file, which may have changed since it was checked, nor a
+    bytecode file beside it is read: what runs is the source whose digest names the module."""
+    module = types.ModuleType(name)
+    module.__file__ = str(path)
     sys.modules[name] = module
-    spec.loader.exec_module(module)
+    try:
+        exec(compile(source, str(path), "exec"), module.__dict__)
+    except BaseException:
+        del sys.modules[name]
+        raise
     return module
