@@ -417,6 +417,27 @@ CASES = [
         "linkage-body-name-path", "        link: {mass_kg: 0.9", "        ../link: {mass_kg: 0.9",
         ["linkages.watt_six_bar_worn_pin.linkage.bodies.../link", "not allowed"],
     ),
+    # an integrator without a key its method reads: dop853 without first_step_s ran with a first step of 0.0 and never
+    # advanced; rk4 without step_s stopped with a KeyError
+    (
+        "linkage-dop853-no-first-step",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12",
+        ["linkages.watt_six_bar_worn_pin.integrator.first_step_s: missing", "dop853"],
+    ),
+    (
+        "linkage-rk4-no-step",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7,"
+        " max_step_s: 1.0e-3}",
+        "    points_per_turn: 3600\n    integrator: {method: rk4}",
+        ["linkages.watt_six_bar_worn_pin.integrator.step_s: missing", "rk4"],
+    ),
+    (
+        "integrator-scipy-no-max-step",
+        "    explicit: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7, max_step_s: 1.0e-3}",
+        "    explicit: {method: radau, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7}",
+        ["clearance.integrators.explicit.max_step_s: missing", "scipy"],
+    ),
     (
         "linkage-turns-guard", "    turns: 1\n    points_per_turn: 3600", "    turns: 2000\n    points_per_turn: 3600",
         ["linkages.watt_six_bar_worn_pin.turns", "2000"],

@@ -35,7 +35,8 @@ def _schema_message(error) -> str:
     if error.validator == "required":
         missing = [r for r in error.validator_value if isinstance(value, dict) and r not in value]
         names = ", ".join(f"{key}.{m}" if key != "<root>" else m for m in missing)
-        return f"config key {names}: missing (required in section {key})"
+        why = error.schema.get("x-why") if isinstance(error.schema, Mapping) else None
+        return f"config key {names}: missing (required in section {key}{f': {why}' if why else ''})"
     if error.validator == "type" and isinstance(value, str) and _NUMBERLIKE.match(value):
         return (
             f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed"
