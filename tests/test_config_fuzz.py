@@ -695,6 +695,37 @@ def test_command_line_text_is_read_as_the_schema_asks(schema):
     assert config["transplanter"]["crank_speed_rpm"] == "fast"  # no number: the schema check names the key
 
 
+def test_command_line_text_is_read_as_the_schema_asks_inside_a_linkage_and_a_labelled_value(config, schema):
+    """A linkage's own keys (under a name the user chose, then the linkage's description: additionalProperties and
+    $ref) and a labelled value (allOf) are typed too: the driver's speed, a joint's restitution and a damping ratio
+    given on the command line were refused as text ("must be a finite number, got '62.8'").  The overrides, as the
+    Snakefile lays them over the file, pass validation."""
+    from linkwork.project.validate import coerce_overrides, merge_overrides
+
+    given = {
+        "linkages": {
+            "watt_six_bar_worn_pin": {
+                "linkage": {
+                    "driver": {"speed_rad_s": "62.8"},
+                    "joints": {"D": {"clearance": {"restitution": "0.5", "youngs_modulus_Pa": ["2.0e+11", "1.1e+11"]}}},
+                },
+                "points_per_turn": "720",
+            }
+        },
+        "transplanter": {"fe": {"damping_ratio": {"value": "0.03"}}},
+    }
+    overridden = copy.deepcopy(given)
+    coerce_overrides(overridden, given, schema)
+    scene = overridden["linkages"]["watt_six_bar_worn_pin"]
+    assert scene["linkage"]["driver"]["speed_rad_s"] == 62.8 and scene["points_per_turn"] == 720
+    clearance = scene["linkage"]["joints"]["D"]["clearance"]
+    assert clearance["restitution"] == 0.5 and clearance["youngs_modulus_Pa"] == [2.0e11, 1.1e11]
+    assert overridden["transplanter"]["fe"]["damping_ratio"]["value"] == 0.03
+    merge_overrides(overridden, config)
+    validate_config(overridden, schema)
+    assert overridden["linkages"]["watt_six_bar_worn_pin"]["linkage"]["joints"]["D"]["clearance"]["poisson"] == 0.3
+
+
 #: Names a hostile user might choose: code after a newline (it ran when a joint's name was written into the generated
 #: scene's source), markup for the reports, a path out of results/.
 HOSTILE_NAMES = ["D\nopen('pwned.txt','w').write('pwned')\nif True:", "</script><script>alert(1)</script>", "../x"]
@@ -766,6 +797,12 @@ def test_snakemake_reads_nested_overrides_and_refuses_a_configfile_with_a_key_tw
     root = copy_project(tmp_path / "project")
     proc = snakemake(root, "-n", "--config", "clearance={numerics: {points_per_cycle: 360}}", "crosscheck=false")
     assert "clearance_scene" in proc.stdout, proc.stdout[-2000:]
+    linkage = (
+        "linkages={watt_six_bar_worn_pin: {linkage: {driver: {speed_rad_s: 62.8},"
+        " joints: {D: {clearance: {restitution: 0.5}}}}}}"
+    )
+    proc = snakemake(root, "-n", "--config", linkage)
+    assert "linkage" in proc.stdout and "Traceback" not in proc.stdout + proc.stderr, proc.stdout[-2000:]
     extra = tmp_path / "mine.yaml"
     extra.write_text("clearance:\n  crank_speed_rad_s: 10.0\n  crank_speed_rad_s: 20.0\n", encoding="utf-8")
     proc = snakemake(root, "-n", "--configfile", str(extra), check=False)

@@ -172,7 +172,7 @@ def check_integers(node: Any, schema: Mapping[str, Any], path: tuple = ()) -> No
     elif isinstance(node, list):
         for i, value in enumerate(node):
             check_integers(value, schema, (*path, i))
-    elif isinstance(node, float) and _types(_schema_at(schema, path)) == {"integer"}:
+    elif isinstance(node, float) and _types(schema, _schema_at(schema, path)) == {"integer"}:
         raise ConfigError(
             f"config key {_key(path)}: value {node!r} is not an integer (a count: write it without the decimal point)"
         )
@@ -309,27 +309,52 @@ def check_linkages(linkages: Mapping[str, Any]) -> None:
         raise ConfigError("invalid config:\n  " + "\n  ".join(problems))
 
 
-def _schema_at(schema: Mapping[str, Any], path: tuple) -> Mapping[str, Any] | None:
-    """The schema node that governs the config value at ``path`` (None where the schema says nothing)."""
-    node = _resolve(schema, schema)
-    for part in path:
-        if not isinstance(node, Mapping):
-            return None
-        if isinstance(part, int):
-            node = node.get("items")
-        elif part in node.get("properties", {}):
-            node = node["properties"][part]
-        else:
-            node = node.get("additionalProperties")
-        node = _resolve(schema, node) if isinstance(node, Mapping) else None
-    return node
-
-
-def _types(node: Mapping[str, Any] | None) -> set[str]:
+def _branches(schema: Mapping[str, Any], node: Any) -> list[Mapping[str, Any]]:
+    """``node`` resolved and the subschemas it combines (``allOf``, ``anyOf``, ``oneOf``, resolved in turn), depth
+    first: where the keys of a value governed by ``node`` may be described."""
+    node = _resolve(schema, node)
     if not isinstance(node, Mapping):
-        return set()
-    kind = node.get("type", [])
-    return {kind} if isinstance(kind, str) else set(kind)
+        return []
+    out = [node]
+    for word in ("allOf", "anyOf", "oneOf"):
+        for sub in node.get(word, []):
+            out += _branches(schema, sub)
+    return out
+
+
+def _child(schema: Mapping[str, Any], node: Any, part: Any) -> Mapping[str, Any] | None:
+    """The schema node of the value at ``part`` (a key, or an index for a list) of a value governed by ``node``: its
+    ``items``, else the property of that name in any branch, else the first ``additionalProperties`` schema (a name
+    the user chooses, e.g. a linkage, a joint); None where the schema says nothing."""
+    branches = _branches(schema, node)
+    if isinstance(part, int):
+        found = [b["items"] for b in branches if isinstance(b.get("items"), Mapping)]
+    else:
+        found = [b["properties"][part] for b in branches if part in b.get("properties", {})]
+        found = found or [
+            b["additionalProperties"] for b in branches if isinstance(b.get("additionalProperties"), Mapping)
+        ]
+    return _resolve(schema, found[0]) if found else None
+
+
+def _schema_at(schema: Mapping[str, Any], path: tuple) -> Mapping[str, Any] | None:
+    """The schema node that governs the config value at ``path`` (None where the schema says nothing), through
+    ``$ref``, ``additionalProperties`` (names the user chooses) and ``allOf``/``anyOf``/``oneOf``."""
+    node: Any = schema
+    for part in path:
+        node = _child(schema, node, part)
+        if node is None:
+            return None
+    return _resolve(schema, node)
+
+
+def _types(schema: Mapping[str, Any], node: Mapping[str, Any] | None) -> set[str]:
+    """The JSON types ``node`` names, in any of its branches (``_branches``)."""
+    out: set[str] = set()
+    for branch in _branches(schema, node):
+        kind = branch.get("type", [])
+        out |= {kind} if isinstance(kind, str) else set(kind)
+    return out
 
 
 def _from_text(text: str, types: set[str]) -> Any:
@@ -359,7 +384,7 @@ def coerce_overrides(config: dict[str, Any], overrides: Mapping[str, Any], schem
         for key, value in items:
             here = (*path, key)
             if isinstance(value, str):
-                types = _types(_schema_at(schema, here))
+                types = _types(schema, _schema_at(schema, here))
                 if types and "string" not in types:
                     target[key] = _from_text(value, types)
             else:
