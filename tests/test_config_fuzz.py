@@ -727,8 +727,11 @@ def test_command_line_text_is_read_as_the_schema_asks_inside_a_linkage_and_a_lab
 
 
 #: Names a hostile user might choose: code after a newline (it ran when a joint's name was written into the generated
-#: scene's source), markup for the reports, a path out of results/.
-HOSTILE_NAMES = ["D\nopen('pwned.txt','w').write('pwned')\nif True:", "</script><script>alert(1)</script>", "../x"]
+#: scene's source), markup for the reports, a path out of results/, a space, unicode, 5000 characters.
+HOSTILE_NAMES = [
+    "D\nopen('pwned.txt','w').write('pwned')\nif True:", "</script><script>alert(1)</script>", "../x", "a b", "Körper",
+    "j" * 5000,
+]
 NAME_FIELDS = ["linkage", "body", "point", "ground point", "joint", "spring"]
 
 
@@ -754,7 +757,7 @@ def _named(config: dict, field: str, name: str) -> tuple[dict, str]:
     return config, where.get(field, f"linkages.{old}.linkage.{section}")
 
 
-@pytest.mark.parametrize("name", HOSTILE_NAMES, ids=["code", "markup", "path"])
+@pytest.mark.parametrize("name", HOSTILE_NAMES, ids=["code", "markup", "path", "space", "unicode", "long"])
 @pytest.mark.parametrize("field", NAME_FIELDS)
 def test_a_hostile_name_in_any_name_field_is_refused_before_any_job(config, schema, field, name):
     """A name with code, markup or a path in every field where a linkage's author chooses a name: refused by the
@@ -763,8 +766,9 @@ def test_a_hostile_name_in_any_name_field_is_refused_before_any_job(config, sche
     with pytest.raises(ConfigError) as info:
         validate_config(edited, schema)
     message = str(info.value)
-    assert len(message.splitlines()) == 1, message
-    assert message.startswith(f"config key {section}.") and repr(name) in message and "not allowed" in message, message
+    assert len(message.splitlines()) == 1 and len(message) < 400, message
+    shown = name if name.isprintable() and len(name) <= 80 else repr(name)  # as written, or its repr (cut)
+    assert message.startswith(f"config key {section}.{shown[:60]}") and "not allowed" in message, message
 
 
 def test_the_name_rule_admits_no_wildcard_value_snakemake_takes_for_a_cycle():

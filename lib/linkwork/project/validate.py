@@ -155,7 +155,7 @@ def check_names(
             elif isinstance(extra, Mapping):
                 if not isinstance(key, str) or not SAFE_NAME.fullmatch(key):
                     raise ConfigError(
-                        f"config key {_shown_key(path, key)}: name {_short(key)} is not allowed ({NAME_RULE})"
+                        f"config key {_shown_key(path, key)}: this name is not allowed ({NAME_RULE})"
                     )
                 check_names(value, schema, extra, (*path, key))
     elif isinstance(config, list) and isinstance(node.get("items"), Mapping):
