@@ -96,8 +96,10 @@ CASES = [
         ["clearance.scenes.1", "not allowed"],
     ),
     (
-        "scene-too-long", "    dry_1: {clearance_joints: [1]", "    " + "d" * 41 + ": {clearance_joints: [1]",
-        ["clearance.scenes." + "d" * 41, "40 characters"],
+        "scene-too-long",
+        "    dry_1: {clearance_joints: [1]",
+        "    dry_" + "abcdefghij" * 3 + ": {clearance_joints: [1]",
+        ["clearance.scenes.dry_" + "abcdefghij" * 3, "32 characters"],
     ),
     (
         "variant-space", "    slender: {inertia: slender}", "    'sl ender': {inertia: slender}",
@@ -396,6 +398,46 @@ CASES = [
         "impact_velocity_floor_m_s: 1.0e-3, viscosity_Pa_s: 0.1, friction: 0.05",
         ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.viscosity_Pa_s", "unknown key"],
     ),
+    # a linkage's names: the one name rule, which Snakemake's wildcards accept (a name of 40 a's or ending in 20
+    # repeated digits used to pass, then stop the dry run with a PeriodicWildcardError), and no code in a name
+    (
+        "linkage-name-forty-a", "  watt_six_bar_worn_pin:", "  " + "a" * 40 + ":",
+        ["linkages." + "a" * 40, "not allowed", "32 characters"],
+    ),
+    (
+        "linkage-name-periodic", "  watt_six_bar_worn_pin:", "  watt" + "7" * 20 + ":",
+        ["linkages.watt" + "7" * 20, "not allowed", "repeated 20 times"],
+    ),
+    (
+        "linkage-joint-name-code", "        D:\n          journal: link.D",
+        "        \"D\\nopen('pwned.txt','w').write('pwned')\\nif True:\":\n          journal: link.D",
+        ["linkages.watt_six_bar_worn_pin.linkage.joints.\"D\\nopen(", "not allowed"],
+    ),
+    (
+        "linkage-body-name-path", "        link: {mass_kg: 0.9", "        ../link: {mass_kg: 0.9",
+        ["linkages.watt_six_bar_worn_pin.linkage.bodies.../link", "not allowed"],
+    ),
+    # an integrator without a key its method reads: dop853 without first_step_s ran with a first step of 0.0 and never
+    # advanced; rk4 without step_s stopped with a KeyError
+    (
+        "linkage-dop853-no-first-step",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12",
+        ["linkages.watt_six_bar_worn_pin.integrator.first_step_s: missing", "dop853"],
+    ),
+    (
+        "linkage-rk4-no-step",
+        "    points_per_turn: 3600\n    integrator: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7,"
+        " max_step_s: 1.0e-3}",
+        "    points_per_turn: 3600\n    integrator: {method: rk4}",
+        ["linkages.watt_six_bar_worn_pin.integrator.step_s: missing", "rk4"],
+    ),
+    (
+        "integrator-scipy-no-max-step",
+        "    explicit: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7, max_step_s: 1.0e-3}",
+        "    explicit: {method: radau, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7}",
+        ["clearance.integrators.explicit.max_step_s: missing", "scipy"],
+    ),
     (
         "linkage-turns-guard", "    turns: 1\n    points_per_turn: 3600", "    turns: 2000\n    points_per_turn: 3600",
         ["linkages.watt_six_bar_worn_pin.turns", "2000"],
@@ -561,6 +603,7 @@ SNAKEMAKE_SAMPLE = {
     "clearance-drag-link",
     "stiffness-change-point",
     "linkage-unknown-point",
+    "linkage-name-periodic",
     "heald-contact-case-unknown",
     "published-negative-tolerance",
     "published-value-twice",
@@ -652,11 +695,118 @@ def test_command_line_text_is_read_as_the_schema_asks(schema):
     assert config["transplanter"]["crank_speed_rpm"] == "fast"  # no number: the schema check names the key
 
 
+def test_command_line_text_is_read_as_the_schema_asks_inside_a_linkage_and_a_labelled_value(config, schema):
+    """A linkage's own keys (under a name the user chose, then the linkage's description: additionalProperties and
+    $ref) and a labelled value (allOf) are typed too: the driver's speed, a joint's restitution and a damping ratio
+    given on the command line were refused as text ("must be a finite number, got '62.8'").  The overrides, as the
+    Snakefile lays them over the file, pass validation."""
+    from linkwork.project.validate import coerce_overrides, merge_overrides
+
+    given = {
+        "linkages": {
+            "watt_six_bar_worn_pin": {
+                "linkage": {
+                    "driver": {"speed_rad_s": "62.8"},
+                    "joints": {"D": {"clearance": {"restitution": "0.5", "youngs_modulus_Pa": ["2.0e+11", "1.1e+11"]}}},
+                },
+                "points_per_turn": "720",
+            }
+        },
+        "transplanter": {"fe": {"damping_ratio": {"value": "0.03"}}},
+    }
+    overridden = copy.deepcopy(given)
+    coerce_overrides(overridden, given, schema)
+    scene = overridden["linkages"]["watt_six_bar_worn_pin"]
+    assert scene["linkage"]["driver"]["speed_rad_s"] == 62.8 and scene["points_per_turn"] == 720
+    clearance = scene["linkage"]["joints"]["D"]["clearance"]
+    assert clearance["restitution"] == 0.5 and clearance["youngs_modulus_Pa"] == [2.0e11, 1.1e11]
+    assert overridden["transplanter"]["fe"]["damping_ratio"]["value"] == 0.03
+    merge_overrides(overridden, config)
+    validate_config(overridden, schema)
+    assert overridden["linkages"]["watt_six_bar_worn_pin"]["linkage"]["joints"]["D"]["clearance"]["poisson"] == 0.3
+
+
+#: Names a hostile user might choose: code after a newline (it ran when a joint's name was written into the generated
+#: scene's source), markup for the reports, a path out of results/, a space, unicode, 5000 characters.
+HOSTILE_NAMES = [
+    "D\nopen('pwned.txt','w').write('pwned')\nif True:", "</script><script>alert(1)</script>", "../x", "a b", "Körper",
+    "j" * 5000,
+]
+NAME_FIELDS = ["linkage", "body", "point", "ground point", "joint", "spring"]
+
+
+def _named(config: dict, field: str, name: str) -> tuple[dict, str]:
+    """``config`` with one name of the shipped linkage replaced by ``name`` (a spring added for ``spring``), and the key
+    path of the section that holds the name."""
+    config = copy.deepcopy(config)
+    old = "watt_six_bar_worn_pin"
+    linkage = config["linkages"][old]["linkage"]
+    sections = {
+        "linkage": (config, "linkages", old),
+        "body": (linkage, "bodies", "link"),
+        "point": (linkage["bodies"]["link"], "points", "C"),
+        "ground point": (linkage, "ground", "O2"),
+        "joint": (linkage, "joints", "D"),
+    }
+    if field == "spring":
+        linkage["springs"] = {name: {"point": "link.C", "rest_m": [0.0, 0.0], "stiffness_N_m": [1.0, 1.0]}}
+        return config, f"linkages.{old}.linkage.springs"
+    holder, section, was = sections[field]
+    holder[section] = {name if k == was else k: v for k, v in holder[section].items()}
+    where = {"linkage": "linkages", "point": f"linkages.{old}.linkage.bodies.link.points"}
+    return config, where.get(field, f"linkages.{old}.linkage.{section}")
+
+
+@pytest.mark.parametrize("name", HOSTILE_NAMES, ids=["code", "markup", "path", "space", "unicode", "long"])
+@pytest.mark.parametrize("field", NAME_FIELDS)
+def test_a_hostile_name_in_any_name_field_is_refused_before_any_job(config, schema, field, name):
+    """A name with code, markup or a path in every field where a linkage's author chooses a name: refused by the
+    validation the Snakefile runs before any job, in one line naming the key path and the name."""
+    edited, section = _named(config, field, name)
+    with pytest.raises(ConfigError) as info:
+        validate_config(edited, schema)
+    message = str(info.value)
+    assert len(message.splitlines()) == 1 and len(message) < 400, message
+    shown = name if name.isprintable() and len(name) <= 80 else repr(name)  # as written, or its repr (cut)
+    assert message.startswith(f"config key {section}.{shown[:60]}") and "not allowed" in message, message
+
+
+def test_the_name_rule_admits_no_wildcard_value_snakemake_takes_for_a_cycle():
+    """The name rule is the plain pattern (a letter, then letters, digits or _, at most 32) less exactly the values
+    Snakemake's own detector calls periodic (PeriodicWildcardError in a dry run), on names built to end in repeats."""
+    import re
+
+    from snakemake.io import PeriodicityDetector
+
+    from linkwork.project.validate import SAFE_NAME
+
+    detector = PeriodicityDetector()
+    names = [
+        prefix + unit * k
+        for prefix in ("", "a", "w_", "watt_six_")
+        for unit in ("a", "7", "ab", "_1", "abc")
+        for k in range(1, 26)
+    ]
+    refused_for_repeats = 0
+    for name in names:
+        plain = re.fullmatch(r"[A-Za-z][A-Za-z0-9_]{0,31}", name) is not None
+        periodic = detector.is_periodic(name) is not None
+        assert (SAFE_NAME.fullmatch(name) is not None) == (plain and not periodic), name
+        refused_for_repeats += plain and periodic
+    assert refused_for_repeats >= 10  # the rows exercise the repeats, not only the length
+
+
 @pytest.mark.workflow
 def test_snakemake_reads_nested_overrides_and_refuses_a_configfile_with_a_key_twice(tmp_path):
     root = copy_project(tmp_path / "project")
     proc = snakemake(root, "-n", "--config", "clearance={numerics: {points_per_cycle: 360}}", "crosscheck=false")
     assert "clearance_scene" in proc.stdout, proc.stdout[-2000:]
+    linkage = (
+        "linkages={watt_six_bar_worn_pin: {linkage: {driver: {speed_rad_s: 62.8},"
+        " joints: {D: {clearance: {restitution: 0.5}}}}}}"
+    )
+    proc = snakemake(root, "-n", "--config", linkage)
+    assert "linkage" in proc.stdout and "Traceback" not in proc.stdout + proc.stderr, proc.stdout[-2000:]
     extra = tmp_path / "mine.yaml"
     extra.write_text("clearance:\n  crank_speed_rad_s: 10.0\n  crank_speed_rad_s: 20.0\n", encoding="utf-8")
     proc = snakemake(root, "-n", "--configfile", str(extra), check=False)

@@ -132,6 +132,33 @@ def test_an_edited_kernel_reaches_a_scene_compiled_before_the_edit(tmp_path):
     assert after == _scene(lib, tmp_path / "fresh cache")
 
 
+@pytest.mark.parametrize("damage", ["text", "bytecode"])
+def test_a_generated_module_that_does_not_match_its_key_is_rebuilt_never_imported(tmp_path, damage):
+    """The compile cache's scene module, once compiled, is given code that writes a file: prepended to its text, or as
+    a bytecode file beside it stamped with the module's own time and size (Python's import would take it for the
+    module's).  The next run writes the module anew from its source and runs that source: the file is not written,
+    the module's text is its source again, and the scene computes what it did."""
+    cache = tmp_path / "cache"
+    first = _scene(PROJECT / "lib", cache)
+    module = cache / "multibody" / f"{first[0]}.py"
+    source = module.read_text()
+    marker = tmp_path / "pwned.txt"
+    code = f"open({str(marker)!r}, 'w').write('pwned')\n"
+    if damage == "text":
+        module.write_text(code + source)
+    else:
+        import importlib.util
+        from importlib._bootstrap_external import _code_to_timestamp_pyc
+
+        stat = module.stat()
+        pyc = Path(importlib.util.cache_from_source(str(module)))
+        pyc.parent.mkdir(exist_ok=True)
+        bytecode = compile(code + source, str(module), "exec")
+        pyc.write_bytes(_code_to_timestamp_pyc(bytecode, stat.st_mtime, stat.st_size))
+    assert _scene(PROJECT / "lib", cache) == first
+    assert not marker.exists() and module.read_text() == source
+
+
 CRANK_RUN = CRANK_SCENE.split("scene = model.compile_scene")[0] + """
 import json, sys, time
 from pathlib import Path

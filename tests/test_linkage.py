@@ -14,7 +14,7 @@ import copy
 import numpy as np
 import pytest
 import yaml
-from conftest import assert_rhs_solves_the_numpy_equations
+from conftest import assert_rhs_solves_the_numpy_equations, load_yaml
 
 from linkwork.engines.kinematics import Chain, Dyad, solve_chain
 from linkwork.engines.multibody import assembly, describe
@@ -336,7 +336,6 @@ def test_exudyn_drives_a_sprung_rocking_six_bar_alike():
 def test_the_registries_are_one_table_each():
     """Contact laws and integrators: the schema's choices, the compiled kernels' codes and the Exudyn route's laws are
     the keys of ``linkage.CONTACT_LAWS`` and ``simulate.METHODS``."""
-    from conftest import load_yaml
     from linkwork.engines.multibody.exudyn_route import HYSTERESIS
     from linkwork.engines.multibody.linkage import CONTACT_LAWS
     from linkwork.engines.multibody.simulate import METHODS
@@ -396,3 +395,193 @@ output: rocker
     message = str(err.value)
     assert err.value.key == "linkages.change_point" and ("change point" in message or "locks up" in message), message
     assert "driver angle" in message
+
+
+def _renamed(spec: dict, new) -> dict:
+    """``spec`` with every name it chooses (bodies, their points, ground points, joints, springs) replaced by
+    ``new(name)``, and every reference to them with it."""
+
+    def ref(text: str) -> str:
+        body, point = text.split(".")
+        return f"{body if body == 'ground' else new(body)}.{new(point)}"
+
+    out = copy.deepcopy(spec)
+    out["bodies"] = {
+        new(b): {**v, "points": {new(p): xy for p, xy in v["points"].items()}} for b, v in spec["bodies"].items()
+    }
+    out["ground"] = {new(g): xy for g, xy in spec["ground"].items()}
+    out["joints"] = {
+        new(j): {**v, "journal": ref(v["journal"]), "bearing": ref(v["bearing"])} for j, v in spec["joints"].items()
+    }
+    out["springs"] = {new(s): {**v, "point": ref(v["point"])} for s, v in spec.get("springs", {}).items()}
+    out["driver"] = {**spec["driver"], "body": new(spec["driver"]["body"])}
+    out["output"] = new(spec["output"])
+    return out
+
+
+def _names(spec: dict) -> set[str]:
+    """Every name a description chooses."""
+    points = {p for b in spec["bodies"].values() for p in b["points"]}
+    return {*spec["bodies"], *points, *spec["ground"], *spec["joints"], *spec.get("springs", {})}
+
+
+#: The shipped linkage (a clearance joint with contact and friction) with a spring: every kind of part the generated
+#: source has a line for.
+SHIPPED = {
+    **load_yaml("config/config.yaml")["linkages"]["watt_six_bar_worn_pin"]["linkage"],
+    "springs": {"guide": {"point": "rocker.D", "rest_m": [0.4, 0.3], "stiffness_N_m": [400.0, 900.0]}},
+}
+
+
+def test_the_generated_source_holds_no_name_of_the_description():
+    """The scene's source names bodies, joints and springs by their index: with names no code could contain by chance
+    (a prefix and suffix around each), none of them is in the source; and the same topology under other names is the
+    same source (one compiled scene)."""
+    from linkwork.engines.multibody.model import generate_source
+
+    spec = _renamed(SHIPPED, lambda n: f"Qz{n}zQ")
+    source = generate_source(describe.from_config(spec, "linkages.named"), True)
+    assert "clearance joint 0" in source and "spring 0" in source
+    assert not [n for n in _names(spec) if n in source] and "QzD" not in source
+    assert generate_source(describe.from_config(SHIPPED, "linkages.shipped"), True) == source
+
+
+def test_a_name_with_code_never_reaches_the_generated_source():
+    """Behind the validation that refuses it: a joint and a spring named with code after a newline (the description
+    read without the config's name rule) give the source of the same scene with plain names, so nothing of them runs."""
+    from linkwork.engines.multibody.model import generate_source
+
+    hostile = "D\nopen('pwned.txt','w').write('pwned')\nif True:"
+    spec = copy.deepcopy(SHIPPED)
+    spec["joints"] = {hostile if j == "D" else j: v for j, v in spec["joints"].items()}
+    spec["springs"] = {"</script>pwned": spec["springs"]["guide"]}
+    source = generate_source(describe.from_config(spec, "linkages.hostile"), True)
+    assert "pwned" not in source and "script" not in source
+    assert source == generate_source(describe.from_config(SHIPPED, "linkages.shipped"), True)
+
+
+#: A driven crank alone (one body, one pin): the smallest scene, quick to compile.
+CRANK = {
+    "bodies": {"crank": {"mass_kg": 0.4, "inertia_kg_m2": 1.0e-3, "points": {"O": [-0.05, 0.0], "A": [0.05, 0.0]}}},
+    "ground": {"O2": [0.0, 0.0]},
+    "joints": {"O2": {"journal": "crank.O", "bearing": "ground.O2"}},
+    "driver": {"body": "crank", "speed_rad_s": 20.0, "start_angle_deg": 30},
+    "output": "crank",
+}
+DOP853 = {"method": "dop853", "rtol": 1e-8, "atol": 1e-11, "first_step_s": 1e-6, "max_step_s": 1e-3}
+
+
+def test_the_schema_requires_of_each_method_the_keys_a_run_reads():
+    """One table: each integrator method's keys in config/schema.yaml (required for it) are ``simulate.READS``."""
+    from linkwork.engines.multibody.simulate import METHODS, READS
+
+    integrator = load_yaml("config/schema.yaml")["properties"]["clearance"]["$defs"]["integrator"]
+    required = {}
+    for rule in integrator["allOf"]:
+        chosen = rule["if"]["properties"]["method"]
+        for method in chosen.get("enum", [chosen.get("const")]):
+            required[method] = tuple(rule["then"]["required"])
+    assert required == READS and set(READS) == set(METHODS)
+
+
+@pytest.mark.parametrize(
+    "setting, key",
+    [
+        ({k: v for k, v in DOP853.items() if k != "first_step_s"}, "first_step_s"),
+        ({**DOP853, "first_step_s": 0.0}, "first_step_s"),
+        ({**DOP853, "method": "ndf", "max_step_s": -1.0}, "max_step_s"),
+        ({"method": "rk4"}, "step_s"),
+        ({"method": "radau", "rtol": 1e-8, "atol": 1e-11}, "max_step_s"),
+        ({"method": "radau", "rtol": 1e-8, "atol": 1e-11, "max_step_s": 1e-3, "first_step_s": 0.0}, "first_step_s"),
+        ({"method": "euler", "step_s": 1e-4}, "method"),
+    ],
+)
+def test_a_run_refuses_an_integrator_setting_without_a_key_it_reads(setting, key):
+    """A run checks its setting before it starts (the schema refuses the same before any job): a missing or
+    non-positive key its method reads is named, instead of a first step of 0.0 that never advances or a KeyError."""
+    from linkwork.engines.multibody.simulate import Run
+
+    with pytest.raises(LinkageError) as err:
+        Run(describe.from_config(CRANK, "linkages.crank"), True, setting, key="linkages.crank.integrator")
+    assert err.value.key == f"linkages.crank.integrator.{key}", str(err.value)
+
+
+def test_a_stretch_of_too_many_steps_is_refused_with_its_key():
+    """rk4 at 1e-9 s over a second would take 1e9 steps: refused before it starts, naming step_s and the guard; the
+    same bound by max_step_s for an adaptive method."""
+    from linkwork.engines.multibody.simulate import STEP_LIMIT, Run
+
+    linkage = describe.from_config(CRANK, "linkages.crank")
+    for setting, key in (({"method": "rk4", "step_s": 1e-9}, "step_s"), ({**DOP853, "max_step_s": 1e-9}, "max_step_s")):
+        with pytest.raises(LinkageError) as err:
+            Run(linkage, True, setting).advance(np.array([0.0, 1.0]))
+        message = str(err.value)
+        assert err.value.key == f"integrator.{key}" and f"{STEP_LIMIT:.0e}" in message and "1e+09 steps" in message
+
+
+#: A run that stops advancing, in a process of its own (a guard that failed would hang it): rk4 at a step below the
+#: time's resolution (1e-12 s at t = 1e6 s), and dop853 from a first step of 0.0 (the issue's hang); each message.
+STALLS = """
+import json
+import numpy as np
+from linkwork.engines.multibody import describe
+from linkwork.engines.multibody.linkage import LinkageError
+from linkwork.engines.multibody.simulate import Run
+linkage = describe.from_config(json.loads(CRANK), "linkages.crank")
+out = []
+for setting, t0, h in (({"method": "rk4", "step_s": 1e-12}, 1e6, None), (json.loads(DOP853), 0.0, 0.0)):
+    run = Run(linkage, True, setting, t0=t0, key="linkages.crank.integrator")
+    if h is not None:
+        run.h = h  # as a setting that bypassed the checks would give
+    try:
+        run.advance(np.linspace(t0, t0 + 1e-6, 3))
+        out.append("advanced")
+    except LinkageError as exc:
+        out.append(str(exc))
+print(json.dumps(out))
+"""
+
+
+def test_a_run_that_stops_advancing_ends_in_one_line_naming_the_key(tmp_path):
+    """The compiled integrators end a run whose accepted steps stop advancing the time (STALL_STEPS in a row), and the
+    run names the key to change: rk4's step_s, dop853's first_step_s (a first step of 0.0 used to run forever)."""
+    import json
+    import os
+    import subprocess
+    import sys
+
+    from conftest import PROJECT
+
+    script = f"CRANK = {json.dumps(json.dumps(CRANK))}\nDOP853 = {json.dumps(json.dumps(DOP853))}\n" + STALLS
+    env = {**os.environ, "PYTHONPATH": str(PROJECT / "lib")}
+    done = subprocess.run([sys.executable, "-c", script], env=env, capture_output=True, text=True, timeout=900)
+    assert done.returncode == 0, done.stderr[-3000:]
+    rk4, dop853 = json.loads(done.stdout.splitlines()[-1])
+    assert rk4.startswith("linkages.crank.integrator.step_s: the run stopped advancing after t = 1e+06 s"), rk4
+    assert dop853.startswith("linkages.crank.integrator.first_step_s: the run stopped advancing"), dop853
+    assert "a step of 0.0 s" in dop853 and "\n" not in rk4 + dop853
+
+
+def test_a_linkage_job_names_the_key_in_one_line(tmp_path):
+    """The study script of every rule, given a linkage whose integrator the run refuses (rk4 at 1e-9 s over a turn of
+    6.3 s): the job stops with one line naming the config key, no traceback and no output."""
+    import runpy
+    from types import SimpleNamespace
+
+    from conftest import PROJECT
+
+    cfg = {
+        "linkage": {**CRANK, "driver": {**CRANK["driver"], "speed_rad_s": 1.0}}, "gravity": True, "turns": 1,
+        "points_per_turn": 36, "integrator": {"method": "rk4", "step_s": 1e-9},
+    }
+    output = tmp_path / "results" / "linkages" / "crank.nc"
+    snakemake = SimpleNamespace(
+        params=SimpleNamespace(study="linkwork.pipeline.linkages:study", cfg=cfg, args={"name": "crank"},
+                               paper="linkages"),
+        rule="linkage", wildcards={"name": "crank"}, input={}, output=[str(output)], threads=1,
+    )
+    with pytest.raises(SystemExit) as stop:
+        runpy.run_path(str(PROJECT / "workflow" / "scripts" / "study.py"), init_globals={"snakemake": snakemake})
+    message = str(stop.value.code)
+    assert message.startswith("linkage (name=crank): config key linkages.crank.integrator.step_s: 1e-09 s"), message
+    assert "\n" not in message and not output.exists()

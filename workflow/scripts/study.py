@@ -2,7 +2,8 @@
 its arguments (``params.args``) and its named inputs (read by file type), and write what it returns to the rule's
 outputs in order: a Dataset to netCDF (with provenance), a DataFrame to CSV, a dict to JSON, each with its checksum
 beside it (``results.write``); an input that does not match its checksum, or an output that cannot be written, stops the
-job with one line naming the file.  Prints one line when it starts and one when it has written its outputs.
+job with one line naming the file, and a config value the study cannot go on with (``ConfigError``) with one line naming
+the key.  Prints one line when it starts and one when it has written its outputs.
 """
 
 import importlib
@@ -12,6 +13,7 @@ import sys
 import time
 
 from linkwork.pipeline import results
+from linkwork.pipeline.errors import ConfigError
 
 sm = snakemake  # noqa: F821 (provided by snakemake)
 module_name, _, function_name = sm.params.study.partition(":")
@@ -35,7 +37,10 @@ except results.UnreadableResult as exc:
 # a study that can use the rule's threads gets them as worker processes (not provenance: the result does not depend on
 # them)
 workers = {"workers": sm.threads} if "workers" in inspect.signature(function).parameters else {}
-returned = function(cfg, **args, **workers, **inputs)
+try:
+    returned = function(cfg, **args, **workers, **inputs)
+except ConfigError as exc:  # a config value the study found it cannot go on with: one line naming the key
+    sys.exit(f"{label}: {exc}")
 outputs = returned if isinstance(returned, tuple) else (returned,)
 if len(outputs) != len(sm.output):
     sys.exit(f"{label}: {module_name}:{function_name} returned {len(outputs)} objects for {len(sm.output)} outputs")

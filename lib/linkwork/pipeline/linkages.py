@@ -17,7 +17,9 @@ import numpy as np
 import xarray as xr
 
 from ..engines.multibody import assembly, describe
+from ..engines.multibody.linkage import LinkageError
 from ..engines.multibody.simulate import Run
+from .errors import ConfigError
 
 
 def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
@@ -30,8 +32,14 @@ def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
     period = linkage.driver.period
     t = np.arange(cfg["turns"] * cfg["points_per_turn"] + 1) * period / cfg["points_per_turn"]
     ideal = assembly.inverse_dynamics(linkage, t, cfg["gravity"], settings, turn)
-    run = Run(linkage, cfg["gravity"], cfg["integrator"], y0=assembly.start_state(linkage, settings=settings))
-    states, diags = run.advance(t)
+    try:
+        run = Run(
+            linkage, cfg["gravity"], cfg["integrator"], y0=assembly.start_state(linkage, settings=settings),
+            key=f"linkages.{name}.integrator",
+        )
+        states, diags = run.advance(t)
+    except LinkageError as exc:  # a setting the run cannot go on with (a stall, a size guard): one line, its key
+        raise ConfigError(f"config key {exc}") from None
     print(
         f"linkage {name}: {len(linkage.bodies)} bodies, {len(linkage.joints)} joints ({len(linkage.clearance_joints)}"
         f" with clearance), {cfg['turns']} turns, {run.steps} steps",

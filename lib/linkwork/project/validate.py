@@ -35,7 +35,8 @@ def _schema_message(error) -> str:
     if error.validator == "required":
         missing = [r for r in error.validator_value if isinstance(value, dict) and r not in value]
         names = ", ".join(f"{key}.{m}" if key != "<root>" else m for m in missing)
-        return f"config key {names}: missing (required in section {key})"
+        why = error.schema.get("x-why") if isinstance(error.schema, Mapping) else None
+        return f"config key {names}: missing (required in section {key}{f': {why}' if why else ''})"
     if error.validator == "type" and isinstance(value, str) and _NUMBERLIKE.match(value):
         return (
             f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed"
@@ -109,9 +110,16 @@ def check_finite(node: Any, path: tuple = ()) -> None:
         raise ConfigError(f"config key {_key(path)}: value {node!r} is not a finite number")
 
 
-#: A name the user chooses (a scene, a variant, a material, ...) becomes part of file paths and Snakemake
-#: wildcards: a letter, then letters, digits or underscores, at most 40 characters.
-SAFE_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_]{0,39}")
+#: A name the user chooses (a scene, a variant, a material, a linkage and its bodies, points, joints and springs, ...)
+#: becomes part of file paths and Snakemake wildcards: a letter, then letters, digits or underscores, at most 32
+#: characters, and not ending in one piece repeated 20 times (Snakemake takes a wildcard value that does for a cycle of
+#: rules and stops the dry run: PeriodicWildcardError, whose detector looks for 20 to 100 repeats at the end).
+#: The one pattern of every name; the schema says which keys are names (``additionalProperties`` with a schema).
+SAFE_NAME = re.compile(r"(?!.*(.+)\1{19}\Z)[A-Za-z][A-Za-z0-9_]{0,31}")
+NAME_RULE = (
+    "names become file paths, wildcards and labels: a letter, then letters, digits or _, at most 32 characters,"
+    " not ending in one piece repeated 20 times"
+)
 
 
 def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str, Any]:
@@ -121,6 +129,14 @@ def _resolve(schema: Mapping[str, Any], node: Mapping[str, Any]) -> Mapping[str,
             target = target[part]
         node = target
     return node
+
+
+def _shown_key(path: tuple, key: Any) -> str:
+    """The key path of a name as one line of text: the name as written where it is printable and short, else its repr
+    (cut), so that a name holding a newline or a megabyte cannot break the message."""
+    text = str(key)
+    shown = text if text.isprintable() and len(text) <= 80 else _short(key)
+    return f"{_key(path)}.{shown}" if path else shown
 
 
 def check_names(
@@ -139,8 +155,7 @@ def check_names(
             elif isinstance(extra, Mapping):
                 if not isinstance(key, str) or not SAFE_NAME.fullmatch(key):
                     raise ConfigError(
-                        f"config key {_key((*path, key))}: name {key!r} is not allowed (names become file paths and "
-                        "wildcards: a letter, then letters, digits or _, at most 40 characters)"
+                        f"config key {_shown_key(path, key)}: this name is not allowed ({NAME_RULE})"
                     )
                 check_names(value, schema, extra, (*path, key))
     elif isinstance(config, list) and isinstance(node.get("items"), Mapping):
@@ -157,7 +172,7 @@ def check_integers(node: Any, schema: Mapping[str, Any], path: tuple = ()) -> No
     elif isinstance(node, list):
         for i, value in enumerate(node):
             check_integers(value, schema, (*path, i))
-    elif isinstance(node, float) and _types(_schema_at(schema, path)) == {"integer"}:
+    elif isinstance(node, float) and _types(schema, _schema_at(schema, path)) == {"integer"}:
         raise ConfigError(
             f"config key {_key(path)}: value {node!r} is not an integer (a count: write it without the decimal point)"
         )
@@ -221,13 +236,13 @@ def check_labelled(node: Any, path: tuple = ()) -> None:
 
 
 def validate_config(config: Mapping[str, Any], schema: Mapping[str, Any], memo: Memo | None = None) -> None:
-    """Finite numbers and safe names first, then the schema, then the physical checks of every paper section
+    """Safe names and finite numbers first, then the schema, then the physical checks of every paper section
     (their messages name the physics), then every labelled entry against its own range or choices.
 
     ``memo``: where the physical checks (a paper section's, the linkages') remember that they passed, each by its own
     inputs; without it every check runs."""
-    check_finite(config)
     check_names(config, schema)
+    check_finite(config)
     validate_schema(config, schema)
     check_integers(config, schema)
     check_states(config)
@@ -294,27 +309,52 @@ def check_linkages(linkages: Mapping[str, Any]) -> None:
         raise ConfigError("invalid config:\n  " + "\n  ".join(problems))
 
 
-def _schema_at(schema: Mapping[str, Any], path: tuple) -> Mapping[str, Any] | None:
-    """The schema node that governs the config value at ``path`` (None where the schema says nothing)."""
-    node = _resolve(schema, schema)
-    for part in path:
-        if not isinstance(node, Mapping):
-            return None
-        if isinstance(part, int):
-            node = node.get("items")
-        elif part in node.get("properties", {}):
-            node = node["properties"][part]
-        else:
-            node = node.get("additionalProperties")
-        node = _resolve(schema, node) if isinstance(node, Mapping) else None
-    return node
-
-
-def _types(node: Mapping[str, Any] | None) -> set[str]:
+def _branches(schema: Mapping[str, Any], node: Any) -> list[Mapping[str, Any]]:
+    """``node`` resolved and the subschemas it combines (``allOf``, ``anyOf``, ``oneOf``, resolved in turn), depth
+    first: where the keys of a value governed by ``node`` may be described."""
+    node = _resolve(schema, node)
     if not isinstance(node, Mapping):
-        return set()
-    kind = node.get("type", [])
-    return {kind} if isinstance(kind, str) else set(kind)
+        return []
+    out = [node]
+    for word in ("allOf", "anyOf", "oneOf"):
+        for sub in node.get(word, []):
+            out += _branches(schema, sub)
+    return out
+
+
+def _child(schema: Mapping[str, Any], node: Any, part: Any) -> Mapping[str, Any] | None:
+    """The schema node of the value at ``part`` (a key, or an index for a list) of a value governed by ``node``: its
+    ``items``, else the property of that name in any branch, else the first ``additionalProperties`` schema (a name
+    the user chooses, e.g. a linkage, a joint); None where the schema says nothing."""
+    branches = _branches(schema, node)
+    if isinstance(part, int):
+        found = [b["items"] for b in branches if isinstance(b.get("items"), Mapping)]
+    else:
+        found = [b["properties"][part] for b in branches if part in b.get("properties", {})]
+        found = found or [
+            b["additionalProperties"] for b in branches if isinstance(b.get("additionalProperties"), Mapping)
+        ]
+    return _resolve(schema, found[0]) if found else None
+
+
+def _schema_at(schema: Mapping[str, Any], path: tuple) -> Mapping[str, Any] | None:
+    """The schema node that governs the config value at ``path`` (None where the schema says nothing), through
+    ``$ref``, ``additionalProperties`` (names the user chooses) and ``allOf``/``anyOf``/``oneOf``."""
+    node: Any = schema
+    for part in path:
+        node = _child(schema, node, part)
+        if node is None:
+            return None
+    return _resolve(schema, node)
+
+
+def _types(schema: Mapping[str, Any], node: Mapping[str, Any] | None) -> set[str]:
+    """The JSON types ``node`` names, in any of its branches (``_branches``)."""
+    out: set[str] = set()
+    for branch in _branches(schema, node):
+        kind = branch.get("type", [])
+        out |= {kind} if isinstance(kind, str) else set(kind)
+    return out
 
 
 def _from_text(text: str, types: set[str]) -> Any:
@@ -344,7 +384,7 @@ def coerce_overrides(config: dict[str, Any], overrides: Mapping[str, Any], schem
         for key, value in items:
             here = (*path, key)
             if isinstance(value, str):
-                types = _types(_schema_at(schema, here))
+                types = _types(schema, _schema_at(schema, here))
                 if types and "string" not in types:
                     target[key] = _from_text(value, types)
             else:

@@ -22,6 +22,10 @@ from ...compilecache import compile_once, use_for_numba
 
 use_for_numba()  # compiled code cached in the compile cache folder, never below lib/
 
+#: Accepted steps in a row that leave the time unchanged before a run is ended as stalled (a first step of zero, or a
+#: step below the resolution of the time, would repeat forever): ``simulate.Run`` names the key to change.
+STALL_STEPS = 1000
+
 #: The diagnostics of a scene (``diag``): the output body's angular acceleration, the driver torque, the energy and
 #: the constraint drift, then per clearance joint e, delta, delta', the dry normal force and the film's radial and
 #: tangential forces.
@@ -176,6 +180,7 @@ def rk4(fun, n_work, n_diag, y0, t0, h, t_out, p, latched, counts, was):
     ys, diags, diag, scratch, was, y, k1 = _start(fun, n_work, n_diag, y0, t0, n_out, p, latched, counts, was)
     t = t0
     steps = 0
+    stalled = 0
     for i in range(n_out):
         while t < t_out[i] - 1e-15:
             hh = min(h, t_out[i] - t)
@@ -183,6 +188,9 @@ def rk4(fun, n_work, n_diag, y0, t0, h, t_out, p, latched, counts, was):
             k3 = rhs(fun, n_work, t + 0.5 * hh, y + 0.5 * hh * k2, p, latched, counts, scratch)
             k4 = rhs(fun, n_work, t + hh, y + hh * k3, p, latched, counts, scratch)
             y = y + hh / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            stalled = 0 if t + hh > t else stalled + 1
+            if stalled >= STALL_STEPS:
+                raise RuntimeError("rk4: the time did not advance")
             t = t + hh
             k1 = rhs(fun, n_work, t, y, p, latched, counts, diag)
             latch(diag, latched, was)
@@ -209,6 +217,7 @@ def dopri5(fun, n_work, n_diag, y0, t0, t_out, p, latched, counts, rtol, atol, h
     h = h0
     accepted = 0
     rejected = 0
+    stalled = 0
     for i in range(n_out):
         while t < t_out[i] - 1e-15:
             hh = min(h, h_max, t_out[i] - t)
@@ -225,6 +234,9 @@ def dopri5(fun, n_work, n_diag, y0, t0, t_out, p, latched, counts, rtol, atol, h
             sc = atol + rtol * np.maximum(np.abs(y), np.abs(y_new))
             err = np.sqrt(np.mean((err_vec / sc) ** 2))
             if err <= 1.0:
+                stalled = 0 if t + hh > t else stalled + 1
+                if stalled >= STALL_STEPS:
+                    raise RuntimeError("dopri5: the time did not advance")
                 t = t + hh
                 y = y_new
                 k1 = k7  # first same as last: its diagnostics are in scratch
@@ -462,6 +474,7 @@ def dop853(fun, n_work, n_diag, y0, t0, t_out, p, latched, counts, rtol, atol, h
     t_end = t_out[-1]
     accepted = 0
     rejected = 0
+    stalled = 0
     i = 0
     while i < n_out and t_out[i] <= t + 1e-15:
         ys[i] = y
@@ -507,6 +520,9 @@ def dop853(fun, n_work, n_diag, y0, t0, t_out, p, latched, counts, rtol, atol, h
         factor = 10.0 if err == 0.0 else min(10.0, 0.9 * err ** (-1.0 / 8.0))
         if step_rejected:
             factor = min(1.0, factor)
+        stalled = 0 if t_new > t else stalled + 1
+        if stalled >= STALL_STEPS:
+            raise RuntimeError("dop853: the time did not advance")
         if i < n_out and t_out[i] < t_new - 1e-15:
             for s in range(13, 16):
                 _d853_stage(y, K, s, s, hh, yy)

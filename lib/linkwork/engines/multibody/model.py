@@ -10,7 +10,8 @@ bearing (on its second).  Each clearance joint names its effects; the right-hand
 containing exactly those effects (no branch, no call for an effect left out), compiled by numba and cached on disk by
 the hash of its source.  The source holds the topology only (which bodies each joint joins, which effects act
 where); every dimension and property is data in the packed parameters (``pack``), so one compiled scene serves every
-linkage of the same topology.  Each effect increments its own evaluation counter, so a
+linkage of the same topology.  No text of the description reaches the source: bodies, joints and springs are named by
+their index (a name chosen in config is never code).  Each effect increments its own evaluation counter, so a
 test can prove that an effect left out is never evaluated.
 
 The dry contact's elastic law (ELASTIC_LAWS: the sphere law of eq. 9, or a conformal cylindrical law) is chosen
@@ -30,9 +31,9 @@ Sign conventions resolved here (the clearance paper's printed model differs):
 from __future__ import annotations
 
 import hashlib
-import importlib.util
 import os
 import sys
+import types
 from pathlib import Path
 
 import numpy as np
@@ -160,7 +161,7 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
         bj, bb = linkage.body_index(joint.journal[0]), linkage.body_index(joint.bearing[0])
         jx, jy, bx, by = P["jx"], P["jy"], P["bx"], P["by"]
         d = DIAG_FIXED + DIAG_PER_JOINT * k
-        a(f"    # clearance joint {joint.name}")
+        a(f"    # clearance joint {k}")
         a(
             f"    e, nx, ny, delta, ddot, vt, wj, wb, gd = clearance_state(q, qd, cs, {bj}, {jx}, {jy}, {bb}, {bx},"
             f" {by}, {P['clearance']}, {P['r_journal']}, {P['r_bearing']})"
@@ -207,10 +208,8 @@ def _spring_lines(linkage: Linkage, idx) -> list[str]:
     for k, spring in enumerate(linkage.springs):
         o = idx[f"spring{k}"]
         args = ", ".join(f"p[{o + m}]" for m in range(8))
-        lines.append(
-            f"    potential += ground_spring(q, qd, cs, g, {linkage.body_index(spring.point[0])}, {args})  # spring"
-            f" {spring.name}"
-        )
+        body = linkage.body_index(spring.point[0])
+        lines.append(f"    potential += ground_spring(q, qd, cs, g, {body}, {args})  # spring {k}")
     return lines
 
 
@@ -264,7 +263,6 @@ def generate_source(linkage: Linkage, gravity: bool) -> str:
     a(f"NY = {2 * nq + 1}")
     a(f"NC = {nc}")
     a(f"N_DIAG = {DIAG_FIXED + DIAG_PER_JOINT * len(joints)}")
-    a(f"JOINTS = {tuple(j.name for j in joints)}")
     scene_effects = [
         e for e in EFFECTS if any(e in j.clearance.effects for j in joints) or (e == "gravity" and gravity)
     ]
@@ -368,7 +366,9 @@ def compile_scene(linkage: Linkage, gravity: bool):
     """The compiled module of a scene (its right-hand side), cached on disk by the hash of its source.
 
     The source holds the topology and the effects only; dimensions, properties and the elastic law are data
-    (``pack``), so one compiled module serves every linkage of the same topology and effects.
+    (``pack``), so one compiled module serves every linkage of the same topology and effects.  The module is run from
+    the source generated here, never from what the cache holds: a file whose text does not match its key (the digest
+    in its name) is written anew (``_keep_file``), and no bytecode file is read (``_run_module``).
     """
     source = generate_source(linkage, gravity)
     digest = hashlib.sha256(source.encode()).hexdigest()[:16]
@@ -378,12 +378,34 @@ def compile_scene(linkage: Linkage, gravity: bool):
     folder = cache_dir()
     folder.mkdir(parents=True, exist_ok=True)
     path = folder / f"{name}.py"
-    if not path.exists() or path.read_text() != source:
+    _keep_file(path, source)
+    return _run_module(name, path, source)
+
+
+def _keep_file(path: Path, source: str) -> None:
+    """Make the file ``path`` hold exactly ``source``: one that is missing, unreadable or holds other text (damaged,
+    edited, or written by anything else) is written anew, atomically.  numba's cache stamps the compiled code with this
+    file (its time and size), so a file written anew is compiled anew."""
+    try:
+        same = path.read_bytes() == source.encode()
+    except OSError:
+        same = False
+    if not same:
         tmp = path.with_suffix(f".{os.getpid()}.tmp")
-        tmp.write_text(source)
+        tmp.write_bytes(source.encode())
         os.replace(tmp, path)
-    spec = importlib.util.spec_from_file_location(name, path)
-    module = importlib.util.module_from_spec(spec)
+
+
+def _run_module(name: str, path: Path, source: str) -> types.ModuleType:
+    """The module ``name`` run from the text ``source`` (filed under ``path``: numba's cache and tracebacks read it
+    there), registered in ``sys.modules``.  Neither the file, which may have changed since it was checked, nor a
+    bytecode file beside it is read: what runs is the source whose digest names the module."""
+    module = types.ModuleType(name)
+    module.__file__ = str(path)
     sys.modules[name] = module
-    spec.loader.exec_module(module)
+    try:
+        exec(compile(source, str(path), "exec"), module.__dict__)
+    except BaseException:
+        del sys.modules[name]
+        raise
     return module
