@@ -82,15 +82,28 @@ def _colour_verdict(value: str) -> str:
 _TABLES = 0
 
 
+#: A table longer than this many rows is collapsed (<details>): the page shows its caption, a click opens it.
+LONG_TABLE_ROWS = 12
+
+
 def table(
     df: pd.DataFrame,
     formats: dict[str, str] | None = None,
     caption: str | None = None,
     html_columns: tuple[str, ...] = (),
+    collapse: bool | None = None,
 ) -> None:
-    """Show a DataFrame with verdict cells coloured; every cell is escaped except ``html_columns`` (links we build)."""
+    """Show a DataFrame with verdict cells coloured; every cell is escaped except ``html_columns`` (links we build).
+    A column with the same text in every row (of more than three) is said once, in a note under the table; a table of
+    more than LONG_TABLE_ROWS rows is collapsed unless ``collapse`` says otherwise."""
     global _TABLES
     _TABLES += 1  # a counter, not pandas' random uuid, names the table's CSS ids: a rerun writes the same HTML
+    constant = [
+        c for c in df.columns
+        if len(df) > 3 and c not in html_columns and "verdict" not in str(c) and df[c].astype(str).nunique() == 1
+    ]
+    note = "; ".join(f"{c}: {df[c].iloc[0]}" for c in constant)
+    df = df.drop(columns=constant)
     styler = (
         df.style.set_uuid(f"t{_TABLES}")
         .hide(axis="index")
@@ -106,7 +119,12 @@ def table(
         styler = styler.format({k: v for k, v in formats.items() if k in df.columns}, na_rep="–", escape="html")
     if caption:
         styler = styler.set_caption(esc(caption))
-    display(HTML(styler.to_html()))
+    page = styler.to_html()
+    if note:
+        page += f"<p><small>The same in every row: {esc(note)}.</small></p>"
+    if collapse if collapse is not None else len(df) > LONG_TABLE_ROWS:
+        page = f"<details><summary>{esc(caption or 'Table')} ({len(df)} rows: show)</summary>{page}</details>"
+    display(HTML(page))
 
 
 def provenance(ds, keys=("paper_id", "study", "linkwork_version", "git_commit", "config_sha256")) -> None:
@@ -350,11 +368,13 @@ def answer(paper: str, findings, comparison) -> None:
     rendered = statements.render(paper, findings, comparison)
     md(f"**Does the paper hold up?** {statements.answer(rendered)}")
     groups = statements.by_kind([r for r in rendered if r.answer is None])  # the answer's own are said above
-    titles = {"holds": "Also holds", "does not hold": "Also does not hold", "cannot be tested": "Cannot be tested"}
+    titles = {"holds": "Also holds", "does not hold": "Also does not hold", "cannot be tested": "Cannot be tested",
+              "the source text": "Notes on the source text"}
     md("\n\n".join(
         f"**{titles[kind]}**\n\n" + "\n".join(f"* {r.markdown()}" for r in groups[kind])
         for kind in statements.KINDS if groups[kind]
     ))
+    md('<div class="contents-here"></div>')  # the page's table of contents goes here (render_report)
 
 
 def answer_html(paper: str, findings, comparison) -> str:
@@ -362,6 +382,28 @@ def answer_html(paper: str, findings, comparison) -> str:
     from linkwork.pipeline import statements
 
     return statements.answer_html(statements.render(paper, findings, comparison))
+
+
+def declutter(fig) -> int:
+    """Hide every point label (an axes' annotation) that would overlap a label placed before it, or any other text of
+    its axes (title, axis labels, tick labels, legend), at the figure's size; returns how many were hidden (a caption
+    says that labels that would overlap are left out)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    hidden = 0
+    for ax in fig.axes:
+        fixed = [ax.title, ax.xaxis.label, ax.yaxis.label, *ax.get_xticklabels(), *ax.get_yticklabels()]
+        if ax.get_legend() is not None:
+            fixed.append(ax.get_legend())
+        kept = [a.get_window_extent(renderer) for a in fixed if a.get_visible()]
+        for text in ax.texts:
+            box = text.get_window_extent(renderer)
+            if any(box.overlaps(other) for other in kept):
+                text.set_visible(False)
+                hidden += 1
+            else:
+                kept.append(box)
+    return hidden
 
 
 def caption(text: str) -> None:

@@ -19,9 +19,11 @@
 # claims' RMS measure (the clearance report, section 5, says why).
 
 # %%
+import textwrap
+
 import matplotlib.pyplot as plt
 import pandas as pd
-from _common import caption, inputs, load, md, show_log_log, table
+from _common import caption, declutter, inputs, load, md, show_log_log, table
 
 from linkwork.papers.clearance.words import in_words
 
@@ -67,17 +69,21 @@ for ax, method in zip(axes.flat, methods):
         )
     pipe = sub[sub.pipeline]
     ax.plot(pipe.time_s, pipe.error, "k*", ms=15, label="pipeline setting")
-    ax.set_title(method)
+    ax.set_title(textwrap.fill(method, 38), fontsize=9)
     ax.set_xlabel("wall time (s)")
     ax.set_ylabel("relative error")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
 for ax in axes.flat[len(methods):]:
     ax.axis("off")
+left_out = declutter(fig)
 plt.show()
 caption(
-    "Error against each method's reference versus wall time (log-log), one panel per numerical method; every point is"
-    " labelled by its setting, the star is the pipeline's setting. Exact methods are entered at 1e-16."
+    "Error against each method's reference versus wall time (log-log), one panel per numerical method; points are"
+    " labelled by their setting"
+    + (f" ({left_out} labels that would overlap another are left out; the tables below list every setting)"
+       if left_out else "")
+    + ", the star is the pipeline's setting. Exact methods are entered at 1e-16."
 )
 
 # %% [markdown]

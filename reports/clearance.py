@@ -18,8 +18,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import (
-    answer, assumed, caption, comparison_table, design_text, esc, inputs, load, loaded, md, oat_table, provenance,
-    show_log_log, table,
+    answer, assumed, caption, comparison_table, declutter, design_text, esc, inputs, load, loaded, md, oat_table,
+    provenance, show_log_log, table,
 )
 
 from linkwork.papers.clearance import CITATION
@@ -53,73 +53,65 @@ START_MARK = dict(zip(starts, ("o", "s", "^", "D", "v", "P")))
 
 # %%
 scene_codes = [str(s) for s in claims.scene.values]
-panels = [(q, m) for q in claims.quantity.values for m in claims.measure.values]
-# per variant a row of panels and, under it, a row of boxes naming the orderings each claim needs on that measure
-fig, axes = plt.subplots(
-    2 * len(variants), len(panels), figsize=(3.2 * len(panels), 7.4 * len(variants)), constrained_layout=True,
-    squeeze=False, height_ratios=[3.2, 1.3] * len(variants),
-)
-for r, v in enumerate(
-    sorted(variants, key=lambda v: v != fnd.attrs["defensible_model"])
-):  # the defensible variant first
-    for c, (q, m) in enumerate(panels):
-        ax = axes[2 * r, c]
-        for n, st in enumerate(starts):
-            mean = claims.mean_deviation.sel(variant=v, start=st, measure=m, quantity=q).values
-            half = claims.ci_half_width.sel(variant=v, start=st, measure=m, quantity=q).values
-            for k, sc in enumerate(scene_codes):
-                colour = "C1" if sc.startswith("dry") else "C2"
-                valid = bool(np.isfinite(half[k]))
-                ax.errorbar(
-                    [k + 0.15 * (n - (len(starts) - 1) / 2)], [mean[k]], yerr=[[half[k]], [half[k]]] if valid else None,
-                    fmt=START_MARK[st], ms=7, capsize=4, color=colour, mfc=colour if valid else "white",
-                    label=f"start: {st}" if k == 0 and c == 0 else None,
-                )
-        ax.set_yscale("log")
-        ax.set_xticks(range(len(scene_codes)), [textwrap.fill(SCENE_WORDS[s_], 11) for s_ in scene_codes], fontsize=6.5)
-        measure = MEASURE_WORDS[str(m)]
-        ax.set_ylabel(f"{measure} deviation from the ideal on the state ({UNITS[str(q)]})")
-        ax.set_title(
-            textwrap.fill(f"{VARIANT_WORDS[v]}:", 40) + f"\n{measure} deviation of the {NAMES[str(q)]}", fontsize=9
-        )
-        ax.grid(alpha=0.3, which="both", axis="y")
-        if c == 0:
-            ax.legend(fontsize=7)
-        needs = {}
-        for n, st in enumerate(starts):
-            outcome = claims.comparison_outcome.sel(variant=v, start=st).values
-            for label, claim, o in zip(claims.comparison.values, claims.comparison_claim.values, outcome):
-                if str(label).startswith(f"{m} {q}:"):
-                    needs.setdefault(str(claim), {}).setdefault(in_words(str(label).split(": ", 1)[1]), []).append(
-                        OUTCOME[int(o)]
+# one figure per variant: rows the responses, columns the measures; the orderings each claim needs are a table after it
+SHORT_SCENE = {
+    s: s.replace("lubricated", "lubr.").replace("_both", " both").replace("_", " joint ") for s in scene_codes
+}
+for v in sorted(variants, key=lambda v: v != fnd.attrs["defensible_model"]):  # the defensible variant first
+    quantities, measures = [str(q) for q in claims.quantity.values], [str(m) for m in claims.measure.values]
+    fig, axes = plt.subplots(
+        len(quantities), len(measures), figsize=(3.9 * len(measures), 3.3 * len(quantities)), constrained_layout=True,
+        squeeze=False,
+    )
+    for i, q in enumerate(quantities):
+        for j, m in enumerate(measures):
+            ax = axes[i, j]
+            for n, st in enumerate(starts):
+                mean = claims.mean_deviation.sel(variant=v, start=st, measure=m, quantity=q).values
+                half = claims.ci_half_width.sel(variant=v, start=st, measure=m, quantity=q).values
+                for k, sc in enumerate(scene_codes):
+                    colour = "C1" if sc.startswith("dry") else "C2"
+                    valid = bool(np.isfinite(half[k]))
+                    ax.errorbar(
+                        [k + 0.15 * (n - (len(starts) - 1) / 2)], [mean[k]],
+                        yerr=[[half[k]], [half[k]]] if valid else None, fmt=START_MARK[st], ms=6, capsize=3,
+                        color=colour, mfc=colour if valid else "white",
+                        label=f"start: {st}" if k == 0 and i == 0 and j == 0 else None,
                     )
-        text = "\n".join(
-            f"{CLAIM_WORDS[k]} needs\n"
-            + "\n".join(
-                textwrap.fill(f"{lab}: {' / '.join(outs)}", 46, initial_indent="  ", subsequent_indent="    ")
-                for lab, outs in rows.items()
-            )
-            for k, rows in needs.items()
-        )
-        box = axes[2 * r + 1, c]
-        box.axis("off")
-        box.text(
-            0.0, 1.0, text, transform=box.transAxes, fontsize=6.5, va="top", ha="left", wrap=True,
-            bbox={"facecolor": "white", "edgecolor": "0.7"},
-        )
-plt.show()
-caption(
-    "The claims' measures per clearance scene on the state it settles into: for each variant (rows) and each response"
-    " and measure (columns), the deviation from the ideal curve over one period of a periodic state, or its mean over"
-    " the judged cycles of a state that is not periodic (orange: dry, green: lubricated), one marker per start"
-    f" ({', '.join(starts)}), with its {claims.attrs['confidence']:.0%} confidence interval where the state is not"
-    " periodic; an open marker is a state in doubt (not settled by the cycle cap, or changed by the tolerance) or, for"
-    " the ripple, a ripple that drifts over the judged window of a state that is not periodic (no interval). The box"
-    " under each panel lists the orderings each claim needs on that measure and, per start in that order, whether each"
-    " holds beyond both the interval and the numerical error, fails, or stays undetermined. Logarithmic scale. The"
-    " peaks are tested converged at this sampling on a dry scene only; the lubricated scenes' peaks are not, and no"
-    " verdict uses them."
-)
+            ax.set_yscale("log")
+            ax.set_xticks(range(len(scene_codes)), [SHORT_SCENE[s_] for s_ in scene_codes], fontsize=8, rotation=35,
+                          ha="right")
+            ax.set_title(f"{MEASURE_WORDS[m]}, {NAMES[q]}", fontsize=9)
+            ax.set_ylabel(f"deviation ({UNITS[q]})", fontsize=8)
+            ax.tick_params(axis="y", labelsize=8)
+            ax.grid(alpha=0.3, which="both", axis="y")
+    fig.legend(loc="outside lower center", ncol=len(starts), fontsize=8)
+    fig.suptitle(f"Deviation from the ideal on the settled state, {VARIANT_WORDS[v]}", fontsize=10)
+    plt.show()
+    caption(
+        f"The claims' measures per clearance scene on the state it settles into, {VARIANT_WORDS[v]}: for each response"
+        " (rows) and measure (columns), the deviation from the ideal curve over one period of a periodic state, or its"
+        " mean over the judged cycles of a state that is not periodic (orange: dry, green: lubricated; 'joint 1',"
+        " 'joint 2', 'both': where the clearance is), one marker per start"
+        f" ({', '.join(starts)}), with its {claims.attrs['confidence']:.0%} confidence interval where the state is not"
+        " periodic; an open marker is a state in doubt (not settled by the cycle cap, or changed by the tolerance) or,"
+        " for the ripple, a ripple that drifts over the judged window of a state that is not periodic (no interval)."
+        " Logarithmic scale. The peaks are tested converged at this sampling on a dry scene only; the lubricated"
+        " scenes' peaks are not, and no verdict uses them. The table below lists the orderings each claim needs."
+    )
+    needs = []
+    for n_, (label, claim) in enumerate(zip(claims.comparison.values, claims.comparison_claim.values)):
+        measure_, quantity_ = str(label).split(": ", 1)[0].split()
+        row = {"claim": CLAIM_WORDS[str(claim)], "ordering it needs": in_words(str(label).split(": ", 1)[1]),
+               "measure": f"{MEASURE_WORDS[measure_]}, {NAMES[quantity_]}"}
+        for st in starts:
+            row[f"start {st}"] = OUTCOME[int(claims.comparison_outcome.sel(variant=v, start=st).values[n_])]
+        needs.append(row)
+    table(
+        pd.DataFrame(needs),
+        caption=f"The orderings each claim needs, {VARIANT_WORDS[v]}: per start whether each holds beyond both the"
+        " interval and the numerical error, fails, or stays undetermined",
+    )
 
 # %% [markdown]
 # **What the paper does.** It models a four-bar (ground, crank, coupler, rocker) as a planar multibody system with
@@ -1189,10 +1181,12 @@ for ax, scene in zip(np.atleast_1d(axes), wp.scene.values):
     ax.set_ylabel(ylabel[dry_scene[str(scene)]])
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
+left_out = declutter(fig)
 plt.show()
 caption(
     "Accuracy of the clearance integrators against the accepted steps over the horizon, per integrator and setting"
-    " (labels: tolerance or step); the star is the pipeline's setting. Dry scene: the largest error of the journal"
+    " (labels: tolerance or step" + (f"; {left_out} that would overlap another are left out" if left_out else "")
+    + "); the star is the pipeline's setting. Dry scene: the largest error of the journal"
     " eccentricity over the first impacts, relative to the radial clearance; lubricated scene: the relative error of"
     " the claims' measure (RMS deviation from the ideal curve)."
 )

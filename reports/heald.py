@@ -416,11 +416,11 @@ md(
     )
     + "which the kinetostatics of a symmetric linkage do not give. The assumed reactions |R_E|, |R_F|"
     f" ({entries['parameters.reaction_E']['range'][0]:g}–{entries['parameters.reaction_E']['range'][1]:g} N, below"
-    " the kinetostatic magnitudes) stand for that split only: in Vulfson's k_τ ≈ |R|/Δ (|R| ≪ kₙΔ) a common factor"
-    " on both reactions stiffens both joints alike and leaves the ratio nearly unchanged, so the range of the split,"
-    " not of the magnitude, is what decides. Model A's 'decided by an unprinted input' on this claim therefore"
-    " means: it holds only for an unequal split of the reactions that the paper does not give and the kinetostatics do"
-    " not produce."
+    " the kinetostatic magnitudes) stand for that split: while |R| ≪ kₙΔ, Vulfson's k_τ ≈ |R|/Δ and a common factor"
+    " on both reactions leaves the ratio nearly unchanged; at the kinetostatic magnitudes, a good fraction of kₙΔ, it"
+    " does move it, and the split needed there is larger. With self-consistent reactions the split follows from the"
+    " clearances: unequal clearances give it. Model A's 'decided by an unprinted input' on this claim therefore"
+    " means: it holds only for unequal clearances or reactions, which the paper does not print."
 )
 
 # %% [markdown]
@@ -641,6 +641,9 @@ for ax in axes[1:]:
     ax.set_ylabel("lowest resonance (rad/s)")
 axes[1].set_xlabel("heald-frame mass M_P (kg)")
 axes[2].set_xlabel("warp stiffness k_O (N/m)")
+for ax in (axes[0], axes[2]):  # labels at 1, 2 and 5 of each decade only: the minor ones run into each other
+    ax.xaxis.set_major_locator(plt.LogLocator(subs=(1.0, 2.0, 5.0)))
+    ax.xaxis.set_minor_formatter(plt.NullFormatter())
 for ax in axes:
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)

@@ -21,7 +21,7 @@ import pandas as pd
 from _common import VERDICT_COLOURS, answer_html, caption, esc, inputs, load, md, read_csv, table
 from matplotlib.patches import Patch
 
-from linkwork.papers import PAPERS
+from linkwork.papers import PAPERS, LABELS
 from linkwork.pipeline.compare import VERDICT_MEANING, VERDICTS, scenario_of
 
 files = inputs()
@@ -80,7 +80,9 @@ caption(
     "One line per paper, model variant and named scenario (a discrete modelling choice, judged apart); one cell per "
     "published headline number or claim, coloured by its verdict class. The classes: "
     + "; ".join(f"{v}: {VERDICT_MEANING[v]}" for v in used)
-    + "."
+    + ". The model labels: "
+    + "; ".join(f"{paper} · {label}: {text}" for paper, labels in LABELS.items() for label, text in labels.items())
+    + f". {sum(len(b[3]) for b in blocks)} cells: every headline row of the {len(PAPERS)} papers' comparison tables."
 )
 
 # %%

@@ -161,8 +161,8 @@ joint_verdicts = dict(zip(fnd.joint_model.values, fnd.conclusion_by_joints.value
 lines.append(
     "* **The paper's conclusion (neither stiffness is constant), one verdict per form** from its K_h and K_c claims: "
     + "; ".join(f"{form} {esc(fnd.conclusion_verdict.sel(form=form).item())}" for form in all_forms)
-    + f". **The joint model decides it**: welded joints, {joint_verdicts['welded']}; pinned joints,"
-    f" {joint_verdicts['pinned']} (section 6)."
+    + f". Welded joints, as the paper models them: {joint_verdicts['welded']}. Pinned joints (a different quantity:"
+    " crank clamped, O' pivoted on the frame): our reading only, not a test of the paper (section 6)."
 )
 md("\n".join(lines))
 ref_bad = headline[(headline.model == ref_form) & (headline.verdict != "reproduced")]

@@ -105,7 +105,8 @@ md(f"""
   distortion {float(base.distortion) * 1e3:.2f} mm (printed {pub['distortion'] * 1e3:g}), maximum stress
   {float(base.stress_max):.2f} MPa (printed {pub['stress_max']:g}).
   Section 3 has the verdicts; section 4 shows which assumptions move these numbers.
-* **The optimal diameters are not reproducible: they need a load the paper does not print** (section 3a). Our optimum is
+* **The optimal diameters are not reproduced, and why is open** (section 3a): under the inertia loads the paper names
+  they are not an optimum; an unprinted external load is one candidate, but no single tip force fits. Our optimum is
   ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm by the paper's method (SLSQP on the same objective:
   ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm).
   With the stresses of our model, the paper's point is
@@ -432,11 +433,12 @@ verdict_figure(
 )
 
 # %% [markdown]
-# ### 3a. The optimal diameters: a load the paper does not print
+# ### 3a. The optimal diameters: is a load the paper does not print the cause?
 #
 # The paper names one load, the links' own inertia (its eq. 7 and the constraint (16) on the "dynamic" stress). Under it
-# alone a member's load grows as the square of its diameter and its section modulus as the cube, so its bending stress
-# falls as 1/d, and the rocker CD, pinned at both ends, carries almost nothing but its own inertia. The objective
+# alone a member's own load grows as the square of its diameter and its section modulus as the cube, so the bending
+# stress of a member loaded by its own inertia alone (the arm) falls as 1/d (the crank and coupler also carry the
+# arm's), and the rocker CD, pinned at both ends, carries almost nothing but its own inertia. The objective
 # SY + SZ then falls as a lightly stressed member shrinks, down to the lower bound on the diameters, which is where
 # every
 # optimiser puts our rocker and crank. The printed optimum keeps them well above it. We ask which external load would

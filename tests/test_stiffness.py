@@ -334,8 +334,9 @@ def test_material_statement_is_computed_from_the_printed_sections():
     assert "1000 times" in text and f"{np.sqrt(0.0330) * 1e3:.0f} mm on a side on a 15 mm crank" in text
     from linkwork.pipeline import statements
 
-    answer = statements.plain_answer(statements.render("stiffness", fnd, _compared()[0]))
-    assert "1000 times below steel's" in answer and "182 mm square on a 15 mm crank" in answer
+    rendered = {r.id: r for r in statements.render("stiffness", fnd, _compared()[0])}
+    assert "1000 times below steel's" in statements.plain_answer(list(rendered.values()))
+    assert "a square 182 mm on a side on a 15 mm crank" in rendered["sections"].text
 
 
 def test_pinned_stiffness_statement_follows_the_result():
@@ -509,7 +510,7 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     assert "stiffness." not in prose.replace("stiffness. ", "") and not re.search(r"\{[^}]*\}", prose)
     # the conclusion judged on the pinned joints is stated, with the joint model as the deciding scenario
     plain = re.sub(r" ([:;,.])", r"\1", text)
-    assert "The joint model decides it: welded joints, reproduced; pinned joints, differs (section 6)." in plain
+    assert "Welded joints, as the paper models them: reproduced. Pinned joints (a different quantity" in plain
     assert "its 5 numbers have no counterpart" in plain  # the pinned mechanism's K_h numbers, counted
     assert "On the machine's pinned joints its verdict is differs" in plain
 

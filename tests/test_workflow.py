@@ -636,6 +636,38 @@ def test_every_answer_is_short_plain_and_every_row_is_the_classifiers_own(built)
         assert statements.answer(rendered).split(".")[0] in (built / f"results/reports/{paper}.html").read_text()
 
 
+def test_pages_a_reader_moves_through(built):
+    """Every page: a bar linking the index and every other report, a table of contents where it has sections, every
+    figure's alt text from its caption (not nbconvert's placeholder), no HTML entity shown as text (escaped twice),
+    and the index's verdict picture holds every headline row of every paper's comparison table; the index is light
+    without its figures."""
+    import html as html_lib
+
+    import pandas as pd
+
+    from linkwork.papers import PAPERS
+
+    for name in REPORTS:
+        page = (built / f"results/reports/{name}.html").read_text()
+        bar = re.search(r'<nav [^>]*class="site"[^>]*>(.*?)</nav>', page, re.S)
+        assert bar, name
+        for other in REPORTS:
+            assert other == name or f'href="{other}.html"' in bar.group(1), (name, other)
+        if "<h2" in page:
+            assert re.search(r'<nav [^>]*class="toc"', page), name
+        for img in re.findall(r"<img\b[^>]*>", page):
+            alt = re.search(r'alt="([^"]*)"', img)
+            assert alt and len(alt.group(1)) > 20 and "No description" not in alt.group(1), (name, img[:80])
+        shown = html_lib.unescape(re.sub(r"<[^>]+>", " ", re.sub(r"<(style|script)\b.*?</\1>", " ", page, flags=re.S)))
+        assert not re.search(r"&#x?[0-9a-fA-F]+;|&[a-z]+;", shown), (name, re.findall(r".{30}&#?\w+;.{30}", shown)[:3])
+    index = (built / "results/reports/index.html").read_text()
+    rows = sum(
+        int((pd.read_csv(built / f"results/{p}/comparison.csv").role == "headline").sum()) for p in PAPERS
+    )
+    assert f"{rows} cells: every headline row of the {len(PAPERS)} papers' comparison tables" in index
+    assert len(re.sub(r"data:image/[a-z]+;base64,[A-Za-z0-9+/=]+", "", index).encode()) < 100_000
+
+
 def test_second_run_has_nothing_to_do(built):
     assert planned_jobs(built) == {}
 

@@ -4,8 +4,9 @@ Each package holds its model, its config adapter (``adapter``), its studies (con
 its physical config checks (``checks``) and, where published numbers are needed to state a finding, its findings
 (``findings``).  Papers import engines, never each other.  A package is a paper when its ``__init__`` declares
 ``TITLE`` (one line), ``CITATION`` (authors, title, journal; DOI where it has one; the seed file of its text) and
-``ORDER`` (its place among the reports): adding a paper edits no shared file.  ``PAPERS`` and ``CITATIONS`` are the one
-list of papers (rules, index and README read them).  Standard library only.
+``ORDER`` (its place among the reports), and where its comparison has model variants ``LABELS`` (variant -> what it
+is, in a few words: the index defines the labels it shows): adding a paper edits no shared file.  ``PAPERS`` and
+``CITATIONS`` are the one list of papers (rules, index and README read them).  Standard library only.
 
 The packages are found when ``PAPERS`` or ``CITATIONS`` is first read, not when a paper's module is imported (a paper
 imports no other paper).  linkwork-deps: PAPERS CITATIONS import every subpackage (linkwork.pipeline.deps: a module that
@@ -28,11 +29,14 @@ def _declared() -> list[tuple[int, str, str, str]]:
 
 
 def __getattr__(name: str):
-    """``PAPERS`` (name -> title, in report order) and ``CITATIONS`` (name -> the paper's source and the seed file of
-    its text), found on first reading."""
-    if name not in ("PAPERS", "CITATIONS"):
+    """``PAPERS`` (name -> title, in report order), ``CITATIONS`` (name -> the paper's source and the seed file of
+    its text) and ``LABELS`` (name -> its model variants' labels in words), found on first reading."""
+    if name not in ("PAPERS", "CITATIONS", "LABELS"):
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     found = _declared()
     globals()["PAPERS"] = {paper: title for _, paper, title, _ in found}
     globals()["CITATIONS"] = {paper: citation for _, paper, _, citation in found}
+    globals()["LABELS"] = {
+        paper: dict(getattr(importlib.import_module(f"{__name__}.{paper}"), "LABELS", {})) for _, paper, _, _ in found
+    }
     return globals()[name]

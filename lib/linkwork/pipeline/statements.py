@@ -38,7 +38,8 @@ import yaml
 from jinja2 import StrictUndefined
 from jinja2.sandbox import SandboxedEnvironment
 
-KINDS = ("holds", "does not hold", "cannot be tested")
+#: How the report groups statements: what holds, what does not, what cannot be tested, and notes on the source text.
+KINDS = ("holds", "does not hold", "cannot be tested", "the source text")
 PAPERS_DIR = Path(__file__).resolve().parent.parent / "papers"
 
 

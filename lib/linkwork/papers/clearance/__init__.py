@@ -8,3 +8,8 @@ CITATION = (
     "with the project digest's key)"
 )
 ORDER = 3
+#: The model variants of the comparison, each in a few words (the index defines the labels it shows).
+LABELS = {
+    "decoded": "the link inertias as decoded from the text",
+    "slender": "slender-rod link inertias, J = mL^2/12 (our reading)",
+}

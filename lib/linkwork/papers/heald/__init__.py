@@ -7,3 +7,8 @@ CITATION = (
     " DOI 10.47367/0021-3497_2021_3_117 (seed 004_911fbc8eddce308f.txt)"
 )
 ORDER = 5
+#: The model variants of the comparison, each in a few words (the index defines the labels it shows).
+LABELS = {
+    "A": "the physical heald linkage (rigid links, clearance springs at E and F)",
+    "B": "the chain with the form of the paper's eq. (2)",
+}

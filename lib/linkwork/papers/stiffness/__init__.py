@@ -7,3 +7,10 @@ CITATION = (
     " 000_3b8cde48dccf5fc1.txt)"
 )
 ORDER = 1
+#: The model variants of the comparison, each in a few words (the index defines the labels it shows).
+LABELS = {
+    "equilibrium": "the paper's welded frame with internal forces from statics (our reading)",
+    "tables": "the paper's welded frame with its Tables 1-2 as printed",
+    "printed": "the paper's welded frame with its eqs. (8) and (14) as printed",
+    "pinned": "the machine's pinned joints, crank held (our reading; a different quantity)",
+}

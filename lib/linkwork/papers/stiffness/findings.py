@@ -285,6 +285,13 @@ def compare(
         ),
         "crank_length": scalar(float(result.member_length.sel(member="OA")), "m", "crank length OA"),
     }
+    if {DEFENSIBLE, PAPER_MODEL} <= set(welded):
+        for k in ("K_h", "K_c"):  # the correction frame by frame, not only at the extremes
+            change = result[k].sel(form=DEFENSIBLE) / result[k].sel(form=PAPER_MODEL) - 1
+            data[f"{k}_largest_change_at_an_angle"] = scalar(
+                float(np.abs(change).max()), "1",
+                f"largest |{k} equilibrium / {k} tables - 1| over the paper's frames (the sign error, angle by angle)",
+            )
     if "printed" in forms:
         kc = headline[
             (headline.model == "printed") & headline.id.isin(["K_c_min", "K_c_max", "K_c_mean"])
