@@ -365,8 +365,9 @@ md(
     f" too, but needs {float(fnd.fit_shift.sel(fit_case='l7 alone, without bounds', fit_parameter='l7')):+.1f}"
     " half-widths. l4 and θ4 alone cannot: they move θ3 as well, which the table pins. Without bounds, the four"
     f" parameters together trade l7 against θ7 (the Jacobian's condition number is {float(fnd.fit_condition):.0f}), so"
-    " that fit's large changes mean little beyond its smaller rms. So Table 1 was most likely computed with pivot D a"
-    " little away from where the printed l7 and θ7 put it, further than their rounding allows."
+    " that fit's large changes mean little beyond its smaller rms. Pivot D a little away from where the printed l7 and"
+    " θ7 put it would explain the offset; we fitted only these four parameters, and others (l5, for one) may explain it"
+    " within their rounding, so the cause stays open."
 )
 
 # %%

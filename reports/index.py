@@ -43,9 +43,6 @@ for paper, title in PAPERS.items():
         {
             "paper": f'<a href="{paper}.html">{esc(title)}</a>',
             "does it hold up?": answer_html(paper, findings, comparison),
-            "headline rows (defensible model, nominal reading)": (
-                (f"{esc(defensible)}: " if defensible else "") + counts(findings, defensible)
-            ),
         }
     )
     headline = comparison[comparison.role == "headline"]

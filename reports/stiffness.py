@@ -151,8 +151,8 @@ for form in all_forms:
         f" ({FORM_NAMES[form]}{'; ' + role if role else ''}): {int(fnd.headline_matches.sel(form=form))} of"
         f" {int(fnd.headline_total.sel(form=form))} match"
         + (
-            f"; the linear stiffness has no counterpart, so its {pinned_missing} numbers have no counterpart, and the"
-            " rotational numbers are the pinned output's."
+            f"; a different quantity (crank clamped, O' pivoted), so its {pinned_missing} numbers have no counterpart:"
+            " the pinned output's own numbers are in section 7."
             if form == "pinned"
             else "."
         )
@@ -188,7 +188,7 @@ if "printed" in forms:
         f"{float(fnd.printed_K_c_deviation_max):.1%}, so this slip is in the typesetting only."
     )
 findings += [
-    f"**Not a steel mechanism.** {esc(fnd.attrs['material_statement'])} We compute with the printed values; the"
+    f"**Not steel's modulus.** {esc(fnd.attrs['material_statement'])} We compute with the printed values; the"
     " published values "
     + (
         "imply the printed modulus to within rounding (section 5)."
@@ -509,17 +509,12 @@ md(
         else "does **not** hold in every form of the welded frame "
     )
     + f"(max/min {float(fnd.welded_max_over_min_least):.2f} to {float(fnd.welded_max_over_min_most):.2f}). "
-    + f"On the machine's pinned joints its verdict is **{esc(joint_verdicts['pinned'])}**: the output's rotational"
-    " stiffness varies by max/min "
+    + "On the machine's pinned joints the paper's stiffnesses have no counterpart: the pinned output stiffness (crank"
+    " clamped, O' pivoted on the frame) is a different quantity, our reading only. It varies by max/min "
     + f"{float(fnd.pinned_max_over_min):.3f}, {'at least' if int(fnd.pinned_varies_considerably) else 'below'} the "
     + f"{float(fnd.conclusion_ratio_threshold):g} we read as 'varies considerably', and the linear stiffness has no"
     " pinned counterpart "
     + f"(mobility {int(fnd.pinned_free_mobility)} with O' free; section 7). "
-    + (
-        "The joint model decides the conclusion: welded, as the paper models it, it holds; pinned, it does not. "
-        if int(fnd.conclusion_decided_by_joints)
-        else "The joint model does not change the verdict. "
-    )
     + "The pinned reading is the "
     + "stiffness at the output (needle) shaft with the crank held; referred to the main shaft through the"
     " crank-rocker's varying "

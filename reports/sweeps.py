@@ -53,9 +53,9 @@ def axis_unit(dim):
     return label[label.index("(") + 1 : -1] if "(" in label and "assumed" not in label else ""
 
 
-def heat_map(ax, ds, var, xdim, ydim, linear=False):
+def heat_map(ax, ds, var, xdim, ydim, linear=False, outside=None):
     """One output over the grid: log colour range from the result (``linear``: from 0), reference cell outlined,
-    threshold contour."""
+    threshold contour; ``outside`` (ydim x xdim booleans): cells outside the model, hatched and their value marked ‡."""
     data = ds[var].transpose(ydim, xdim)
     low, high = float(ds.colour_low.sel(output=var)), float(ds.colour_high.sel(output=var))
     if linear:
@@ -74,10 +74,13 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
     for i in range(ds[ydim].size):
         for j in range(ds[xdim].size):
             shade = float(im.norm(data.values[i, j]))
+            beyond = outside is not None and bool(outside[i, j])
             ax.text(
-                j, i, f"{data.values[i, j]:.3g}", ha="center", va="center", fontsize=7,
+                j, i, f"{data.values[i, j]:.3g}" + ("‡" if beyond else ""), ha="center", va="center", fontsize=8,
                 color="w" if shade > (0.6 if linear else 0.8) or (shade < 0.2 and not linear) else "k",
             )
+            if beyond:
+                ax.add_patch(plt.Rectangle((j - 0.5, i - 0.5), 1, 1, fill=False, hatch="//", edgecolor="0.35", lw=0))
     rx = list(ds[xdim].values).index(ds.attrs[f"reference_{xdim}"])
     ry = list(ds[ydim].values).index(ds.attrs[f"reference_{ydim}"])
     ax.add_patch(plt.Rectangle((rx - 0.5, ry - 0.5), 1, 1, fill=False, edgecolor="k", linewidth=2))
@@ -100,11 +103,11 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False):
     bar.ax.yaxis.set_minor_formatter("")
 
 
-def heat_row(ds, names, xdim, ydim, width):
+def heat_row(ds, names, xdim, ydim, width, outside=None):
     """One row of heat maps of ``names`` over ``xdim`` x ``ydim`` (figure ``width`` in inches)."""
     fig, axes = plt.subplots(1, len(names), figsize=(width, 5.5), constrained_layout=True)
     for ax, var in zip(axes.flat, names):
-        heat_map(ax, ds, var, xdim, ydim)
+        heat_map(ax, ds, var, xdim, ydim, outside=outside)
     plt.show()
 
 
@@ -171,15 +174,19 @@ def threshold_sentence(ds, var, along, other, what_above, what_below):
 # %%
 dims = ("clearance_m", "crank_speed_rad_s")
 cl_valid = ["penetration_over_limit", "peak_joint_force", "peak_force_over_ideal"]
-heat_row(cl, cl_valid, "crank_speed_rad_s", "clearance_m", width=17)
+# where the journal penetrates its bushing by more than the clearance itself, the contact model does not apply at all
+beyond_clearance = (cl.penetration_over_clearance > 1).transpose("clearance_m", "crank_speed_rad_s").values
+heat_row(cl, cl_valid, "crank_speed_rad_s", "clearance_m", width=17, outside=beyond_clearance)
 caption(
     f"Validity map of the clearance model: {esc(cl.attrs['scene_description'])},"
     f" {esc(cl.attrs['variant_description'])}, over the judged turns of the state each point settles into (the"
     " clearance scenes' rule, first start). Left: the deepest penetration over the sphere law's penetration limit (eq."
-    " (9) holds while the contact arc is short; 1 = the edge of its range, dashed). Middle: the peak contact force."
-    " Right: the peak contact force over the largest reaction the same joints carry with ideal (no-clearance) joints."
-    " Outlined: the paper's clearance and speed. Colour: log scale centred on the threshold (left) or the reference"
-    f" value, symmetric, at least ×/÷ {cl.attrs['colour_floor_factor']:g}."
+    " (9) holds while the contact arc is short; 1 = the edge of its range, dashed where the map crosses it)."
+    " Middle: the peak contact force. Right: the peak contact force over the largest reaction the same joints carry"
+    " with ideal (no-clearance) joints."
+    " Outlined: the paper's clearance and speed. Hatched and marked ‡: the penetration exceeds the clearance itself,"
+    " outside any contact model of a journal in its bushing. Colour: log scale centred on the threshold (left) or the"
+    f" reference value, symmetric, at least ×/÷ {cl.attrs['colour_floor_factor']:g}."
 )
 
 # %%
@@ -201,8 +208,9 @@ md(
 cl_dev = ["rocker_acceleration_deviation", "crank_torque_deviation"]
 fig, axes = plt.subplots(2, 2, figsize=(12, 10), constrained_layout=True)
 for k, var in enumerate(cl_dev):
-    heat_map(axes[0, k], cl, var, "crank_speed_rad_s", "clearance_m")
-    heat_map(axes[1, k], cl, var + "_relative_cycle_spread", "crank_speed_rad_s", "clearance_m", linear=True)
+    heat_map(axes[0, k], cl, var, "crank_speed_rad_s", "clearance_m", outside=beyond_clearance)
+    heat_map(axes[1, k], cl, var + "_relative_cycle_spread", "crank_speed_rad_s", "clearance_m", linear=True,
+             outside=beyond_clearance)
 plt.show()
 caption(
     f"The claims' measure on the same grid ({esc(cl.attrs['scene_description'])},"
@@ -210,7 +218,7 @@ caption(
     " per recorded cycle, for the rocker acceleration (left, claim 1) and the crank torque (right, claim 2). Top: mean"
     " over the judged turns of each point's settled state. Bottom: the spread of the same turns (largest − smallest)"
     " over their mean; 0 where the state is a periodic orbit of one turn; linear grey scale from 0. Outlined: the"
-    " paper's clearance and speed."
+    " paper's clearance and speed. Hatched and marked ‡: the penetration exceeds the clearance, outside the model."
 )
 
 
@@ -262,7 +270,8 @@ he_dims = ("clearance_m", "reaction_ratio_EF")
 heat_row(he, he_vars, "reaction_ratio_EF", "clearance_m", width=16)
 caption(
     f"Heald sweep, model {esc(he.attrs['model'])}, elastic (Vulfson) joints, over the configured speed band: the"
-    " smallest E/F force ratio with the first claim's threshold (dashed), and the peak joint forces. |R_F| is held at"
+    " smallest E/F force ratio with the first claim's threshold (dashed where the map crosses it), and the peak joint"
+    " forces. |R_F| is held at"
     " its configured value and |R_E| moved with the ratio; both joints get the same clearance. Outlined: the"
     " configured clearance and reaction ratio. Colour: log scale centred on the threshold (left) or the reference"
     f" value, symmetric, at least ×/÷ {he.attrs['colour_floor_factor']:g}."

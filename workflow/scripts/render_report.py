@@ -206,7 +206,7 @@ def finish_page(html: str, name: str) -> str:
         head = soup.new_tag("strong")
         head.string = "Contents"
         toc.append(head)
-        items = soup.new_tag("ol")
+        items = soup.new_tag("ul")  # the sections number themselves
         for h in sections:
             item = soup.new_tag("li")
             link = soup.new_tag("a", href=f"#{h['id']}")

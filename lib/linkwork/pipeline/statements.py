@@ -38,8 +38,9 @@ import yaml
 from jinja2 import StrictUndefined
 from jinja2.sandbox import SandboxedEnvironment
 
-#: How the report groups statements: what holds, what does not, what cannot be tested, and notes on the source text.
-KINDS = ("holds", "does not hold", "cannot be tested", "the source text")
+#: How the report groups statements: what holds, what does not, what cannot be tested, what we found beyond the paper's
+#: claims, and notes on the source text.
+KINDS = ("holds", "does not hold", "cannot be tested", "beyond the paper", "the source text")
 PAPERS_DIR = Path(__file__).resolve().parent.parent / "papers"
 
 
@@ -78,7 +79,7 @@ def pct(value: float, digits: int = 2) -> str:
 def _environment() -> SandboxedEnvironment:
     env = SandboxedEnvironment(undefined=StrictUndefined, autoescape=False, keep_trailing_newline=False)
     env.filters.update(num=num, pct=pct, abs=abs)
-    env.globals.update(min=min, max=max, abs=abs, round=round)
+    env.globals.update(min=min, max=max, abs=abs, round=round, zip=zip)
     return env
 
 

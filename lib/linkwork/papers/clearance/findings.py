@@ -60,7 +60,7 @@ def compare(
     table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty,
                              causes=memory_causes(claims, phys))
     table = undetermined_ranges(nominal_only(with_reasons(table, claims)), uncertainty)
-    findings = counts_dataset(table).merge(phys)
+    findings = counts_dataset(table).merge(phys).merge(failing_orderings(claims))
     findings.attrs.update(law_attrs)
     findings.attrs.update(
         findings_attrs("Clearance paper: comparison findings", DEFENSIBLE, PAPER_MODEL)
@@ -74,6 +74,30 @@ MEMORY_DECIDES = (
     "the impact velocity the contact damping latched at the first impact (the starts settle apart only through it: "
     "a memory of the printed contact law, no physical input)"
 )
+
+
+def failing_orderings(claims: xr.Dataset) -> xr.Dataset:
+    """Per variant, start and claim: the measures (rms, peak, ripple) of the orderings that decidedly fail, and of those
+    left undetermined, each a text joining the distinct measures in the claims' order ('' where none)."""
+    def measures(outcome: int, v, st, c) -> str:
+        chosen = claims.comparison_outcome.sel(variant=v, start=st).values == outcome
+        of_claim = np.asarray(claims.comparison_claim.values).astype(str) == str(c)
+        labels = np.asarray(claims.comparison.values).astype(str)[chosen & of_claim]
+        return ", ".join(dict.fromkeys(str(label).split()[0] for label in labels))
+
+    dims = ("variant", "start", "claim")
+    v_, s_, c_ = (claims[d].values for d in dims)
+    return xr.Dataset(
+        {
+            f"{name}_measures": (
+                dims,
+                np.array([[[measures(o, v, st, c) for c in c_] for st in s_] for v in v_], dtype=object),
+                {"units": "1", "long_name": f"measures of the claim's orderings that {name.replace('_', ' ')}"},
+            )
+            for name, o in (("fail", 0), ("stay_undetermined", -1))
+        },
+        coords={d: claims[d] for d in dims},
+    )
 
 
 def memory_causes(claims: xr.Dataset, phys: xr.Dataset) -> dict[str, dict[str, dict[str, str]]]:
