@@ -64,8 +64,9 @@ for ax, method in zip(axes.flat, methods):
         part = sub[family == fam]
         ax.loglog(part.time_s, part.error, "o-", ms=4, label=fam)
     for _, r in sub.iterrows():
-        ax.annotate(
-            r.setting.replace("central differences ", "").rsplit(" (", 1)[0], (r.time_s, r.error), fontsize=6, alpha=0.8
+        ax.annotate(  # clipped to the panel: a label that would spill over its edge is cut, not drawn on another
+            r.setting.replace("central differences ", "").rsplit(" (", 1)[0], (r.time_s, r.error), fontsize=7,
+            alpha=0.85, xytext=(3, 3), textcoords="offset points", clip_on=True,
         )
     pipe = sub[sub.pipeline]
     ax.plot(pipe.time_s, pipe.error, "k*", ms=15, label="pipeline setting")

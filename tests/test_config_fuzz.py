@@ -25,6 +25,11 @@ from linkwork.project.validate import load_yaml, published_schema, validate_conf
 PROJECT = Path(__file__).resolve().parents[1]
 CONFIG_TEXT = (PROJECT / "config" / "config.yaml").read_text(encoding="utf-8")
 
+
+def line_of(text: str) -> str:
+    """'line N': the config line where ``text`` starts (the rows' edits replace it; no line number typed in)."""
+    return f"line {CONFIG_TEXT[:CONFIG_TEXT.index(text)].count(chr(10)) + 1}"
+
 # (id, old text, new text, fragments the message must contain)
 CASES = [
     # values out of range, and linkages that cannot be assembled
@@ -239,7 +244,7 @@ CASES = [
     # YAML 1.1 surprises (PyYAML reads 0720 as octal 464 and 5:00 as 300 in base 60), and an alias bomb (10^7 entries)
     (
         "yaml11-octal", "    points_per_cycle: 720\n", "    points_per_cycle: 0720\n",
-        ["line 183", "heald.contact.points_per_cycle", "0720", "464"],
+        [line_of("    points_per_cycle: 720\n"), "heald.contact.points_per_cycle", "0720", "464"],
     ),
     (
         "yaml11-base-60", "crank_speed_rpm: 300.0", "crank_speed_rpm: 5:00",
@@ -339,7 +344,7 @@ CASES = [
     ),
     (
         "scene-list-key", "    dry_1: {clearance_joints: [1]", "    [a, b]: {clearance_joints: [1]",
-        ["line 305", "a config key is a list, not a name"],
+        [line_of("    dry_1: {clearance_joints: [1]"), "a config key is a list, not a name"],
     ),
     ("root-crosscheck-deleted", "\ncrosscheck: false", "\n", ["crosscheck", "missing"]),
     # linkages that assemble but cannot run: a change point passed every turn, a clearance four-bar with no dead point

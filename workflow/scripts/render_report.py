@@ -48,10 +48,31 @@ _OUTSIDE: list[str] = []
 CANVAS_SLACK_IN = 0.02
 
 
+def thin_crowded_ticks(fig) -> None:
+    """The house rule for tick labels: on an axis whose drawn tick labels run into each other (a log axis spanning
+    less than a decade labels its minor ticks too), the minor labels go; the major ones stay."""
+    from matplotlib.ticker import NullFormatter
+
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            boxes = [
+                label.get_window_extent(renderer)
+                for tick in axis._update_ticks()
+                for label in (tick.label1, tick.label2)
+                if label.get_visible() and label.get_text().strip()
+            ]
+            if any(a.overlaps(b) for i, a in enumerate(boxes) for b in boxes[i + 1:]):
+                axis.set_minor_formatter(NullFormatter())
+
+
 def _figure_png(fig) -> str:
-    """The figure as base64 PNG at its own size, no 'tight' extent pass; the canvas and text checks where asked for."""
+    """The figure as base64 PNG at its own size, no 'tight' extent pass (crowded tick labels thinned first); the
+    canvas and text checks where asked for."""
     from IPython.core.pylabtools import print_figure
 
+    fig.canvas.draw()
+    thin_crowded_ticks(fig)
     png = print_figure(fig, fmt="png", bbox_inches=None, base64=True)
     if os.environ.get("LINKWORK_CHECK_FIGURES") in ("1", "list"):
         title = fig.get_suptitle() or (fig.axes[0].get_title() if fig.axes else "")

@@ -119,17 +119,17 @@ VERDICT_MEANING = {
     "not printed": "the paper does not print what reproducing it needs",
 }
 #: One colour per class, for tables and the index's matrix.
-VERDICT_COLOURS = {
-    "reproduced": "#a6dba0",
-    "reproduced at the printed digits": "#d9f0d3",
-    "decided by an unprinted input": "#c6dbef",
-    "only where other rows fail": "#9e9ac8",
-    "decided by the paper's model": "#dadaeb",
-    "undetermined by our numerics": "#fee391",
-    "differs at the printed digits": "#fcbba1",
-    "differs": "#ef8a62",
-    "no counterpart in this model": "#f0f0f0",
-    "not printed": "#d9d9d9",
+VERDICT_COLOURS = {  # distinct hues, light enough for black text in a table cell
+    "reproduced": "#66bd63",
+    "reproduced at the printed digits": "#c2e699",
+    "decided by an unprinted input": "#74add1",
+    "only where other rows fail": "#b2a3d9",
+    "decided by the paper's model": "#f1b6da",
+    "undetermined by our numerics": "#fee08b",
+    "differs at the printed digits": "#fdae61",
+    "differs": "#e8684a",
+    "no counterpart in this model": "#a6a6a6",
+    "not printed": "#dedede",
 }
 HALF_DIGIT = "half a unit of the last printed digit"
 COLUMNS = [
