@@ -192,3 +192,38 @@ def pytest_collection_modifyitems(items):
     file each, in collection order: --no-loadscope-reorder) the Snakemake build, the longest file, starts at once
     instead of last."""
     items.sort(key=lambda item: not item.path.name.startswith("test_workflow"))
+
+
+def render_stiffness_page(tmp_path, cfg, check_figures: bool = True):
+    """The stiffness report rendered by render_report from results computed here with ``cfg`` (its config section):
+    (the page's HTML, the comparison table, the findings Dataset)."""
+    import os
+    import subprocess
+    import sys
+
+    from linkwork.papers.stiffness.findings import compare
+    from linkwork.papers.stiffness.studies import stiffness
+    from linkwork.pipeline import results
+
+    ds = stiffness(cfg)
+    ds.attrs.update(results.provenance("stiffness", cfg, study="linkwork.papers.stiffness.studies:stiffness"))
+    table, fnd = compare(cfg, load_yaml("config/published/stiffness.yaml"), ds)
+    results.write(ds, tmp_path / "stiffness.nc")
+    results.write(fnd, tmp_path / "findings.nc")
+    table.to_csv(tmp_path / "comparison.csv", index=False)
+    inputs = {
+        "result": tmp_path / "stiffness.nc",
+        "findings": tmp_path / "findings.nc",
+        "comparison": tmp_path / "comparison.csv",
+        "published": Path("config/published/stiffness.yaml").resolve(),
+    }
+    out = tmp_path / "stiffness.html"
+    args = [a for k, v in inputs.items() for a in ("--input", f"{k}={v}")]
+    env = {**os.environ, **({"LINKWORK_CHECK_FIGURES": "1"} if check_figures else {})}
+    proc = subprocess.run(
+        [sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
+        env=env, capture_output=True, text=True, timeout=600,
+    )
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    return out.read_text(), table, fnd
+

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 import xarray as xr
-from conftest import load_yaml
+from conftest import load_yaml, render_stiffness_page
 
 from linkwork.pipeline import statements
 from linkwork.pipeline.compare import VERDICTS, classify, reclassify
@@ -115,48 +115,16 @@ def test_every_class_names_its_cause_and_the_classifier_is_reproducible_from_a_r
     assert reclassify({**row, "reproduced": np.nan}) == "not printed"
 
 
-def _stiffness_page(tmp_path, cfg):
-    """The stiffness report rendered from results computed here with ``cfg``: the page's visible text."""
-    import html
-    import os
-    import subprocess
-    import sys
-    from pathlib import Path
-
-    from linkwork.papers.stiffness.findings import compare
-    from linkwork.papers.stiffness.studies import stiffness
-    from linkwork.pipeline import results
-
-    ds = stiffness(cfg)
-    ds.attrs.update(results.provenance("stiffness", cfg, study="linkwork.papers.stiffness.studies:stiffness"))
-    table, fnd = compare(cfg, load_yaml("config/published/stiffness.yaml"), ds)
-    results.write(ds, tmp_path / "stiffness.nc")
-    results.write(fnd, tmp_path / "findings.nc")
-    table.to_csv(tmp_path / "comparison.csv", index=False)
-    inputs = {
-        "result": tmp_path / "stiffness.nc",
-        "findings": tmp_path / "findings.nc",
-        "comparison": tmp_path / "comparison.csv",
-        "published": Path("config/published/stiffness.yaml").resolve(),
-    }
-    out = tmp_path / "stiffness.html"
-    args = [a for k, v in inputs.items() for a in ("--input", f"{k}={v}")]
-    proc = subprocess.run(
-        [sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
-        env=os.environ, capture_output=True, text=True, timeout=600,
-    )
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    page = out.read_text()
-    return page, re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", page[page.index("<body"):])))
-
-
 def test_a_parameter_change_that_falsifies_a_finding_shows_it_withdrawn_on_the_page(tmp_path):
     """With every member's modulus set to steel's, the statement that the printed modulus is far below steel's is
     false: the rendered stiffness page shows it struck through, with the condition that failed and the value read."""
     cfg = load_yaml("config/config.yaml")["stiffness"]
     steel = float(cfg["steel_youngs_modulus_Pa"]["value"])
     cfg["members"] = {k: {**v, "youngs_modulus_Pa": steel} for k, v in cfg["members"].items()}
-    page, text = _stiffness_page(tmp_path, cfg)
+    import html
+
+    page, _, _ = render_stiffness_page(tmp_path, cfg)
+    text = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", page[page.index("<body"):])))
     assert "<del>Computed with E = 210000 MPa, its stiffnesses are 1 times too low" in page
     assert "withdrawn: it needs a printed modulus at least 100 times below steel's (steel >= 100), and the results" \
            " give steel = 1" in text

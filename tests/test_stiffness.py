@@ -439,37 +439,11 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     the figure of K_h and K_c per form right after it (before anything else), and its prose holds no code name
     (snake_case), no config key path and no unrendered template.  Provenance lists attribute names on purpose."""
     import html
-    import os
     import re
-    import subprocess
-    import sys
-    from pathlib import Path
 
-    from linkwork.papers.stiffness.findings import compare
-    from linkwork.papers.stiffness.studies import stiffness
-    from linkwork.pipeline import results
+    from conftest import render_stiffness_page
 
-    cfg = load_yaml("config/config.yaml")["stiffness"]
-    ds = stiffness(cfg)
-    ds.attrs.update(results.provenance("stiffness", cfg, study="linkwork.papers.stiffness.studies:stiffness"))
-    table, fnd = compare(cfg, load_yaml("config/published/stiffness.yaml"), ds)
-    results.write(ds, tmp_path / "stiffness.nc")
-    results.write(fnd, tmp_path / "findings.nc")
-    table.to_csv(tmp_path / "comparison.csv", index=False)
-    inputs = {
-        "result": tmp_path / "stiffness.nc",
-        "findings": tmp_path / "findings.nc",
-        "comparison": tmp_path / "comparison.csv",
-        "published": Path("config/published/stiffness.yaml").resolve(),
-    }
-    out = tmp_path / "stiffness.html"
-    args = [a for k, v in inputs.items() for a in ("--input", f"{k}={v}")]
-    proc = subprocess.run(
-        [sys.executable, "workflow/scripts/render_report.py", "reports/stiffness.py", str(out), *args],
-        env={**os.environ, "LINKWORK_CHECK_FIGURES": "1"}, capture_output=True, text=True, timeout=600,
-    )
-    assert proc.returncode == 0, proc.stderr[-3000:]
-    page = out.read_text()
+    page, table, fnd = render_stiffness_page(tmp_path, load_yaml("config/config.yaml")["stiffness"])
     assert "Traceback" not in page and 'vnd.jupyter.stderr" tabindex' not in page  # no warning or error printed
     body = page[page.index("<body"):]
     text = re.sub(
