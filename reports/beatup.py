@@ -210,9 +210,9 @@ of 24 rows, by
   {fit_mean6['joint fit within rounding']:.4f}°
   ({int(fnd.fit_at_bound)} parameters end on a rounding bound). Moving {SYMBOL[offset_par]} alone by
   {float(fnd.offset_change):+.4f}
-  {fnd.offset_change.attrs['units']}, {float(fnd.offset_shift):+.1f} rounding half-widths, removes it: the paper's
-  {SYMBOL[offset_par]} (or its
-  equivalent, the position of pivot D seen from the rocking shaft F) differs from the printed one by more than rounding.
+  {fnd.offset_change.attrs['units']}, {float(fnd.offset_shift):+.1f} rounding half-widths, outside its rounding,
+  removes it; we fitted only four parameters, and another (l5 or l6, for instance) may remove it within its rounding,
+  so the offset's cause is open.
 * **Headline numbers:** front dead centre {f('front_dead_centre'):.4f}° (printed
 {pub['front_dead_centre']['value']:g}°), total swing
   {f('swing'):.4f}° (printed {pub['swing']['value']:g}°); neither depends on the sense. A note, not a verdict: at the

@@ -148,13 +148,12 @@ for form in all_forms:
     }.get(form, "")
     lines.append(
         f"* **Published stiffness numbers (extremes, their crank angles, means), {form}**"
-        f" ({FORM_NAMES[form]}{'; ' + role if role else ''}): {int(fnd.headline_matches.sel(form=form))} of"
-        f" {int(fnd.headline_total.sel(form=form))} match"
+        f" ({FORM_NAMES[form]}{'; ' + role if role else ''}): "
         + (
-            f"; a different quantity (crank clamped, O' pivoted), so its {pinned_missing} numbers have no counterpart:"
-            " the pinned output's own numbers are in section 7."
+            f"not comparable: a different quantity (crank clamped, O' pivoted), so its {pinned_missing} numbers have no"
+            " counterpart; the pinned output's own numbers are in section 7."
             if form == "pinned"
-            else "."
+            else f"{int(fnd.headline_matches.sel(form=form))} of {int(fnd.headline_total.sel(form=form))} match."
         )
     )
 joint_verdicts = dict(zip(fnd.joint_model.values, fnd.conclusion_by_joints.values, strict=True))

@@ -110,7 +110,7 @@ md(f"""
   ({', '.join(f'{v:.2f}' for v in opt.d_opt.values)}) mm by the paper's method (SLSQP on the same objective:
   ({', '.join(f'{v:.2f}' for v in opt.d_slsqp.values)}) mm).
   With the stresses of our model, the paper's point is
-  {"" if int(fnd.published_point_stationary) else "not "}stationary: dSS/dx =
+  {"" if int(fnd.published_point_stationary) else "not "}stationary: d(SY + SZ)/dx (the penalty term left out) =
   ({', '.join(f'{v:+.2f}' for v in pub_pt.gradient_SS.values)}) per mm{
   ", all positive, so every diameter wants to shrink" if int(fnd.published_gradient_all_positive) else ""}.
 * **The claims in words** (section 3b): the mass of the four bars falls from {float(fnd.mass_initial):.1f} g at the
@@ -438,7 +438,8 @@ verdict_figure(
 # The paper names one load, the links' own inertia (its eq. 7 and the constraint (16) on the "dynamic" stress). Under it
 # alone a member's own load grows as the square of its diameter and its section modulus as the cube, so the bending
 # stress of a member loaded by its own inertia alone (the arm) falls as 1/d (the crank and coupler also carry the
-# arm's), and the rocker CD, pinned at both ends, carries almost nothing but its own inertia. The objective
+# arm's), and the rocker CD, pinned at both ends, carries little: its own inertia and the coupler's pin force. The
+# objective
 # SY + SZ then falls as a lightly stressed member shrinks, down to the lower bound on the diameters, which is where
 # every
 # optimiser puts our rocker and crank. The printed optimum keeps them well above it. We ask which external load would
