@@ -390,6 +390,8 @@ def declutter(fig) -> int:
     """Hide every point label (an axes' annotation) that would overlap a label placed before it, or any other text of
     its axes (title, axis labels, tick labels, legend), at the figure's size; returns how many were hidden (a caption
     says that labels that would overlap are left out)."""
+    from matplotlib.transforms import Bbox
+
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     hidden = 0
@@ -398,8 +400,13 @@ def declutter(fig) -> int:
         if ax.get_legend() is not None:
             fixed.append(ax.get_legend())
         kept = [a.get_window_extent(renderer) for a in fixed if a.get_visible()]
+        inside = ax.get_window_extent(renderer)
         for text in ax.texts:
             box = text.get_window_extent(renderer)
+            if text.get_clip_on():  # drawn clipped to the axes: only its part inside can clash
+                box = Bbox.intersection(box, inside)
+                if box is None:
+                    continue
             if any(box.overlaps(other) for other in kept):
                 text.set_visible(False)
                 hidden += 1

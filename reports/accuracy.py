@@ -63,10 +63,13 @@ for ax, method in zip(axes.flat, methods):
     for fam in dict.fromkeys(family):
         part = sub[family == fam]
         ax.loglog(part.time_s, part.error, "o-", ms=4, label=fam)
+    ax.figure.canvas.draw()  # the limits are set: each label leans away from the panel's nearer edges
     for _, r in sub.iterrows():
-        ax.annotate(  # clipped to the panel: a label that would spill over its edge is cut, not drawn on another
+        fx, fy = ax.transAxes.inverted().transform(ax.transData.transform((r.time_s, r.error)))
+        ax.annotate(  # clipped to the panel as a last resort: a label never runs over another panel's text
             r.setting.replace("central differences ", "").rsplit(" (", 1)[0], (r.time_s, r.error), fontsize=7,
-            alpha=0.85, xytext=(3, 3), textcoords="offset points", clip_on=True,
+            alpha=0.85, xytext=(-3 if fx > 0.55 else 3, -3 if fy > 0.8 else 3), textcoords="offset points",
+            ha="right" if fx > 0.55 else "left", va="top" if fy > 0.8 else "bottom", clip_on=True,
         )
     pipe = sub[sub.pipeline]
     ax.plot(pipe.time_s, pipe.error, "k*", ms=15, label="pipeline setting")

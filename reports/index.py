@@ -10,9 +10,9 @@
 # %% [markdown]
 # # linkwork: does each paper hold up?
 #
-# One row per paper: its answer and its published headline numbers and claims counted by verdict class, on the
-# model we hold to be physically defensible, for the paper's nominal reading. The matrix below shows every headline
-# row of every paper in every model variant and named scenario. Each paper's report has the evidence.
+# One row per paper: its answer, in plain words, with the terms it uses. The picture below shows the verdict on every
+# published headline number and claim of every paper, in every model variant and named scenario; each paper's report
+# has the evidence, and the verdict classes say what decides them.
 
 # %%
 import matplotlib.pyplot as plt
@@ -21,28 +21,23 @@ import pandas as pd
 from _common import VERDICT_COLOURS, answer_html, caption, esc, inputs, load, md, read_csv, table
 from matplotlib.patches import Patch
 
-from linkwork.papers import PAPERS, LABELS
+from linkwork.papers import PAPERS, GLOSSARY, LABELS
 from linkwork.pipeline.compare import VERDICT_MEANING, VERDICTS, scenario_of
 
 files = inputs()
 
 
-def counts(findings, model: str) -> str:
-    c = findings.verdict_count.sel(count_model=model, role="headline").isel(count_scenario=0)
-    parts = [f"{int(c.sel(verdict=v))} {v}" for v in VERDICTS if int(c.sel(verdict=v))]
-    return ", ".join(parts) if parts else "none"
-
-
-rows, blocks = [], []
+rows, blocks, keys = [], [], []
 for paper, title in PAPERS.items():
     findings = load(files[f"findings_{paper}"])
     comparison = read_csv(files[f"comparison_{paper}"], keep_default_na=False, na_values=[""])
-    models = [str(m) for m in findings.count_model.values]
-    defensible = findings.attrs["defensible_model"] or models[0]
     rows.append(
         {
             "paper": f'<a href="{paper}.html">{esc(title)}</a>',
-            "does it hold up?": answer_html(paper, findings, comparison),
+            "does it hold up?": answer_html(paper, findings, comparison) + (
+                "<br><small><em>" + "; ".join(f"{esc(k)}: {esc(v)}" for k, v in GLOSSARY[paper].items())
+                + "</em></small>" if GLOSSARY[paper] else ""
+            ),
         }
     )
     headline = comparison[comparison.role == "headline"]
@@ -50,6 +45,8 @@ for paper, title in PAPERS.items():
     model_of = headline.model.astype(object).where(headline.model.notna(), "").astype(str)
     for (model, scen), part in headline.groupby([model_of, scenario_of(headline)], sort=False):
         blocks.append((paper, model, scen, list(part.verdict)))
+    first = headline[(model_of == model_of.iloc[0]) & (scenario_of(headline) == scenario_of(headline).iloc[0])]
+    keys += [{"paper": paper, "column": k + 1, "published number or claim": q} for k, q in enumerate(first.quantity)]
 table(pd.DataFrame(rows), html_columns=("paper", "does it hold up?"))
 
 # %%
@@ -79,8 +76,11 @@ caption(
     + "; ".join(f"{v}: {VERDICT_MEANING[v]}" for v in used)
     + ". The model labels: "
     + "; ".join(f"{paper} · {label}: {text}" for paper, labels in LABELS.items() for label, text in labels.items())
-    + f". {sum(len(b[3]) for b in blocks)} cells: every headline row of the {len(PAPERS)} papers' comparison tables."
+    + f". {sum(len(b[3]) for b in blocks)} cells: every headline row of the {len(PAPERS)} papers' comparison tables;"
+    " the table below names each column."
 )
+table(pd.DataFrame(keys), caption="The columns of the picture: each paper's published numbers and claims, in order",
+      collapse=True)
 
 # %%
 md(

@@ -80,14 +80,14 @@ ax.set_xticks(xpos, [f"{m} ({j})" for m, j in zip(members, ("AB", "BC", "CD", "B
 ax.set_ylabel("peak stress over the turn (MPa, log scale)")
 ax.set_title("member stress under the inertia loads alone (quasi-static, no gravity)", fontsize=10)
 ax.grid(alpha=0.3, axis="y", which="both")
-ax.legend(fontsize=8)
+fig.legend(fontsize=8, loc="outside lower center", ncol=2)  # below the axes: the arm's bars reach the top
 plt.show()
 caption(
     "Largest stress of each member over a crank revolution (MPa, log scale) under the links' own inertia, the only"
     f" load the paper names, at the paper's optimum and at ours, against the allowable {float(fnd.allowable):.1f} MPa"
     " (dotted). The rocker and the crank stay far below it at the printed diameters, so shrinking them lowers the"
-    f" objective until they reach the {float(cfg['minimum_diameter_m']) * 1e3:g} mm bound: the printed optimum needs a"
-    " load the paper does not give."
+    f" objective until they reach the {float(cfg['minimum_diameter_m']) * 1e3:g} mm bound: under this load alone the"
+    " printed point is not an optimum."
 )
 
 # %% [markdown]

@@ -124,11 +124,15 @@ def drawn_texts(fig) -> list:
 def overlapping_texts(fig) -> list[str]:
     """Every pair of texts ``fig`` draws (``drawn_texts``) whose boxes overlap by more than ``OVERLAP_SLACK_PX`` on both
     axes: text a reader cannot read at the figure's size."""
+    from matplotlib.transforms import Bbox
+
     renderer = fig.canvas.get_renderer()
     boxes = []
     for text in drawn_texts(fig):
         box = text.get_window_extent(renderer)
-        if box.width > 0 and box.height > 0:
+        if text.axes is not None and text.get_clip_on() and text in text.axes.texts:  # drawn clipped to its axes
+            box = Bbox.intersection(box, text.axes.get_window_extent(renderer))
+        if box is not None and box.width > 0 and box.height > 0:
             boxes.append((text.get_text().strip(), box))
     clashes = []
     for i, (a, box_a) in enumerate(boxes):
@@ -201,7 +205,8 @@ def pages() -> dict[str, str]:
     """Every report page by name, with its link text: the index, each paper, then the pages across papers."""
     from linkwork.papers import PAPERS
 
-    return {"index": "index: does each paper hold up?", **{p: p for p in PAPERS}, **OTHER_PAGES}
+    authors = {p: title.split(":")[0] for p, title in PAPERS.items()}  # 'Huang, Wu, Li 2022'
+    return {"index": "index: does each paper hold up?", **{p: f"{p} ({authors[p]})" for p in PAPERS}, **OTHER_PAGES}
 
 
 def finish_page(html: str, name: str) -> str:

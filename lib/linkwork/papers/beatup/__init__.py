@@ -6,3 +6,9 @@ CITATION = (
     "received 3 August 1983 (seed 001_c546737132d2571c.txt)"
 )
 ORDER = 2
+#: The terms of the paper's answer, for a reader who has not read the paper (the index shows them).
+GLOSSARY = {
+    "kinematic headline numbers": "the sley's dead centres, swing and velocity and acceleration peaks the paper prints",
+    "S_w": "the reed clearance the shuttle needs, which sets the weft-insertion window",
+    "1511M": "the four-bar loom the paper compares its six-bar with",
+}

@@ -13,3 +13,10 @@ LABELS = {
     "decoded": "the link inertias as decoded from the text",
     "slender": "slender-rod link inertias, J = mL^2/12 (our reading)",
 }
+#: The terms of the paper's answer, for a reader who has not read the paper (the index shows them).
+GLOSSARY = {
+    "journal": "the pin of a clearance joint, moving inside its bushing",
+    "decoded inertias": "the link inertias as read from the paper's garbled text (implausibly large)",
+    "contact damping's memory": "the contact law's damping scales with the impact velocity stored at the last impact",
+    "film cap": "our limit on the oil film's force close to contact, where the paper's own transition is ill-posed",
+}

@@ -12,3 +12,9 @@ LABELS = {
     "A": "the physical heald linkage (rigid links, clearance springs at E and F)",
     "B": "the chain with the form of the paper's eq. (2)",
 }
+#: The terms of the paper's answer, for a reader who has not read the paper (the index shows them).
+GLOSSARY = {
+    "E, F": "the joints where the longitudinal rod DEF drives the two bell cranks (with clearance in the paper)",
+    "physical linkage": "our chain model of the real rods and levers (the paper's own chain, eq. (2), is the other)",
+    "loom speeds it names": "500-1200 min^-1, the air-jet loom speeds in the paper's introduction",
+}

@@ -14,3 +14,8 @@ LABELS = {
     "printed": "the paper's welded frame with its eqs. (8) and (14) as printed",
     "pinned": "the machine's pinned joints, crank held (our reading; a different quantity)",
 }
+#: The terms of the paper's answer, for a reader who has not read the paper (the index shows them).
+GLOSSARY = {
+    "K_h, K_c": "the linear and the rotational stiffness at the rocker's pivot O' (per unit force, per unit moment)",
+    "welded frame": "the paper's model: the linkage frozen at each crank angle with rigid joints A and B",
+}

@@ -7,3 +7,8 @@ CITATION = (
     "003_0cfa70853744423c.txt)"
 )
 ORDER = 4
+#: The terms of the paper's answer, for a reader who has not read the paper (the index shows them).
+GLOSSARY = {
+    "x- and y-deflection": "the planting-arm tip's elastic displacement (the paper's Ux, Uy)",
+    "optimiser": "the paper's SUMT method: a sequence of penalised minimisations with a falling penalty factor",
+}
