@@ -76,7 +76,7 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False, outside=None):
             shade = float(im.norm(data.values[i, j]))
             beyond = outside is not None and bool(outside[i, j])
             ax.text(
-                j, i, f"{data.values[i, j]:.3g}" + ("‡" if beyond else ""), ha="center", va="center", fontsize=8,
+                j, i, f"{data.values[i, j]:.3g}" + ("‡" if beyond else ""), ha="center", va="center", fontsize=9,
                 color="w" if shade > (0.6 if linear else 0.8) or (shade < 0.2 and not linear) else "k",
             )
             if beyond:
@@ -93,7 +93,8 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False, outside=None):
     ax.set_xlabel(AXIS_LABEL[xdim][0])
     ax.set_ylabel(AXIS_LABEL[ydim][0])
     ax.tick_params(axis="x", labelrotation=45)
-    ax.set_title(f"{ds[var].attrs['long_name']} ({ds[var].attrs['units']})", fontsize=8, wrap=True)
+    unit = ds[var].attrs["units"]
+    ax.set_title(ds[var].attrs["long_name"] + (f" ({unit})" if unit != "1" else ""), fontsize=8, wrap=True)
     bar = ax.figure.colorbar(im, ax=ax)
     if np.isfinite(
         low
@@ -105,7 +106,7 @@ def heat_map(ax, ds, var, xdim, ydim, linear=False, outside=None):
 
 def heat_row(ds, names, xdim, ydim, width, outside=None):
     """One row of heat maps of ``names`` over ``xdim`` x ``ydim`` (figure ``width`` in inches)."""
-    fig, axes = plt.subplots(1, len(names), figsize=(width, 5.5), constrained_layout=True)
+    fig, axes = plt.subplots(1, len(names), figsize=(width, 6.0), constrained_layout=True)
     for ax, var in zip(axes.flat, names):
         heat_map(ax, ds, var, xdim, ydim, outside=outside)
     plt.show()
