@@ -417,7 +417,7 @@ def declutter(fig) -> int:
 
 def caption(text: str) -> None:
     """A figure caption (escaped), shown under the figure."""
-    md(f"*Figure: {esc(text)}*")
+    md(f"*Figure: {esc(text.strip())}*")  # a space before the closing '*' would leave the emphasis unrendered
 
 
 def show_log_log(ax, xlabel: str, ylabel: str, text: str) -> None:
