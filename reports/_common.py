@@ -415,6 +415,29 @@ def declutter(fig) -> int:
     return hidden
 
 
+def newmark_convergence(ax, ked) -> None:
+    """The Newmark step study of the transplanter's dynamic stress (``ked``: its result): the field and peak errors
+    against the reference step, a slope-2 guide, the observed order between neighbouring steps, the pipeline's step."""
+    ax.loglog(
+        ked.newmark_step, ked.newmark_field_error, "o-",
+        label="stress field: max |σ − σ_ref| / peak (bounds the peak's error)",
+    )
+    ax.loglog(ked.newmark_step, ked.newmark_peak_error, "s--", label="peak stress itself")
+    first = float(ked.newmark_field_error[0])
+    ax.loglog(ked.newmark_step, first * (ked.newmark_step / float(ked.newmark_step[0])) ** 2, "k:", lw=1,
+              label="slope 2")
+    ax.axvline(float(ked.newmark_pipeline_step), color="C3", ls=":",
+               label=f"pipeline step {float(ked.newmark_pipeline_step):g}°")
+    for h, p_ in zip(ked.newmark_pair.values, ked.newmark_order.values):
+        ax.annotate(f"order {p_:.2f}", (h, float(ked.newmark_field_error.sel(newmark_step=h))),
+                    textcoords="offset points", xytext=(6, -12), fontsize=8)
+    ax.set_xlabel("Newmark step (deg of crank angle)")
+    ax.set_ylabel("relative error vs the reference step")
+    ax.set_title(f"dynamic stress at our optimum (reference {ked.attrs['newmark_reference_step_deg']:g}°)", fontsize=10)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+
+
 def caption(text: str) -> None:
     """A figure caption (escaped), shown under the figure."""
     md(f"*Figure: {esc(text.strip())}*")  # a space before the closing '*' would leave the emphasis unrendered

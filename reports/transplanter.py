@@ -37,8 +37,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 from _common import (
-    answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, loaded, md, oat_table, provenance,
-    table, verdict_figure,
+    answer, assumed, caption, comparison_table, consistent_sets_table, esc, inputs, loaded, md, newmark_convergence,
+    oat_table, provenance, table, verdict_figure,
 )
 
 files, got = inputs(), loaded()
@@ -347,29 +347,7 @@ md(
 
 # %%
 fig, axes = plt.subplots(1, 2, figsize=(12, 4.5), constrained_layout=True)
-ax = axes[0]
-ax.loglog(
-    ked.newmark_step, ked.newmark_field_error, "o-",
-    label="stress field: max |σ − σ_ref| / peak (bounds the peak's error)",
-)
-ax.loglog(ked.newmark_step, ked.newmark_peak_error, "s--", label="peak stress itself")
-ax.loglog(
-    ked.newmark_step, float(ked.newmark_field_error[0]) * (ked.newmark_step / float(ked.newmark_step[0])) ** 2, "k:",
-    lw=1, label="slope 2",
-)
-ax.axvline(
-    float(ked.newmark_pipeline_step), color="C3", ls=":", label=f"pipeline step {float(ked.newmark_pipeline_step):g}°"
-)
-for h, p_ in zip(ked.newmark_pair.values, ked.newmark_order.values):
-    ax.annotate(
-        f"order {p_:.2f}", (h, float(ked.newmark_field_error.sel(newmark_step=h))), textcoords="offset points",
-        xytext=(6, -12), fontsize=8,
-    )
-ax.set_xlabel("Newmark step (deg of crank angle)")
-ax.set_ylabel("relative error vs the reference step")
-ax.set_title(f"dynamic stress at our optimum (reference {ked.attrs['newmark_reference_step_deg']:g}°)", fontsize=10)
-ax.grid(alpha=0.3, which="both")
-ax.legend(fontsize=7)
+newmark_convergence(axes[0], ked)
 ax = axes[1]
 ax.plot(ked.damping * 100, ked.damping_peak, "o-", label="dynamic peak stress at our optimum")
 ax.axhline(float(ked.allowable), color="k", ls=":", label=f"allowable {float(ked.allowable):.1f} MPa")

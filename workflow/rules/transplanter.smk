@@ -140,6 +140,9 @@ rule transplanter_compare:
         STUDY
 
 
+# the accuracy report shows the Newmark step study beside the other methods
+ACCURACY_REPORT_INPUTS["newmark"] = "results/transplanter/ked.nc"
+
 # the inputs of the paper's report (reports.smk renders it)
 REPORT_INPUTS["transplanter"] = paper_report(
     "transplanter",
