@@ -633,7 +633,7 @@ oat = pd.DataFrame(
 table(
     oat,
     caption=(
-        f"Each printed parameter moved alone over its rounding, {esc(sense)} ({design_text(unc)}); values to one digit"
+        f"Each printed parameter moved alone over its rounding, {sense} ({design_text(unc)}); values to one digit"
         f" beyond the published tolerance (± {pub['front_dead_centre']['tolerance']['abs']:g}°), so that the ranges can"
         " be read against it"
     ),

@@ -504,7 +504,7 @@ for v in variants:
 table(
     pd.DataFrame(srows),
     caption=(
-        f"The state of every scene from every start. {esc(in_words(claims.attrs['settle_rule']))}. A check rerun keeps"
+        f"The state of every scene from every start. {in_words(claims.attrs['settle_rule'])}. A check rerun keeps"
         f" the state when its last section point lies within {float(dry_cfg['states']['state_tolerance']):g} × max(1,"
         " |component|) of the orbit in every component (the largest such distance in brackets)."
     ),
