@@ -474,3 +474,12 @@ def test_the_report_opens_with_its_answer_and_the_one_figure_in_plain_words(tmp_
     assert "On the machine's pinned joints the paper's stiffnesses have no counterpart" in plain
 
 
+
+
+def test_the_papers_closures_hold_and_its_tables_jump_at_b_by_the_closed_forms():
+    """Eqs. (3) and (9) are the loop's closures: on our linkage they hold to rounding at every frame. The tables'
+    bending moments jump at B by 2 l1 (unit force) and 2 l1 / l4 (unit moment): the sign error's closed forms."""
+    _, fnd = _compared()
+    assert float(fnd.eq3_residual) < 1e-12 and float(fnd.eq9_residual) < 1e-12
+    assert np.isclose(float(fnd.tables_moment_jump), 2 * 0.015, rtol=1e-9)
+    assert np.isclose(float(fnd.tables_moment_jump_unit_moment), 2 * 0.015 / 0.170, rtol=1e-9)

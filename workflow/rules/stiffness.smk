@@ -38,7 +38,9 @@ rule stiffness_compare:
         "results/stiffness/findings.nc",
     params:
         study="linkwork.papers.stiffness.findings:compare",
-        cfg=section("stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa", "axial_negligible_share"),
+        cfg=section(
+            "stiffness", "members.OA.youngs_modulus_Pa", "steel_youngs_modulus_Pa", "axial_negligible_share", "linkage"
+        ),
     script:
         STUDY
 

@@ -139,6 +139,20 @@ def axial_statement(cfg: Mapping[str, Any], result: xr.Dataset) -> dict[str, Any
     }
 
 
+def loop_closure_residuals(link: Mapping[str, Any], result: xr.Dataset) -> dict[str, tuple]:
+    """The paper's eqs. (3) and (9) evaluated on the linkage's angles at its frames (largest |residual|, m; ``link``:
+    the config's link lengths, m): the vertical and horizontal closures of the loop O-A-B-O' (-l2 sin g + l3 sin b =
+    l1 sin a; l4 - l1 cos a = l3 cos b + l2 cos g), which the paper's internal forces must respect."""
+    l1, l2, l3, l4 = (float(link[k]) for k in ("crank_m", "coupler_m", "rocker_m", "ground_m"))
+    a, b, g = (np.radians(np.asarray(v, dtype=float)) for v in (result.crank_angle, result.beta, result.gamma))
+    return {
+        "eq3_residual": scalar(float(np.abs(-l2 * np.sin(g) + l3 * np.sin(b) - l1 * np.sin(a)).max()), "m",
+                               "largest |residual| of the paper's eq. (3) over its frames"),
+        "eq9_residual": scalar(float(np.abs(l4 - l1 * np.cos(a) - l3 * np.cos(b) - l2 * np.cos(g)).max()), "m",
+                               "largest |residual| of the paper's eq. (9) over its frames"),
+    }
+
+
 def material_statement(findings: xr.Dataset, result: xr.Dataset) -> str:
     """The one sentence (report) on the printed material and sections: the published stiffnesses imply the printed
     modulus, steel's is that many times larger; the sections, as squares, beside their links (the paper calls them
@@ -288,6 +302,12 @@ def compare(
         ),
         "crank_length": scalar(float(result.member_length.sel(member="OA")), "m", "crank length OA"),
     }
+    data.update(loop_closure_residuals(cfg["linkage"], result))
+    if "tables" in result.force_form.values:
+        data["tables_moment_jump_unit_moment"] = scalar(
+            float(result.moment_jump_B.sel(force_form="tables", load_case="unit moment")), "N m per N m",
+            "jump of the bending moment at the rigid joint B in the paper's Table 2 (unit moment)",
+        )
     if {DEFENSIBLE, PAPER_MODEL} <= set(welded):
         for k in ("K_h", "K_c"):  # the correction frame by frame, not only at the extremes
             change = result[k].sel(form=DEFENSIBLE) / result[k].sel(form=PAPER_MODEL) - 1
