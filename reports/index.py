@@ -14,6 +14,9 @@
 # published headline number and claim of every paper, in every model variant and named scenario; each paper's report
 # has the evidence, and the verdict classes say what decides them.
 
+# %% [markdown]
+# ## Each paper's answer
+
 # %%
 import matplotlib.pyplot as plt
 import numpy as np
@@ -49,6 +52,9 @@ for paper, title in PAPERS.items():
     keys += [{"paper": paper, "column": k + 1, "published number or claim": q} for k, q in enumerate(first.quantity)]
 table(pd.DataFrame(rows), html_columns=("paper", "does it hold up?"))
 
+# %% [markdown]
+# ## Every published number's verdict, in one picture
+
 # %%
 width = max(len(v) for *_, v in blocks)
 fig, ax = plt.subplots(figsize=(10, 0.32 * len(blocks) + 1.6), layout="constrained")
@@ -81,6 +87,9 @@ caption(
 )
 table(pd.DataFrame(keys), caption="The columns of the picture: each paper's published numbers and claims, in order",
       collapse=True)
+
+# %% [markdown]
+# ## The pages across papers
 
 # %%
 md(
