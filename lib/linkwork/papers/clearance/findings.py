@@ -71,8 +71,8 @@ def compare(
 
 #: What decides a claim whose starts disagree only through the contact damping's memory.
 MEMORY_DECIDES = (
-    "the impact velocity the contact damping latched at the first impact (the starts settle apart only through it: "
-    "a memory of the printed contact law, no physical input)"
+    "the impact velocity the contact damping latched at impact (the starts settle apart only through it: a memory of "
+    "the printed contact law, set by the journals' unprinted starting state)"
 )
 
 
