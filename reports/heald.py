@@ -1019,7 +1019,38 @@ def _loss_text(case: str) -> str:
             )
     else:
         where = f"contact holds at every speed simulated, up to {held:g} rev/min"
-    return f"**{case_label[case]}**: {static}; {where}."
+    return f"**{case_label[case]}**: {static}; {where}. {_rigid_text(sel)}"
+
+
+def _rigid_text(sel) -> str:
+    """Where the rigid linkage's reaction at E and F reverses along the rod, in two dimensions."""
+    turn = sel.rigid_reaction_turn
+    rigid = "In the rigid linkage (E and F closed)"
+    if int(sel.rigid_reverses_quasi_statically.sum()) == 2:
+        return (
+            f"{rigid} the reaction at each joint turns through {float(turn.min()):.0f}–{float(turn.max()):.0f}° within"
+            " every cycle at every speed simulated: the journals are carried across their clearances."
+        )
+    speeds = sel.rigid_reversal_rpm.sel(drive=chosen)
+    if not np.isfinite(speeds.values).any():
+        return f"{rigid} the reaction along the rod keeps its sense at every speed simulated."
+    first, last = float(speeds.min()), float(speeds.max())
+    side = sel.rigid_sideways_at_reversal
+    held_rpm, lost_rpm = float(sel.held_up_to_rpm.sel(drive=chosen)), float(sel.first_lost_rpm.sel(drive=chosen))
+    same = held_rpm < first and last <= lost_rpm
+    return (
+        f"{rigid} the reaction's component along the rod first changes sense at {float(speeds.sel(joint='E')):.1f}"
+        f" rev/min at E and {float(speeds.sel(joint='F')):.1f} at F. The reaction does not pass through zero there: it"
+        f" swings round past a sideways force of {float(side.sel(joint='E')):.1f} N at E and"
+        f" {float(side.sel(joint='F')):.1f} N at F, turning through up to"
+        f" {float(turn.sel(speed=turn.speed[turn.speed > last]).max()):.0f}° per cycle at the speeds simulated above"
+        f" (at most {float(turn.sel(speed=turn.speed[turn.speed < first]).max()):.0f}° below). "
+        + (
+            "The simulated contact loss falls in the same bracket: it is this reversal."
+            if same
+            else "That is outside the simulated bracket of contact loss."
+        )
+    )
 
 
 limit_rpm = limit / RAD_S_PER_RPM
@@ -1096,7 +1127,15 @@ md(
         )
         + ". "
         if straddle
-        else "Under the other drive scenarios no bracket of the contact-loss speed reaches the limit's tolerance band. "
+        else "Under the other drive scenarios no bracket of the contact-loss speed reaches the limit's tolerance band"
+        + "".join(
+            f" (in the scenario '{drive_labels[d]}' the rigid reaction of the {case_label[c]} case reverses at"
+            f" {float(contact.rigid_reversal_rpm.sel(case=c, drive=d).min()):.0f} shaft rev/min)"
+            for c in cases
+            for d in other
+            if np.isfinite(contact.rigid_reversal_rpm.sel(case=c, drive=d).values).any()
+        )
+        + ". "
     )
     + "**Joint forces.** "
     + held_text

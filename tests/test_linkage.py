@@ -116,6 +116,38 @@ def test_six_bar_inverse_dynamics_equals_the_closed_form_chain_and_power_balance
     assert np.abs(ours["driver_torque"] - torque).max() < 1e-9 * np.abs(torque).max()
 
 
+def test_the_joint_reactions_balance_every_body_by_newton_and_euler():
+    """The reaction components of inverse dynamics (the bearing's body on the journal's) summed per body with gravity
+    (and the driver torque on the driven body): m a_G and I alpha of every body, from the engine's own accelerations
+    but with the forces assembled body by body, not from the multipliers' solve."""
+    linkage = describe.from_config(SIX_BAR, "linkages.six_bar")
+    t = _times(linkage)[::40]
+    ours = assembly.inverse_dynamics(linkage, t, True)
+    q, qdd = ours["q"], ours["qdd"]
+    force = {b.name: np.zeros((t.size, 2)) for b in linkage.bodies}
+    moment = {b.name: np.zeros(t.size) for b in linkage.bodies}
+    for joint in linkage.joints:
+        r = ours[f"reaction_{joint.name}"]
+        for ref, sign in ((joint.journal, 1.0), (joint.bearing, -1.0)):
+            if ref[0] == "ground":
+                continue
+            b = linkage.body_index(ref[0])
+            pos, _ = assembly._world_stack(linkage, q, np.zeros_like(q), ref)
+            arm = pos - q[:, 3 * b : 3 * b + 2]
+            force[ref[0]] += sign * r
+            moment[ref[0]] += sign * (arm[:, 0] * r[:, 1] - arm[:, 1] * r[:, 0])
+    moment[linkage.driver.body] += ours["driver_torque"]
+    for k, body in enumerate(linkage.bodies):
+        weight = np.array([0.0, -body.mass * linkage.gravity])
+        scale = body.mass * np.abs(qdd[:, 3 * k : 3 * k + 2]).max() + body.mass * linkage.gravity
+        assert np.abs(force[body.name] + weight - body.mass * qdd[:, 3 * k : 3 * k + 2]).max() < 1e-9 * scale
+        assert np.abs(moment[body.name] - body.inertia * qdd[:, 3 * k + 2]).max() < 1e-9 * np.abs(
+            ours["driver_torque"]
+        ).max()
+    for joint in linkage.joints:  # the magnitudes are the components'
+        assert np.allclose(np.hypot(*ours[f"reaction_{joint.name}"].T), ours[f"force_{joint.name}"], rtol=1e-12)
+
+
 def test_six_bar_forward_dynamics_reproduces_the_independent_route():
     """The compiled right-hand side generated from the description, integrated (DOP853) from the assembled start over
     one turn: its output acceleration and driver torque against the independent route."""

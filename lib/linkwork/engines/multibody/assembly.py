@@ -359,8 +359,10 @@ def inverse_dynamics(linkage: Linkage, t: np.ndarray, gravity: bool, settings: A
     """The ideal linkage driven through the times t (s): Phi_q^T lambda = g - M q'' (every joint closed).
 
     Returns the output body's angular acceleration (rad/s^2), the driver torque (N m, what the driver applies), the
-    reaction force magnitude of every joint (N, by name: ``force_<joint>``), the mechanical energy (J) and the
-    configurations."""
+    reaction force of every joint (N, by name): its magnitude ``force_<joint>`` and its components ``reaction_<joint>``
+    (..., 2) in the ground frame, the force the bearing's body exerts on the journal's (the journal's constraint
+    p_journal - p_bearing = 0 enters M q'' = g - Phi_q^T lambda with -lambda on the journal's body); the mechanical
+    energy (J) and the configurations."""
     q, qd, qdd = kinematics(linkage, t, settings, turn)
     mass = mass_vector(linkage)
     closed = linkage.clearance_joints
@@ -382,6 +384,7 @@ def inverse_dynamics(linkage: Linkage, t: np.ndarray, gravity: bool, settings: A
             row += 1
         else:
             out[f"force_{item.name}"] = np.hypot(lam[:, row], lam[:, row + 1])
+            out[f"reaction_{item.name}"] = -lam[:, row : row + 2]
             row += 2
     return out
 

@@ -174,6 +174,56 @@ def reversal_margin(p: Mapping[str, float], cam: Mapping[str, Any]) -> float:
     return pull / weight
 
 
+def rigid_reactions(cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, float], drive_omega: float,
+                    samples: int) -> np.ndarray:
+    """The rigid linkage's (E and F closed) reactions at E and F over one drive cycle at ``drive_omega`` (rad/s):
+    (samples, joint, component) in N, ground frame, the force each bell crank exerts on the rod DEF."""
+    lk = linkage(cfg, cam, p, drive_omega, clearances=False)
+    out = assembly.inverse_dynamics(lk, np.arange(samples) * lk.driver.period / samples, cfg["gravity"])
+    return np.stack([out["reaction_E"], out["reaction_F"]], axis=1)
+
+
+def reaction_turn(reactions: np.ndarray) -> np.ndarray:
+    """How far the reaction's direction turns over the cycle (per joint, deg): the range of its unwrapped angle."""
+    angle = np.unwrap(np.arctan2(reactions[..., 1], reactions[..., 0]), axis=0)
+    return np.degrees(np.ptp(angle, axis=0))
+
+
+def rigid_reversal(
+    cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, float], ratio: float, rpm: np.ndarray,
+    samples: int,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per joint (E, F): the lowest main-shaft speed (rev/min, in ``rpm``'s span) at which the rigid reaction's component
+    along the rod DEF (horizontal) changes sign within a cycle, its smallest magnitude over that cycle there (N: the
+    sideways component it turns past), and whether it reverses quasi-statically (already at the lowest speed: then
+    no speed is given).  The speed from a scan of ``rpm`` refined by Brent's method to 1e-3 rev/min."""
+    from scipy.optimize import brentq
+
+    def along(shaft_rpm: float) -> np.ndarray:
+        r = rigid_reactions(cfg, cam, p, ratio * shaft_rpm * RAD_S_PER_RPM, samples)
+        return r
+
+    low = along(float(rpm[0]))
+    sign = np.sign(low[:, :, 0].mean(axis=0))  # the load's sense along the rod at the lowest speed
+
+    def margin(shaft_rpm: float, j: int) -> float:
+        return float((sign[j] * along(shaft_rpm)[:, j, 0]).min())
+
+    speed, sideways = np.full(2, np.nan), np.full(2, np.nan)
+    quasi_static = np.array([margin(float(rpm[0]), j) <= 0.0 for j in range(2)])
+    grid = np.geomspace(float(rpm[0]), float(rpm[-1]), 61)
+    for j in range(2):
+        if quasi_static[j]:
+            continue
+        values = [margin(float(w), j) for w in grid]
+        cross = next((k for k in range(1, grid.size) if values[k] <= 0.0), None)
+        if cross is None:
+            continue
+        speed[j] = brentq(margin, grid[cross - 1], grid[cross], args=(j,), xtol=1e-3)
+        sideways[j] = float(np.hypot(*along(speed[j])[:, j].T).min())
+    return speed, sideways, quasi_static
+
+
 class _Cycles:
     """Runs the scene cycle by cycle for ``engines.states.settle``; keeps each cycle's contact forces."""
 
@@ -239,9 +289,12 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
                                        "force_F_mean", "force_numerical", "chain_E", "chain_F")}
     status, periods, cycles = np.empty(shape, dtype=object), np.empty(shape, dtype=int), np.empty(shape, dtype=int)
     margins, forces = [], np.empty((*shape, per + 1, 2))
+    reversal, turn = [], np.empty((*shape, 2))
     for i, name in enumerate(names):
         p = case_parameters(base, ranges, cfg["cases"][name])
         margins.append((*reversal_loads(p, cam), p["eta7"], p["eta8"]))
+        reversal.append(rigid_reversal(cfg, cam, p, ratio, rpm, per))
+        turn[i] = [reaction_turn(rigid_reactions(cfg, cam, p, ratio * wj, per)) for wj in w]
         coefficients = drive_coefficients(cam, p["stroke_D"])
         chain_e, chain_f = periodic_peaks(harmonic_transfer("A", p, w, cam["harmonics"]), coefficients, cam["samples"])
         out["chain_E"][i], out["chain_F"][i] = chain_e, chain_f
@@ -258,7 +311,8 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
                 f" cycles); free flight E {s['max'][0]:.3f}, F {s['max'][1]:.3f} of a cycle",
                 flush=True,
             )
-    return _dataset(names, rpm, out, status, periods, cycles, np.array(margins), forces, ratio)
+    ds = _dataset(names, rpm, out, status, periods, cycles, np.array(margins), forces, ratio)
+    return ds.merge(_rigid_dataset(reversal, turn, ratio)).assign_attrs(ds.attrs)
 
 
 def first_loss(rpm: np.ndarray, lost: np.ndarray) -> tuple[float, float]:
@@ -269,6 +323,48 @@ def first_loss(rpm: np.ndarray, lost: np.ndarray) -> tuple[float, float]:
         return float(rpm[-1]), float("nan")
     k = int(idx[0])
     return (float(rpm[k - 1]) if k > 0 else float("nan")), float(rpm[k])
+
+
+def _rigid_dataset(reversal, turn: np.ndarray, ratio: float) -> xr.Dataset:
+    """The rigid linkage's reactions at E and F: where their component along the rod first reverses, past what
+    sideways force, and how far they turn over a cycle at each simulated speed."""
+    speed, sideways, quasi = (np.array(x) for x in zip(*reversal, strict=True))  # case, joint
+    scale = np.array([ratio / r for r in DRIVE_RATIO.values()])
+    return xr.Dataset(
+        {
+            "rigid_reversal_rpm": (
+                ("case", "joint", "drive"), speed[..., None] * scale,
+                {
+                    "units": "rev/min",
+                    "long_name": (
+                        "lowest shaft speed at which the rigid linkage's reaction (E and F closed) changes the sense of"
+                        " its component along the rod DEF within a cycle, per drive scenario"
+                    ),
+                    "nan_meaning": "it reverses already at the lowest speed (rigid_reverses_quasi_statically), or not"
+                    " up to the highest speed simulated",
+                },
+            ),
+            "rigid_sideways_at_reversal": (
+                ("case", "joint"), sideways,
+                {
+                    "units": "N",
+                    "long_name": (
+                        "smallest magnitude of the rigid reaction over the cycle at its reversal speed: the sideways"
+                        " force it turns past"
+                    ),
+                    "nan_meaning": "no reversal speed (rigid_reversal_rpm)",
+                },
+            ),
+            "rigid_reverses_quasi_statically": (
+                ("case", "joint"), quasi.astype(int),
+                {"units": "1", "long_name": "1 if the rigid reaction along the rod reverses already at the lowest speed"},
+            ),
+            "rigid_reaction_turn": (
+                ("case", "speed", "joint"), turn,
+                {"units": "deg", "long_name": "how far the rigid reaction's direction turns over a cycle"},
+            ),
+        }
+    )
 
 
 def _dataset(names, rpm, out, status, periods, cycles, margins, forces, ratio) -> xr.Dataset:
