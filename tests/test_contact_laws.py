@@ -165,3 +165,30 @@ def test_conformal_law_range_is_its_clearances():
     assert inside.limits["min_clearance_m"] < 5e-5 < inside.limits["max_clearance_m"]
     with pytest.raises(ValueError):
         validity.elastic_law_validity("sphere", r_j - 5e-5, r_j)
+
+
+@pytest.mark.parametrize("fixed", [None, 0.05])
+def test_a_fixed_impact_velocity_makes_the_damping_memory_free(fixed):
+    """The compiled right-hand side's normal force with the journal moving into its bushing, at two very different
+    latched impact velocities: with the paper's law (no fixed velocity) it follows the latched value (floored), with a
+    fixed velocity it is the same at both and equals the Lankarani-Nikravesh force at that velocity, K delta^1.5
+    (1 + 3 (1 - e^2) / 4 delta' / v), written out here."""
+    p = parameters(section_with(fixed_impact_velocity_m_s=fixed), "slender", "dry_2")
+    joints, effects = scene_effects(SECTION, "dry_2")
+    lk, gravity = scene(p, joints, effects)
+    module = compile_scene(lk, gravity)
+    y0 = initial_state(p, joints, offset=tuple(1.3 * p.clearance * np.array([0.6, -0.8])))
+    y0[9:18] = np.random.default_rng(3).normal(scale=0.5, size=9)  # bodies moving: delta' != 0
+    params, _ = pack(lk)
+    forces = []
+    for latched in (1e-5, 2.0):
+        diag = np.zeros(module.N_DIAG)
+        module.rhs(0.0, y0, params, np.array([latched]), np.zeros(4, dtype=np.int64), diag)
+        fn, delta, ddot = diag[4 + 3], diag[4 + 1], diag[4 + 2]
+        v = fixed if fixed is not None else max(latched, p.impact_velocity_floor)
+        chi = 3 * (1 - p.restitution**2) / 4
+        assert abs(ddot) > 1e-3 and fn == pytest.approx(
+            p.hertz_stiffness * delta**1.5 * max(0.0, 1 + chi * ddot / v), rel=1e-12
+        )
+        forces.append(fn)
+    assert (forces[0] == forces[1]) == (fixed is not None)

@@ -63,6 +63,7 @@ ALL_JOBS = {
     "transplanter_compare": 1,
     "clearance_scene": 14,
     "clearance_contact_law": 2,
+    "clearance_memory_free": 2,
     "clearance_claims": 1,
     "clearance_work_precision": 1,
     "clearance_compare": 1,

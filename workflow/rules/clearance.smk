@@ -191,12 +191,40 @@ rule clearance_contact_law:
         STUDY
 
 
+rule clearance_memory_free:
+    input:
+        nominal=expand("results/clearance/{{variant}}/{scene}.nc", scene=CLEARANCE_CONTACT),
+        code=code("linkwork.papers.clearance.sensitivity"),
+    output:
+        "results/clearance/memory_free/{variant}.nc",
+    priority: CHAIN_HEAD_PRIORITY
+    params:
+        study="linkwork.papers.clearance.sensitivity:memory_free",
+        cfg=lambda wildcards: section(
+            "clearance",
+            *sorted(
+                {
+                    k
+                    for s in CLEARANCE_CONTACT
+                    for k in clearance_adapter.scene_keys(CLEARANCE, wildcards.variant, s)
+                }  # with the check integrators: each state carries its own error bar
+            ),
+        ),
+        args=lambda wildcards: {
+            "variant": wildcards.variant,
+            "velocities": CLEARANCE["sensitivity"]["fixed_impact_velocity_m_s"],
+        },
+    script:
+        STUDY
+
+
 rule clearance_compare:
     input:
         published="config/published/clearance.yaml",
         claims="results/clearance/claims.nc",
         uncertainty="results/clearance/uncertainty.nc",
         laws=expand("results/clearance/contact_law/{variant}.nc", variant=CLEARANCE_VARIANTS),
+        memory_free=expand("results/clearance/memory_free/{variant}.nc", variant=CLEARANCE_VARIANTS),
         code=code("linkwork.papers.clearance.findings"),
     output:
         comparison_table("clearance"),

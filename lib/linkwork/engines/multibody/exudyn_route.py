@@ -139,6 +139,8 @@ def native_contact(c: Clearance) -> dict[str, object]:
     (impactModel 1: 1 + 3/2 (1 - e_res) delta'/delta'(-)) with e_res = 1 - 2 chi / 3 so that it is the joint's contact
     law, no linear damping, the latched impact velocity floored at ours; friction mu up to a proportional zone of v1
     (see the module's docstring).  ValueError where the law's chi gives no positive restitution for Exudyn."""
+    if np.isfinite(c.impact_velocity_ceiling):
+        raise ValueError("a capped (memory-free) impact velocity has no counterpart in Exudyn's contact: latched only")
     chi = HYSTERESIS[c.contact_law](c.restitution)
     restitution = 1.0 - 2.0 * chi / 3.0
     if not restitution > 0.0:

@@ -111,6 +111,9 @@ class Clearance:
     length: float = _NAN  # m, the bearing's length (lubrication; Pereira's law)
     e0: float = _NAN  # m: film/dry transition tolerance on the eccentricity
     impact_velocity_floor: float = _NAN  # m/s
+    #: m/s: the damping's impact velocity is the latched one clamped to [floor, ceiling]; floor = ceiling makes the
+    #: damping memory-free (the same at every impact), infinite keeps the latched velocity (Lankarani-Nikravesh's law)
+    impact_velocity_ceiling: float = float("inf")
 
     @property
     def clearance(self) -> float:

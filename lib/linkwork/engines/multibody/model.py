@@ -46,7 +46,7 @@ EFFECTS = (*JOINT_EFFECTS, "gravity")
 #: A clearance joint's packed values, in order (``pack``): its journal and bearing points, then its properties.
 CLEARANCE_VALUES = (
     "jx", "jy", "bx", "by", "clearance", "r_journal", "r_bearing", "restitution", "friction", "v0", "v1", "film",
-    "eps_limit", "floor", "elastic_law", "elastic_stiffness", "elastic_exponent", "contact_law",
+    "eps_limit", "floor", "ceiling", "elastic_law", "elastic_stiffness", "elastic_exponent", "contact_law",
 )
 
 
@@ -79,7 +79,8 @@ def _clearance_values(linkage: Linkage, joint) -> list[float]:
     v.update(clearance=c.clearance, r_journal=c.journal_radius, r_bearing=c.bearing_radius)
     if "contact" in fx:
         v.update(
-            restitution=c.restitution, floor=c.impact_velocity_floor, elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
+            restitution=c.restitution, floor=c.impact_velocity_floor, ceiling=c.impact_velocity_ceiling,
+            elastic_law=float(ELASTIC_LAWS[c.elastic_law]),
             elastic_stiffness=c.elastic_stiffness, elastic_exponent=c.elastic_exponent,
             contact_law=float(CONTACT_LAWS[c.contact_law]),
         )
@@ -174,6 +175,7 @@ def _clearance_lines(linkage: Linkage, idx) -> list[str]:
             a("    if delta > 0.0:")
             a("        counts[0] += 1")
             a(f"        vimp = latched[{k}] if latched[{k}] > {P['floor']} else {P['floor']}")
+            a(f"        vimp = vimp if vimp < {P['ceiling']} else {P['ceiling']}")
             a(
                 f"        fe, ue = elastic_contact(int({P['elastic_law']}), {P['elastic_stiffness']},"
                 f" {P['elastic_exponent']}, delta)"

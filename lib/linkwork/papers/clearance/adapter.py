@@ -28,6 +28,7 @@ EFFECT_KEYS: dict[str, tuple[str, ...]] = {
         "joints.contact_law",
         "joints.elastic_law",
         "assumed.impact_velocity_floor_m_s",
+        "joints.fixed_impact_velocity_m_s",
     ),
     "friction": ("joints.friction", "assumed.v0_m_s", "assumed.v1_m_s"),
     "lubrication": ("joints.viscosity_Pa_s", "assumed.joint_length_m", "assumed.e0_m"),
@@ -111,7 +112,8 @@ def parameters(cfg: Mapping[str, Any], variant: str, scene: str):
         values.update(
             youngs_modulus=(j["youngs_modulus_Pa"],) * 2, poisson=(j["poisson"],) * 2, restitution=j["restitution"],
             impact_velocity_floor=cfg["assumed"]["impact_velocity_floor_m_s"]["value"], contact_law=j["contact_law"],
-            elastic_law=j["elastic_law"],
+            elastic_law=j["elastic_law"], fixed_impact_velocity=nan if j["fixed_impact_velocity_m_s"] is None
+            else j["fixed_impact_velocity_m_s"],
         )
         if "assumed.joint_length_m" in ELASTIC_LAW_KEYS[j["elastic_law"]]:
             values.update(joint_length=cfg["assumed"]["joint_length_m"]["value"])

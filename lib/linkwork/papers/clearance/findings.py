@@ -49,14 +49,18 @@ def compare(
     claims: xr.Dataset,
     uncertainty: xr.Dataset | None = None,
     laws: Sequence[xr.Dataset] = (),
+    memory_free: Sequence[xr.Dataset] = (),
 ) -> tuple[pd.DataFrame, xr.Dataset]:
     """Comparison table per variant and its verdict counts, the physics that interprets them and the verdicts'
-    sensitivity to the contact law and its memory (``laws``: ``sensitivity.model_sensitivity`` per variant)."""
+    sensitivity to the contact law and its memory (``laws``: ``sensitivity.model_sensitivity`` per variant;
+    ``memory_free``: ``sensitivity.memory_free`` per variant)."""
     phys = physics(claims, cfg, uncertainty).merge(claim3_parts(claims))
     law_attrs = {}
     if laws:
         law = law_sensitivity(claims, laws, cfg, phys)
         phys, law_attrs = phys.merge(law), law.attrs
+    if memory_free:
+        phys = phys.merge(memory_free_claims(claims, memory_free, cfg))
     table = compare_datasets(published, [claims], errors=numerical_errors(claims), uncertainty=uncertainty,
                              causes=memory_causes(claims, phys))
     table = undetermined_ranges(nominal_only(with_reasons(table, claims)), uncertainty)
@@ -510,6 +514,82 @@ def law_sensitivity(
         other_law_condition=other.condition, other_law_valid=int(other.limits["clearance_in_range"]),
     )
     return out
+
+
+def memory_free_claims(claims: xr.Dataset, runs: Sequence[xr.Dataset], cfg: Mapping[str, Any]) -> xr.Dataset:
+    """The claims under a memory-free contact damping (``runs``: ``sensitivity.memory_free`` per variant), each state
+    judged with its own interval and numerical error: per variant, start, fixed impact velocity and claim, the outcome;
+    per ordering, its difference; per dry scene, the RMS deviation of each compared response and how far the two
+    starts' stay apart (the largest relative difference over the responses: zero where they settle to one state)."""
+    from .adapter import DRY
+    from .studies import QUANTITIES, judge, read, stats_for_judging
+
+    ratio, confidence = cfg["claims"]["close_to_ideal_ratio"], cfg["statistics"]["confidence"]
+    by_variant = {str(d.attrs["variant"]): d for d in runs}
+    variants, starts = [str(v) for v in claims.variant.values], [str(x) for x in claims.start.values]
+    velocities = runs[0].fixed_impact_velocity.values
+    outcome = np.full((len(variants), len(starts), len(velocities), claims.claim.size), -1)
+    diff = np.full((len(variants), len(starts), len(velocities), claims.comparison.size), np.nan)
+    for i, v in enumerate(variants):
+        run = by_variant[v].transpose("fixed_impact_velocity", "start", "measure", "quantity", "scene", "statistic")
+        errors = by_variant[v].numerical_error.transpose("fixed_impact_velocity", "start", "measure", "quantity", "scene")
+        for k in range(len(starts)):
+            for m in range(len(velocities)):
+                stats = read(run.judged.values[m, k])
+                verdict = judge(stats_for_judging(stats, errors.values[m, k]), ratio, confidence)
+                outcome[i, k, m] = verdict["outcome"]
+                diff[i, k, m] = [r["difference"] for r in verdict["rows"]]
+    rms = np.stack(
+        [
+            by_variant[v].judged.sel(measure="rms", scene=list(DRY), statistic="judged_mean")
+            .transpose("start", "fixed_impact_velocity", "scene", "quantity").values
+            for v in variants
+        ]
+    )  # variant, start, velocity, scene, quantity
+    spread = np.nanmax(np.abs(rms[:, 0] - rms[:, -1]) / np.abs(rms).mean(axis=1), axis=-1)  # variant, velocity, scene
+    status = np.stack(
+        [by_variant[v].state_status.sel(scene=list(DRY)).transpose("start", "fixed_impact_velocity", "scene").values
+         for v in variants]
+    ).astype(str)
+    vs = ("variant", "start", "fixed_impact_velocity")
+    return xr.Dataset(
+        {
+            "memory_free_outcome": (
+                (*vs, "claim"), outcome,
+                {"units": "1", "long_name": "claim under a memory-free damping: 1 holds, 0 fails, -1 undetermined"},
+            ),
+            "memory_free_difference": (
+                (*vs, "comparison"), diff,
+                {"units": "SI of the quantity", "long_name": "difference of each ordering under a memory-free damping"},
+            ),
+            "memory_free_rms": (
+                (*vs, "dry_scene", "quantity"), rms,
+                {"units": "SI of the quantity", "long_name": "RMS deviation from the ideal under a memory-free damping"},
+            ),
+            "memory_free_start_spread": (
+                ("variant", "fixed_impact_velocity", "dry_scene"), spread,
+                {
+                    "units": "1",
+                    "long_name": (
+                        "largest relative difference of the two starts' RMS deviations under a memory-free damping"
+                        " (over the compared responses)"
+                    ),
+                },
+            ),
+            "memory_free_status": (
+                (*vs, "dry_scene"), status,
+                {"units": "1", "long_name": "how each dry state under a memory-free damping was found"},
+            ),
+        },
+        coords={
+            "fixed_impact_velocity": (
+                "fixed_impact_velocity", velocities,
+                {"units": "m s-1", "long_name": "the impact velocity the memory-free damping divides by"},
+            ),
+            "dry_scene": ("dry_scene", np.array(DRY, dtype=object), {"units": "1", "long_name": "dry scene"}),
+            "quantity": ("quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"}),
+        },
+    )
 
 
 #: The lubricated scenes claim 3's ripple part compares: joint 2 lubricated (alone, and with joint 1) against joint 1

@@ -56,14 +56,22 @@ class FourBarParameters:
     contact_law: str = "lankarani-nikravesh"
     branch: int = 1
     elastic_law: str = "hertz-sphere"  # "pereira" reads joint_length
+    fixed_impact_velocity: float = float("nan")  # m/s: NaN, the velocity latched at each impact; else memory-free
 
     def joint(self, effects=("contact", "friction", "lubrication")) -> Clearance:
         """The clearance of either joint with the given effects (the paper gives one set for both)."""
         return Clearance(
             self.journal_radius, self.bearing_radius, tuple(e for e in effects if e != "gravity"), self.youngs_modulus,
             self.poisson, self.restitution, self.contact_law, self.elastic_law, self.friction, self.v0, self.v1,
-            self.viscosity, self.joint_length, self.e0, self.impact_velocity_floor,
+            self.viscosity, self.joint_length, self.e0, *self.impact_velocity_bounds,
         )
+
+    @property
+    def impact_velocity_bounds(self) -> tuple[float, float]:
+        """(floor, ceiling) of the contact damping's impact velocity, m/s: the floor and no ceiling (the velocity latched
+        at each impact, the paper's law), or both the fixed velocity (a memory-free damping)."""
+        fixed = self.fixed_impact_velocity
+        return (fixed, fixed) if np.isfinite(fixed) else (self.impact_velocity_floor, float("inf"))
 
     @property
     def clearance(self) -> float:

@@ -103,3 +103,79 @@ def law_judgement(nominal: Any, sensitivity: Any, ratio: float, confidence: floa
         nominal, sensitivity.isel(start=start, sample=0, variant=0), ratio, confidence, start=start
     )
     return verdict
+
+
+
+def memory_free(cfg: Mapping[str, Any], variant: str, velocities: Sequence[float], nominal: Sequence[Any] = ()):
+    """Rule study: each compared scene with contact continued from every start's nominal state under a memory-free
+    damping, once per fixed impact velocity (m/s) in ``velocities``: the damping divides by that velocity at every
+    impact instead of the one latched at the last impact, so the starts can no longer differ by it.  Each run settles
+    by the scenes' rule and carries its own numerical error bar (the check reruns; a different state from the nominal
+    one has its own).  A scene whose nominal runs never touched is the nominal run (the velocity enters only in
+    contact)."""
+    import xarray as xr
+
+    from .adapter import COMPARED
+    from .studies import MEASURES, QUANTITIES, scene
+    from .uncertainty import SAMPLE_STATISTICS, apply
+
+    runs = {str(r.attrs["scene"]): r for r in nominal}
+    starts = [str(x) for x in next(iter(runs.values())).start.values]
+    shape = (len(velocities), len(starts), len(COMPARED))
+    stats = np.full((*shape, len(MEASURES), len(QUANTITIES), len(SAMPLE_STATISTICS)), np.nan)
+    error = np.full((*shape, len(MEASURES), len(QUANTITIES)), np.nan)
+    status = np.full(shape, "", dtype=object)
+    for i, v in enumerate(velocities):
+        local = apply(cfg, {"joints.fixed_impact_velocity_m_s": float(v)})
+        for k in range(len(starts)):
+            for m, name in enumerate(COMPARED):
+                if name not in runs:
+                    continue
+                base = runs[name]
+                if base.attrs["evaluations_contact"] == 0:
+                    run, at = base, k
+                else:
+                    run, at = scene(
+                        local, variant, name, first_start_only=True, check=True, memory=base.window_memory.values[k]
+                    ), 0
+                stats[i, k, m] = np.stack([run[x].values[at] for x in SAMPLE_STATISTICS], axis=-1)
+                error[i, k, m] = run.numerical_error.values[at]
+                status[i, k, m] = str(run.state_status.values[at])
+                print(f"memory-free {variant} {name} at {v:g} m/s from start {starts[k]}: {status[i, k, m]}", flush=True)
+    dims = ("fixed_impact_velocity", "start", "scene")
+    return xr.Dataset(
+        {
+            "judged": (
+                (*dims, "measure", "quantity", "statistic"), stats,
+                {
+                    "units": "SI of the quantity", "long_name": "the claims' measure on the state and its interval",
+                    "nan_meaning": "as the scene run stores it: no interval or degrees of freedom where there is none",
+                },
+            ),
+            "numerical_error": (
+                (*dims, "measure", "quantity"), error,
+                {
+                    "units": "SI of the quantity", "long_name": "the state's own numerical error bar (check reruns)",
+                    "nan_meaning": "every check rerun failed",
+                },
+            ),
+            "state_status": (dims, status.astype(str), {"units": "1", "long_name": "how the state was found"}),
+        },
+        coords={
+            "fixed_impact_velocity": (
+                "fixed_impact_velocity", np.asarray(velocities, dtype=float),
+                {"units": "m s-1", "long_name": "the impact velocity the memory-free damping divides by"},
+            ),
+            "start": ("start", np.array(starts, dtype=object), {"units": "1", "long_name": "the start continued"}),
+            "scene": ("scene", np.array(COMPARED, dtype=object), {"units": "1", "long_name": "scene"}),
+            "measure": ("measure", np.array(MEASURES, dtype=object), {"units": "1", "long_name": "deviation measure"}),
+            "quantity": (
+                "quantity", np.array(QUANTITIES, dtype=object), {"units": "1", "long_name": "compared response"},
+            ),
+            "statistic": (
+                "statistic", np.array(SAMPLE_STATISTICS, dtype=object), {"units": "1", "long_name": "statistic"},
+            ),
+        },
+        attrs={"title": f"clearance model sensitivity: variant {variant}, memory-free contact damping",
+               "variant": variant},
+    )
