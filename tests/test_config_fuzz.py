@@ -437,6 +437,15 @@ CASES = [
         "    points_per_turn: 3600\n    integrator: {method: rk4}",
         ["linkages.watt_six_bar_worn_pin.integrator.step_s: missing", "rk4"],
     ),
+    # Pereira's law at a 1 nm clearance: its fitted exponent is undefined there (a ValueError inside the run)
+    (
+        "linkage-pereira-below-its-clearance",
+        "bearing_radius_m: 5.0e-3, effects: [contact, friction], youngs_modulus_Pa: 207.0e+9,\n"
+        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh, elastic_law: hertz-sphere,",
+        "bearing_radius_m: 4.9505e-3, effects: [contact, friction], youngs_modulus_Pa: 207.0e+9,\n"
+        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh, elastic_law: pereira, length_m: 0.01,",
+        ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.elastic_law", "pereira needs a radial clearance"],
+    ),
     (
         "integrator-scipy-no-max-step",
         "    explicit: {method: dop853, rtol: 1.0e-9, atol: 1.0e-12, first_step_s: 1.0e-7, max_step_s: 1.0e-3}",

@@ -617,3 +617,18 @@ def test_a_linkage_job_names_the_key_in_one_line(tmp_path):
     message = str(stop.value.code)
     assert message.startswith("linkage (name=crank): config key linkages.crank.integrator.step_s: 1e-09 s"), message
     assert "\n" not in message and not output.exists()
+
+
+def test_a_description_too_stiff_for_its_integrator_ends_in_one_line_naming_its_keys():
+    """The shipped example with a modulus of 1e30 Pa at its clearance joint: dop853's step falls below its floor; the
+    study stops with a ConfigError naming the linkage and the keys that decide the stiffness, not a RuntimeError."""
+    from linkwork.pipeline import linkages
+    from linkwork.pipeline.errors import ConfigError
+
+    cfg = copy.deepcopy(load_yaml("config/config.yaml")["linkages"]["watt_six_bar_worn_pin"])
+    cfg["linkage"]["joints"]["D"]["clearance"]["youngs_modulus_Pa"] = 1e30
+    cfg["turns"], cfg["points_per_turn"] = 1, 360
+    with pytest.raises(ConfigError) as err:
+        linkages.study(cfg, "watt_six_bar_worn_pin")
+    text = str(err.value)
+    assert "linkages.watt_six_bar_worn_pin" in text and "youngs_modulus_Pa" in text and "\n" not in text

@@ -40,6 +40,14 @@ def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
         states, diags = run.advance(t)
     except LinkageError as exc:  # a setting the run cannot go on with (a stall, a size guard): one line, its key
         raise ConfigError(f"config key {exc}") from None
+    except RuntimeError as exc:  # the integrator's step fell below its floor: the scene is too stiff for the method
+        if "underflow" not in str(exc):
+            raise
+        raise ConfigError(
+            f"config key linkages.{name}: the integrator ({cfg['integrator']['method']}) cannot keep a step above"
+            " its floor: the description is too stiff for it; check the clearance joints' youngs_modulus_Pa, the"
+            " springs' stiffness and the bodies' mass_kg and inertia_kg_m2 (or use method ndf, for stiff scenes)"
+        ) from None
     print(
         f"linkage {name}: {len(linkage.bodies)} bodies, {len(linkage.joints)} joints ({len(linkage.clearance_joints)}"
         f" with clearance), {cfg['turns']} turns, {run.steps} steps",

@@ -27,7 +27,8 @@ A point of a body is given in the body's frame, whose origin is the centre of ma
                 friction viscosity_Pa_s, length_m, e0_m}                                                             #
                 lubrication
 
-Each effect reads exactly its keys; a key of an effect not named is refused (it would be silently unused).
+Each effect reads exactly its keys; a key of an effect not named is refused (it would be silently unused).  The
+pereira elastic law reads ``length_m`` too, and needs a radial clearance above 1 µm.
 ``check`` assembles the linkage and follows it through the driven turn, so that a linkage that cannot assemble or
 locks up is refused before any job, with its key.
 """
@@ -43,7 +44,8 @@ import numpy as np
 from .assembly import AssemblySettings, follow_turn
 from ...units import STANDARD_GRAVITY
 from .linkage import (
-    CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, Body, Clearance, Driver, Joint, Linkage, LinkageError, Spring,
+    CONTACT_LAWS, ELASTIC_LAWS, GROUND, JOINT_EFFECTS, PEREIRA_MIN_CLEARANCE, Body, Clearance, Driver, Joint, Linkage,
+    LinkageError, Spring,
 )
 
 #: Clearance keys every clearance joint reads, and those each effect adds.
@@ -140,6 +142,8 @@ def _clearance(key: str, spec: Mapping[str, Any]) -> Clearance:
     if "friction" in effects and "contact" not in effects:
         raise LinkageError(f"{key}.effects", "friction needs contact (it acts with the normal contact force)")
     allowed = (*CLEARANCE_KEYS, *(k for e in effects for k in EFFECT_KEYS[e]))
+    if "contact" in effects and spec.get("elastic_law") == "pereira" and "length_m" not in allowed:
+        allowed += ("length_m",)  # Pereira's stiffness reads the joint's length
     _only(key, spec, allowed, allowed)
     rj, rb = _number(f"{key}.journal_radius_m", spec["journal_radius_m"], positive=True), _number(
         f"{key}.bearing_radius_m", spec["bearing_radius_m"], positive=True
@@ -149,6 +153,14 @@ def _clearance(key: str, spec: Mapping[str, Any]) -> Clearance:
     values: dict[str, Any] = {}
     if "contact" in effects:
         values.update(_contact(key, spec))
+        if values["elastic_law"] == "pereira":
+            values["length"] = _number(f"{key}.length_m", spec["length_m"], positive=True)
+        if values["elastic_law"] == "pereira" and rb - rj <= PEREIRA_MIN_CLEARANCE:
+            raise LinkageError(
+                f"{key}.elastic_law",
+                f"pereira needs a radial clearance above {PEREIRA_MIN_CLEARANCE:g} m (its fitted exponent is undefined"
+                f" below), got {rb - rj:g} m: widen the clearance or use hertz-sphere",
+            )
     if "friction" in effects:
         values.update(
             friction=_number(f"{key}.friction", spec["friction"], nonnegative=True),

@@ -61,6 +61,10 @@ def _unknown_elastic_law(law: str) -> ValueError:
     return ValueError(f"unknown elastic law {law!r}; known: {sorted(ELASTIC_LAWS)}")
 
 
+#: Pereira's exponent is undefined at or below this radial clearance (m): ln(1000 dR) <= 0 with dR in mm.
+PEREIRA_MIN_CLEARANCE = 1e-6
+
+
 def pereira_exponent(clearance: float) -> float:
     """Pereira's exponent n = Y dR^-0.005 (-) of the radial clearance ``clearance`` (m; dR in mm in the fit).
 
@@ -70,7 +74,7 @@ def pereira_exponent(clearance: float) -> float:
     1 um the logarithm is not positive and the law is undefined (ValueError).
     """
     dr = clearance * _MM_PER_M
-    if dr <= 1e-3:
+    if clearance <= PEREIRA_MIN_CLEARANCE:
         raise ValueError(f"Pereira's exponent is undefined at a radial clearance of {clearance:g} m (ln(1000 dR) <= 0)")
     y = 1.51 * np.log(1000.0 * dr) ** -0.151 if dr <= PEREIRA_Y_BREAK_MM else 0.0151 * dr + 1.151
     return float(y * dr**-0.005)
