@@ -1179,7 +1179,10 @@ if "memory_free_outcome" in fnd:
         caption=(
             f"Per variant and fixed impact velocity: the dry scenes' RMS rocker-acceleration deviation (start"
             f" {starts[0]}), how far the two starts' measures stay apart, and claims 1 and 2 judged on each start's"
-            f" state with its own error bar (start {starts[0]} / start {starts[-1]})"
+            f" state with its own error bar (start {starts[0]} / start {starts[-1]}). A claim holds where each of its"
+            " orderings, in the RMS and in the peak deviation, holds beyond its own numerical error and statistical"
+            " margin; it fails where one fails so; otherwise it is undetermined. The RMS alone (the figure) can order"
+            " the scenes as claimed where a peak ordering fails the claim"
         ),
     )
 
