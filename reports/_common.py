@@ -368,7 +368,7 @@ def answer(paper: str, findings, comparison) -> None:
     rendered = statements.render(paper, findings, comparison)
     md(f"**Does the paper hold up?** {statements.answer(rendered)}")
     groups = statements.by_kind([r for r in rendered if r.answer is None])  # the answer's own are said above
-    titles = {"holds": "Also holds", "does not hold": "Also does not hold",
+    titles = {"holds": "Other findings that hold", "does not hold": "Other findings that do not hold",
               "cannot be tested": "Open: decided by what the paper does not give, or by its model",
               "beyond the paper": "Our findings beyond the paper's claims",
               "the source text": "Notes on the source text"}
