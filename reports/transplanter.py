@@ -407,7 +407,11 @@ comparison_table(cmp[cmp.unit == "m"].assign(unit="mm"), caption="tip deformatio
 undrawn = cmp[(cmp.role == "headline") & cmp.reproduced.isna()]
 verdict_figure(
     cmp[cmp.role == "headline"], "Transplanter: published numbers against ours",
-    note=" ".join(f"{q} is not drawn: we have no value of it ({v})." for q, v in zip(undrawn.id, undrawn.verdict)),
+    note=(
+        f"Not drawn, in every scenario: {', '.join(dict.fromkeys(undrawn.id))}, of which we have no value"
+        f" ({', '.join(dict.fromkeys(undrawn.verdict))}; section 3a)."
+        if len(undrawn) else ""
+    ),
 )
 
 # %% [markdown]
