@@ -11,7 +11,7 @@ min_version("9.0")
 sys.path.insert(0, str(Path(workflow.basedir) / "lib"))
 from linkwork import compilecache  # noqa: E402
 from linkwork.pipeline.errors import ConfigError  # noqa: E402
-from linkwork.pipeline.results import unwritable  # noqa: E402
+from linkwork.pipeline.results import final_result_problem, unwritable  # noqa: E402
 from linkwork.pipeline.scheduler import daemon_timers  # noqa: E402
 from linkwork.papers import PAPERS  # noqa: E402
 from linkwork.project.validate import coerce_overrides, load_yaml, merge_overrides, validate_once  # noqa: E402
@@ -56,6 +56,12 @@ try:
         _root / ".snakemake" / "linkwork-validated",
         _root / "config" / "published",
     )
+    # the final results no job reads (linkages of your own, the reports): a damaged one is named before planning
+    for _final in sorted((_root / "results" / "linkages").glob("*.nc")) + sorted(
+        (_root / "results" / "reports").glob("*.html")
+    ):
+        if final_result_problem(_final):
+            raise ConfigError(final_result_problem(_final))
 except ConfigError as exc:
     sys.exit(f"linkwork: {exc}")
 

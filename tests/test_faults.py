@@ -243,3 +243,26 @@ def test_snakemake_names_an_unusable_cache_folder_before_any_job(tmp_path, monke
     message = proc.stdout + proc.stderr
     assert proc.returncode != 0 and f"linkwork: LINKWORK_CACHE={a_file} is a file" in message, message[-2000:]
     assert "Traceback" not in message and not (root / "results").exists()
+
+
+@pytest.mark.parametrize("damage", ["truncated", "folder"])
+def test_a_damaged_final_result_that_no_job_reads_is_named_before_planning(tmp_path, damage):
+    """A linkage's result is read by no job, so no job would ever verify it: a truncated file (its checksum beside it no
+    longer matches) or a folder in its place is named in one line, with its cure, before any job."""
+    from linkwork.pipeline.results import write_text
+
+    root = copy_project(tmp_path / "project")
+    target = root / "results" / "linkages" / "watt_six_bar_worn_pin.nc"
+    target.parent.mkdir(parents=True)
+    write_text("a result of 64 characters, standing in for the linkage's netCDF", target)  # with its checksum
+    if damage == "truncated":
+        target.write_text("a result of 64 char")
+        cure = f"rm {target} && snakemake"
+    else:
+        target.unlink()
+        target.mkdir()
+        cure = f"rm -r {target}"
+    proc = snakemake(root, "-n", check=False)
+    message = proc.stdout + proc.stderr
+    assert proc.returncode != 0 and cure in message and f"linkwork: {target}" in message, message[-2000:]
+    assert "Traceback" not in message

@@ -262,6 +262,23 @@ def verify(path: str | os.PathLike[str]) -> None:
         )
 
 
+def final_result_problem(path: str | os.PathLike[str]) -> str:
+    """One line on a final result that no job reads (a linkage of your own, a report), checked before planning since
+    no job would: a directory where the file belongs, or a file that does not match its checksum, each with its cure;
+    '' if it is sound or absent."""
+    target = Path(path)
+    if target.is_dir():
+        return f"{target} is a folder where a result file belongs: remove it (rm -r {target}) and run again"
+    try:
+        verify(target)
+    except UnreadableResult:
+        return (
+            f"{target} does not match its checksum {checksum_path(target).name} (truncated, or replaced by another"
+            f" file): rebuild it with: rm {target} && snakemake"
+        )
+    return ""
+
+
 class UnreadableResult(RuntimeError):
     """A result file exists but cannot be read (truncated or corrupted)."""
 
