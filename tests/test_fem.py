@@ -122,3 +122,55 @@ def test_cholesky_solves_against_numpy():
     x = cholesky_solve_batch(np.linalg.cholesky(a), rhs)
     assert np.allclose(x, np.linalg.solve(a, rhs[..., None])[..., 0], rtol=1e-10)
     assert np.allclose(np.einsum("kij,kj->ki", a, x), rhs, rtol=1e-10, atol=1e-12)
+
+
+def _distributed_load(kind: str, n: int, table, q_y: float, q_x0: float) -> np.ndarray:
+    """Consistent nodal loads of a uniform transverse load q_y (N/m) and an axial load q_x0 (1 - x/L) (N/m) on the
+    cantilever of ``cantilever``, by Gauss quadrature of the shape functions."""
+    from linkwork.engines.fem import LAYOUTS, _gauss, cubic_hermite, quintic_hermite
+
+    lay, h = LAYOUTS[kind], L / n
+    xi, w = _gauss(8)
+    shapes = (cubic_hermite if kind == "frame6" else quintic_hermite)(xi, h)[0]
+    f = np.zeros(int(table.max()) + 1)
+    for e in range(n):
+        x = (e + xi) * h
+        local = np.zeros(lay["size"])
+        local[list(lay["transverse"])] = h * (w * q_y) @ shapes
+        local[list(lay["axial"])] = h * (w * q_x0 * (1 - x / L)) @ np.stack([1 - xi, xi], axis=1)
+        dofs = table[e]  # the element's dofs in its local order (-1: held)
+        keep = dofs >= 0
+        np.add.at(f, dofs[keep], local[keep])
+    return f
+
+
+@pytest.mark.parametrize("kind", ["frame6", "quintic8"])
+def test_the_stress_at_the_clamp_converges_at_order_one_through_the_element_constant_axial_strain(kind):
+    """The accuracy page's first-order term, on a problem with a known solution: a cantilever under a uniform transverse
+    load and an axial load falling linearly to zero at the tip.  Exact at the clamp: v'' = q_y L^2 / (2 EI) and
+    u' = q_x0 L / (2 EA).  The element's curvature there converges at order 2 (cubic Hermite) or is exact (quintic: the
+    deflection is a quartic); its axial strain, constant over an element (linear u), is the element's mean and converges
+    at order 1; so does the strain |h v''| + |u'| the transplanter's peak stress is made of."""
+    from linkwork.engines.fem import LAYOUTS, _curvature_shapes, element_strain_extremes
+
+    lay, q_y, q_x0, half = LAYOUTS[kind], 50.0, 4.0e4, D / 2
+    kappa_exact, axial_exact = q_y * L**2 / (2 * E * I), q_x0 * L / (2 * E * A)
+    meshes = (4, 8, 16, 32)
+    bend, axial, strain = [], [], []
+    for n in meshes:
+        k, _, _, table = cantilever(kind, n)
+        u = np.linalg.solve(k, _distributed_load(kind, n, table, q_y, q_x0))
+        local = np.where(table[0] >= 0, u[np.maximum(table[0], 0)], 0.0)  # element 0's dofs (held ones zero)
+        kappa = (_curvature_shapes(kind, L / n, 2) @ local[list(lay["transverse"])])[0]
+        bend.append(abs(kappa - kappa_exact) / kappa_exact)
+        eps = (local[lay["axial"][1]] - local[lay["axial"][0]]) / (L / n)
+        axial.append(abs(eps - axial_exact) / axial_exact)
+        total = half * kappa_exact + axial_exact
+        strain.append(abs(element_strain_extremes(kind, L / n, half, local) - total) / total)
+    order = lambda e: np.log2(e[-2] / e[-1])  # noqa: E731  (the finest pair's observed order)
+    assert 0.95 < order(axial) < 1.05, axial
+    if kind == "frame6":
+        assert 1.9 < order(bend) < 2.1, bend
+    else:
+        assert max(bend) < 1e-9, bend
+    assert 0.9 < order(strain) < 1.1, strain
