@@ -437,6 +437,31 @@ CASES = [
         "    points_per_turn: 3600\n    integrator: {method: rk4}",
         ["linkages.watt_six_bar_worn_pin.integrator.step_s: missing", "rk4"],
     ),
+    # magnitudes outside the documented ranges, and a clearance that holds nothing (issue 50: each was accepted and ran
+    # to nonsense, or to numpy warnings)
+    (
+        "linkage-mass-1e30", "        coupler: {mass_kg: 1.2,", "        coupler: {mass_kg: 1.2e+30,",
+        ["linkages.watt_six_bar_worn_pin.linkage.bodies.coupler.mass_kg", "above the largest allowed value", "schema.yaml"],
+    ),
+    (
+        "linkage-speed-1e6", "driver: {body: crank, speed_rad_s: 31.41592653589793",
+        "driver: {body: crank, speed_rad_s: 1.0e+6",
+        ["linkages.watt_six_bar_worn_pin.linkage.driver.speed_rad_s", "above the largest allowed value 10000"],
+    ),
+    (
+        "linkage-speed-crawl", "driver: {body: crank, speed_rad_s: 31.41592653589793",
+        "driver: {body: crank, speed_rad_s: 1.0e-9",
+        ["linkages.watt_six_bar_worn_pin.linkage.driver.speed_rad_s", "must be at least 0.001 rad/s"],
+    ),
+    (
+        "linkage-point-1e300", "      ground: {O2: [0.0, 0.0],", "      ground: {O2: [1.0e+300, 0.0],",
+        ["linkages.watt_six_bar_worn_pin.linkage.ground.O2.0", "within 1 km of the origin"],
+    ),
+    (
+        "linkage-clearance-no-effects", "effects: [contact, friction], youngs_modulus_Pa: 207.0e+9,",
+        "effects: [], youngs_modulus_Pa: 207.0e+9,",
+        ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.effects", "needs contact or lubrication"],
+    ),
     # Pereira's law at a 1 nm clearance: its fitted exponent is undefined there (a ValueError inside the run)
     (
         "linkage-pereira-below-its-clearance",

@@ -49,6 +49,13 @@ def _schema_message(error) -> str:
             f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({guard}); a"
             " size guard for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one"
         )
+    why = error.schema.get("x-range") if isinstance(error.schema, Mapping) else None
+    if why and error.validator in ("maximum", "minimum"):
+        side = "above the largest" if error.validator == "maximum" else "below the smallest"
+        return (
+            f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({why});"
+            " the documented range, set in config/schema.yaml: widen it there if your linkage needs it"
+        )
     return (
         f"config key {key}: value {_short(value)}:"
         f" {error.message if len(error.message) < 200 else error.message[:200] + ' ...'}"

@@ -48,6 +48,9 @@ from .linkage import (
     LinkageError, Spring,
 )
 
+#: The slowest drive a linkage accepts (rad/s, either sense): slower, one turn is hours of simulated time.
+MIN_SPEED = 1e-3
+
 #: Clearance keys every clearance joint reads, and those each effect adds.
 CLEARANCE_KEYS = ("journal_radius_m", "bearing_radius_m", "effects")
 EFFECT_KEYS = {
@@ -141,6 +144,11 @@ def _clearance(key: str, spec: Mapping[str, Any]) -> Clearance:
         raise LinkageError(f"{key}.effects", f"unknown effect {unknown[0]!r}; known: {', '.join(JOINT_EFFECTS)}")
     if "friction" in effects and "contact" not in effects:
         raise LinkageError(f"{key}.effects", "friction needs contact (it acts with the normal contact force)")
+    if not {"contact", "lubrication"} & set(effects):
+        raise LinkageError(
+            f"{key}.effects",
+            f"needs contact or lubrication: nothing else holds the journal in its bearing, got {effects!r}",
+        )
     allowed = (*CLEARANCE_KEYS, *(k for e in effects for k in EFFECT_KEYS[e]))
     if "contact" in effects and spec.get("elastic_law") == "pereira" and "length_m" not in allowed:
         allowed += ("length_m",)  # Pereira's stiffness reads the joint's length
@@ -254,8 +262,12 @@ def _driver(key: str, spec: Mapping[str, Any], bodies, joints) -> Driver:
             f"{key}.cos_deg", f"cos_deg and sin_deg must be lists of equal length, got {cos!r} and {sin!r}"
         )
     speed = _number(f"{key}.speed_rad_s", spec["speed_rad_s"])
-    if speed == 0.0:
-        raise LinkageError(f"{key}.speed_rad_s", "must not be zero (its sign is the sense of turning)")
+    if abs(speed) < MIN_SPEED:
+        raise LinkageError(
+            f"{key}.speed_rad_s",
+            f"must be at least {MIN_SPEED:g} rad/s either way (its sign is the sense of turning; slower, one turn takes"
+            f" more than {2 * math.pi / MIN_SPEED / 3600:.1f} h of simulated time), got {speed:g}",
+        )
     rocking = spec.get("rocking", False)
     if not isinstance(rocking, bool):
         raise LinkageError(f"{key}.rocking", f"must be true or false, got {rocking!r}")
