@@ -319,7 +319,7 @@ def test_sparse_schur_source_solves_the_saddle_point_system():
 
 
 def test_validity_measures_against_hand_values():
-    from linkwork.papers.clearance import validity
+    from linkwork.engines.multibody import validity
 
     c = 5e-5
     pen = np.array([[np.nan] * 4, [-1e-5, 0.0, 2e-5, 1e-4]])  # joint 1 without clearance, joint 2 down to 2 c
@@ -405,8 +405,8 @@ def test_an_ordering_is_decided_only_beyond_both_margins():
 
 
 def test_gap_and_penetration_are_named_by_their_sign():
-    from linkwork.papers.clearance import validity
-    from linkwork.papers.clearance.validity import contact_extent
+    from linkwork.engines.multibody import validity
+    from linkwork.engines.multibody.validity import contact_extent
 
     assert contact_extent(0.73) == ("max penetration / c", 0.73)
     assert contact_extent(-0.12) == ("min gap / c", 0.12)

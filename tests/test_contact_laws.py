@@ -15,7 +15,7 @@ from linkwork.engines.multibody.kernels import elastic_contact
 from linkwork.engines.multibody.linkage import ELASTIC_LAWS, PEREIRA_Y_BREAK_MM, pereira_exponent
 from linkwork.engines.multibody.model import compile_scene, pack
 from linkwork.papers.clearance.fourbar import initial_state, integrate, scene
-from linkwork.papers.clearance import validity
+from linkwork.engines.multibody import validity
 from linkwork.papers.clearance.adapter import model_keys, parameters, scene_effects
 
 SECTION = load_yaml("config/config.yaml")["clearance"]

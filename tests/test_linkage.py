@@ -10,6 +10,7 @@ their points, and the driver torque from the power balance T theta' = sum(m a.v 
 from __future__ import annotations
 
 import copy
+import json
 
 import numpy as np
 import pytest
@@ -632,3 +633,21 @@ def test_a_description_too_stiff_for_its_integrator_ends_in_one_line_naming_its_
         linkages.study(cfg, "watt_six_bar_worn_pin")
     text = str(err.value)
     assert "linkages.watt_six_bar_worn_pin" in text and "youngs_modulus_Pa" in text and "\n" not in text
+
+
+def test_a_linkage_result_says_where_a_clearance_joint_leaves_its_contact_law():
+    """The shipped example at its own clearance stays inside the sphere law's range (no warning); with a 1000 times
+    softer contact (modulus 2e8 Pa) the journal sinks deep into its bushing and the result says so, in its attributes
+    and on the run's output, with the penetration against the law's limit."""
+    from linkwork.pipeline import linkages
+
+    cfg = copy.deepcopy(load_yaml("config/config.yaml")["linkages"]["watt_six_bar_worn_pin"])
+    cfg["points_per_turn"] = 360
+    ds = linkages.study(cfg, "watt_six_bar_worn_pin")
+    measures = json.loads(ds.attrs["validity_D"])
+    assert ds.attrs["validity_warnings"] == "" and measures["validity_penetration_limit"] > 0
+    cfg["linkage"]["joints"]["D"]["clearance"]["youngs_modulus_Pa"] = 2.0e8
+    soft = linkages.study(cfg, "watt_six_bar_worn_pin")
+    measures = json.loads(soft.attrs["validity_D"])
+    assert measures["validity_penetration_over_clearance"] > measures["validity_penetration_limit"]
+    assert soft.attrs["validity_warnings"].startswith("joint D: dry penetration reaches")

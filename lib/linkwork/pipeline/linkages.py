@@ -53,7 +53,33 @@ def study(cfg: Mapping[str, Any], name: str) -> xr.Dataset:
         f" with clearance), {cfg['turns']} turns, {run.steps} steps",
         flush=True,
     )
-    return _dataset(linkage, cfg, t, ideal, diags, run)
+    ds = _dataset(linkage, cfg, t, ideal, diags, run)
+    if ds.attrs["validity_warnings"]:  # written, and said where the run's reader sees it
+        print(f"linkage {name}: outside its models: {ds.attrs['validity_warnings']}", flush=True)
+    return ds
+
+
+def joint_validity(linkage, eccentricity: np.ndarray, penetration: np.ndarray) -> dict[str, str]:
+    """Where each clearance joint leaves the range of its own models (``engines.multibody.validity``): the deepest
+    penetration against the elastic law's range, and the time beyond the film cap; the attributes
+    ``validity_<joint>`` (the measures, JSON) and ``validity_warnings`` (one sentence per joint outside, '' if none)."""
+    from ..engines.multibody import validity
+
+    out, warnings = {}, []
+    for k, joint in enumerate(linkage.clearance_joints):
+        c = joint.clearance
+        contact = "contact" in c.effects
+        limit = validity.penetration_limit(c.elastic_law, c.journal_radius, c.bearing_radius) if contact else np.inf
+        cap = 1.0 - c.e0 / c.clearance if "lubrication" in c.effects else None
+        attrs = validity.attributes(penetration[k][None], eccentricity[k][None], c.clearance, cap, limit)
+        out[f"validity_{joint.name}"] = json.dumps(
+            {key: (float(v) if isinstance(v, (int, float, np.floating)) else v) for key, v in attrs.items()},
+            sort_keys=True,
+        )
+        if attrs["validity_warnings"]:
+            warnings.append(f"joint {joint.name}: {attrs['validity_warnings']}")
+    out["validity_warnings"] = "; ".join(warnings)
+    return out
 
 
 def _dataset(linkage, cfg, t, ideal, diags, run) -> xr.Dataset:
@@ -106,6 +132,7 @@ def _dataset(linkage, cfg, t, ideal, diags, run) -> xr.Dataset:
         "baumgarte_per_s": linkage.baumgarte,
         "assembly": json.dumps(cfg["linkage"].get("assembly") or {}, sort_keys=True),
         "effects": json.dumps({j.name: list(j.clearance.effects) for j in linkage.clearance_joints}, sort_keys=True),
+        **joint_validity(linkage, per[:, :, 0], per[:, :, 1]),
     }
     coords = {"time": ("time", t, {"units": "s", "long_name": "time from the start"}),
               "joint": ("joint", ideal_joints, {"units": "1", "long_name": "joint (its name in the description)"}),

@@ -10,7 +10,7 @@ import pandas as pd
 import xarray as xr
 
 from ...pipeline.compare import compare_datasets, counts_dataset, findings_attrs
-from .validity import elastic_law_validity, penetration_limit
+from ...engines.multibody.validity import elastic_law_validity, penetration_limit
 from .words import SCENE_WORDS, VARIANT_WORDS, in_words, ripple_bounds, sample_in_words
 
 

@@ -11,7 +11,7 @@ import numpy as np
 import xarray as xr
 
 from .fourbar import integrate, inverse_dynamics, start_angle
-from . import validity
+from ...engines.multibody import validity
 from .adapter import COMPARED, DRY, LUBRICATED, integrator_kind, parameters, scene_effects
 from .settling import MEASURES, RESPONSES
 

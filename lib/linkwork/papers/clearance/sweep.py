@@ -24,7 +24,7 @@ import xarray as xr
 
 from .fourbar import inverse_dynamics
 from ...pipeline.sweeps import gather, interpret, points_dataset
-from . import validity
+from ...engines.multibody import validity
 from .adapter import integrator_kind, parameters, scene_effects
 
 #: What the scenes and variants a sweep may run are, in words (for captions).

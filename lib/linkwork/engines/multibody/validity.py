@@ -1,4 +1,5 @@
-"""Where a clearance scene leaves the range of its own models (recorded on the scene, shown in the report).
+"""Where a scene with clearance joints leaves the range of its own models (recorded on the scene: the clearance paper's
+scenes and sweeps, a linkage of your own).
 
 Two limits, both dimensionless:
 
@@ -18,9 +19,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ...engines.multibody.linkage import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
 from ...units import DEG_PER_RAD
-
+from .linkage import ELASTIC_LAWS, PEREIRA_CLEARANCE_RANGE_M
 
 
 def penetration_ratio(penetration: np.ndarray, clearance: float) -> float:
