@@ -1162,16 +1162,15 @@ if "memory_free_outcome" in fnd:
     for v in fnd.variant.values:
         for m, vel in enumerate(vels):
             row = {"variant": str(v), "fixed impact velocity (m/s)": f"{vel:g}"}
+            at = {"variant": v, "fixed_impact_velocity": vel}
+            rms = fnd.memory_free_rms.sel(**at, quantity="rocker_acceleration").isel(start=0)
             for sc in fnd.dry_scene.values:
-                row[f"{SCENE_WORDS[str(sc)]}: RMS (rad/s²)"] = (
-                    f"{float(fnd.memory_free_rms.sel(variant=v, dry_scene=sc, quantity='rocker_acceleration').isel(start=0, fixed_impact_velocity=m)):.4g}"
-                )
-            row["starts apart (largest relative difference)"] = (
-                f"{float(fnd.memory_free_start_spread.sel(variant=v).isel(fixed_impact_velocity=m).max()):.1%}"
-            )
+                row[f"{SCENE_WORDS[str(sc)]}: RMS (rad/s²)"] = f"{float(rms.sel(dry_scene=sc)):.4g}"
+            spread = float(fnd.memory_free_start_spread_largest.sel(**at))
+            row["starts apart (largest relative difference)"] = f"{spread:.1%}"
             for c in fnd.claim.values[:2]:
                 row[CLAIM_WORDS[str(c)].split(" (")[0]] = " / ".join(
-                    OUTCOME[int(x)] for x in fnd.memory_free_outcome.sel(variant=v, claim=c).isel(fixed_impact_velocity=m).values
+                    OUTCOME[int(x)] for x in fnd.memory_free_outcome.sel(**at, claim=c).values
                 )
             mrows.append(row)
     table(

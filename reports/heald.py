@@ -1025,27 +1025,26 @@ def _loss_text(case: str) -> str:
 
 def _rigid_text(sel) -> str:
     """Where the rigid linkage's reaction at E and F reverses along the rod, in two dimensions."""
-    turn = sel.rigid_reaction_turn
     rigid = "In the rigid linkage (E and F closed)"
+    least, most = (float(sel.rigid_turn_range.sel(bound=b)) for b in ("least", "most"))
     if int(sel.rigid_reverses_quasi_statically.sum()) == 2:
         return (
-            f"{rigid} the reaction at each joint turns through {float(turn.min()):.0f}–{float(turn.max()):.0f}° within"
-            " every cycle at every speed simulated: the journals are carried across their clearances."
+            f"{rigid} the reaction at each joint turns through {least:.0f}–{most:.0f}° within every cycle at every"
+            " speed simulated: the journals are carried across their clearances."
         )
     speeds = sel.rigid_reversal_rpm.sel(drive=chosen)
-    if not np.isfinite(speeds.values).any():
+    e, f_ = float(speeds.sel(joint="E")), float(speeds.sel(joint="F"))
+    if not (np.isfinite(e) or np.isfinite(f_)):
         return f"{rigid} the reaction along the rod keeps its sense at every speed simulated."
-    first, last = float(speeds.min()), float(speeds.max())
     side = sel.rigid_sideways_at_reversal
     held_rpm, lost_rpm = float(sel.held_up_to_rpm.sel(drive=chosen)), float(sel.first_lost_rpm.sel(drive=chosen))
-    same = held_rpm < first and last <= lost_rpm
+    same = held_rpm < min(e, f_) and max(e, f_) <= lost_rpm
     return (
-        f"{rigid} the reaction's component along the rod first changes sense at {float(speeds.sel(joint='E')):.1f}"
-        f" rev/min at E and {float(speeds.sel(joint='F')):.1f} at F. The reaction does not pass through zero there: it"
-        f" swings round past a sideways force of {float(side.sel(joint='E')):.1f} N at E and"
-        f" {float(side.sel(joint='F')):.1f} N at F, turning through up to"
-        f" {float(turn.sel(speed=turn.speed[turn.speed > last]).max()):.0f}° per cycle at the speeds simulated above"
-        f" (at most {float(turn.sel(speed=turn.speed[turn.speed < first]).max()):.0f}° below). "
+        f"{rigid} the reaction's component along the rod first changes sense at {e:.1f} rev/min at E and {f_:.1f} at"
+        " F. The reaction does not pass through zero there: it swings round past a sideways force of"
+        f" {float(side.sel(joint='E')):.1f} N at E and {float(side.sel(joint='F')):.1f} N at F, turning through up to"
+        f" {float(sel.rigid_turn_above_reversal):.0f}° per cycle at the speeds simulated above (at most"
+        f" {float(sel.rigid_turn_below_reversal):.0f}° below). "
         + (
             "The simulated contact loss falls in the same bracket: it is this reversal."
             if same
@@ -1131,10 +1130,11 @@ md(
         else "Under the other drive scenarios no bracket of the contact-loss speed reaches the limit's tolerance band"
         + "".join(
             f" (in the scenario '{drive_labels[d]}' the rigid reaction of the {case_label[c]} case reverses at"
-            f" {float(contact.rigid_reversal_rpm.sel(case=c, drive=d).min()):.0f} shaft rev/min)"
+            f" {float(contact.rigid_reversal_rpm.sel(case=c, drive=d, joint=j)):.0f} shaft rev/min at {j})"
             for c in cases
             for d in other
-            if np.isfinite(contact.rigid_reversal_rpm.sel(case=c, drive=d).values).any()
+            for j in ("E",)
+            if np.isfinite(float(contact.rigid_reversal_rpm.sel(case=c, drive=d, joint=j)))
         )
         + ". "
     )

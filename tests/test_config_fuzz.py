@@ -441,7 +441,10 @@ CASES = [
     # to nonsense, or to numpy warnings)
     (
         "linkage-mass-1e30", "        coupler: {mass_kg: 1.2,", "        coupler: {mass_kg: 1.2e+30,",
-        ["linkages.watt_six_bar_worn_pin.linkage.bodies.coupler.mass_kg", "above the largest allowed value", "schema.yaml"],
+        [
+            "linkages.watt_six_bar_worn_pin.linkage.bodies.coupler.mass_kg", "above the largest allowed value",
+            "schema.yaml",
+        ],
     ),
     (
         "linkage-speed-1e6", "driver: {body: crank, speed_rad_s: 31.41592653589793",
@@ -466,9 +469,11 @@ CASES = [
     (
         "linkage-pereira-below-its-clearance",
         "bearing_radius_m: 5.0e-3, effects: [contact, friction], youngs_modulus_Pa: 207.0e+9,\n"
-        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh, elastic_law: hertz-sphere,",
+        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh,"
+        " elastic_law: hertz-sphere,",
         "bearing_radius_m: 4.9505e-3, effects: [contact, friction], youngs_modulus_Pa: 207.0e+9,\n"
-        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh, elastic_law: pereira, length_m: 0.01,",
+        "                      poisson: 0.3, restitution: 0.9, contact_law: lankarani-nikravesh,"
+        " elastic_law: pereira, length_m: 0.01,",
         ["linkages.watt_six_bar_worn_pin.linkage.joints.D.clearance.elastic_law", "pereira needs a radial clearance"],
     ),
     (

@@ -68,8 +68,8 @@ class FourBarParameters:
 
     @property
     def impact_velocity_bounds(self) -> tuple[float, float]:
-        """(floor, ceiling) of the contact damping's impact velocity, m/s: the floor and no ceiling (the velocity latched
-        at each impact, the paper's law), or both the fixed velocity (a memory-free damping)."""
+        """(floor, ceiling) of the contact damping's impact velocity, m/s: the floor and no ceiling (the velocity
+        latched at each impact, the paper's law), or both the fixed velocity (a memory-free damping)."""
         fixed = self.fixed_impact_velocity
         return (fixed, fixed) if np.isfinite(fixed) else (self.impact_velocity_floor, float("inf"))
 

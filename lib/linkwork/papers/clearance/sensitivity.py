@@ -141,7 +141,9 @@ def memory_free(cfg: Mapping[str, Any], variant: str, velocities: Sequence[float
                 stats[i, k, m] = np.stack([run[x].values[at] for x in SAMPLE_STATISTICS], axis=-1)
                 error[i, k, m] = run.numerical_error.values[at]
                 status[i, k, m] = str(run.state_status.values[at])
-                print(f"memory-free {variant} {name} at {v:g} m/s from start {starts[k]}: {status[i, k, m]}", flush=True)
+                print(
+                    f"memory-free {variant} {name} at {v:g} m/s from start {starts[k]}: {status[i, k, m]}", flush=True
+                )
     dims = ("fixed_impact_velocity", "start", "scene")
     return xr.Dataset(
         {

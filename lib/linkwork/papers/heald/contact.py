@@ -193,10 +193,10 @@ def rigid_reversal(
     cfg: Mapping[str, Any], cam: Mapping[str, Any], p: Mapping[str, float], ratio: float, rpm: np.ndarray,
     samples: int,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per joint (E, F): the lowest main-shaft speed (rev/min, in ``rpm``'s span) at which the rigid reaction's component
-    along the rod DEF (horizontal) changes sign within a cycle, its smallest magnitude over that cycle there (N: the
-    sideways component it turns past), and whether it reverses quasi-statically (already at the lowest speed: then
-    no speed is given).  The speed from a scan of ``rpm`` refined by Brent's method to 1e-3 rev/min."""
+    """Per joint (E, F): the lowest main-shaft speed (rev/min, in ``rpm``'s span) at which the rigid reaction's
+    component along the rod DEF (horizontal) changes sign within a cycle, its smallest magnitude over that cycle
+    there (N: the sideways component it turns past), and whether it reverses quasi-statically (already at the lowest
+    speed: then no speed is given).  The speed from a scan of ``rpm`` refined by Brent's method to 1e-3 rev/min."""
     from scipy.optimize import brentq
 
     def along(shaft_rpm: float) -> np.ndarray:
@@ -312,7 +312,7 @@ def study(section: Mapping[str, Any]) -> xr.Dataset:
                 flush=True,
             )
     ds = _dataset(names, rpm, out, status, periods, cycles, np.array(margins), forces, ratio)
-    return ds.merge(_rigid_dataset(reversal, turn, ratio)).assign_attrs(ds.attrs)
+    return ds.merge(_rigid_dataset(reversal, turn, ratio, rpm)).assign_attrs(ds.attrs)
 
 
 def first_loss(rpm: np.ndarray, lost: np.ndarray) -> tuple[float, float]:
@@ -325,11 +325,17 @@ def first_loss(rpm: np.ndarray, lost: np.ndarray) -> tuple[float, float]:
     return (float(rpm[k - 1]) if k > 0 else float("nan")), float(rpm[k])
 
 
-def _rigid_dataset(reversal, turn: np.ndarray, ratio: float) -> xr.Dataset:
+def _rigid_dataset(reversal, turn: np.ndarray, ratio: float, rpm: np.ndarray) -> xr.Dataset:
     """The rigid linkage's reactions at E and F: where their component along the rod first reverses, past what
     sideways force, and how far they turn over a cycle at each simulated speed."""
     speed, sideways, quasi = (np.array(x) for x in zip(*reversal, strict=True))  # case, joint
     scale = np.array([ratio / r for r in DRIVE_RATIO.values()])
+    first, last = (  # per case (NaN: no reversal speed)
+        np.array([f(row[np.isfinite(row)]) if np.isfinite(row).any() else np.nan for row in speed])
+        for f in (np.min, np.max)
+    )
+    below = np.array([np.where(rpm < f, turn[i].max(axis=-1), -np.inf).max() for i, f in enumerate(first)])
+    above = np.array([np.where(rpm > f, turn[i].max(axis=-1), -np.inf).max() for i, f in enumerate(last)])
     return xr.Dataset(
         {
             "rigid_reversal_rpm": (
@@ -357,13 +363,40 @@ def _rigid_dataset(reversal, turn: np.ndarray, ratio: float) -> xr.Dataset:
             ),
             "rigid_reverses_quasi_statically": (
                 ("case", "joint"), quasi.astype(int),
-                {"units": "1", "long_name": "1 if the rigid reaction along the rod reverses already at the lowest speed"},
+                {
+                    "units": "1",
+                    "long_name": "1 if the rigid reaction along the rod reverses already at the lowest speed",
+                },
             ),
             "rigid_reaction_turn": (
                 ("case", "speed", "joint"), turn,
                 {"units": "deg", "long_name": "how far the rigid reaction's direction turns over a cycle"},
             ),
-        }
+            "rigid_turn_range": (
+                ("case", "bound"), np.stack([turn.min(axis=(1, 2)), turn.max(axis=(1, 2))], axis=-1),
+                {
+                    "units": "deg",
+                    "long_name": "least and most the rigid reaction turns per cycle, over speeds and joints",
+                },
+            ),
+            "rigid_turn_below_reversal": (
+                "case", np.where(np.isfinite(below), below, np.nan),
+                {
+                    "units": "deg",
+                    "long_name": "most the rigid reaction turns per cycle at the speeds simulated below its reversal",
+                    "nan_meaning": "no reversal speed, or none simulated below it",
+                },
+            ),
+            "rigid_turn_above_reversal": (
+                "case", np.where(np.isfinite(above), above, np.nan),
+                {
+                    "units": "deg",
+                    "long_name": "most the rigid reaction turns per cycle at the speeds simulated above its reversal",
+                    "nan_meaning": "no reversal speed, or none simulated above it",
+                },
+            ),
+        },
+        coords={"bound": ("bound", ["least", "most"], {"units": "1", "long_name": "which bound"})},
     )
 
 
