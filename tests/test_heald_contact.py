@@ -74,3 +74,23 @@ def test_a_journal_flies_where_the_load_reverses_and_stays_in_contact_where_it_d
     assert bool(ds.contact_lost.sel(case="nominal", speed=50.0))
     assert not bool(ds.contact_lost.sel(case="weight_dominant", speed=50.0))
     assert np.isfinite(ds.chain_E.values).all() and (ds.force_numerical_error.values >= 0.0).all()
+
+
+def test_the_rigid_reaction_reverses_along_the_rod_past_a_sideways_force():
+    """The least-reversal corner: the rigid linkage's reaction at E and F keeps its sense along the rod at low speed
+    and reverses at the speed found (its component along the rod touches zero there, positive just below), past a
+    sideways force equal to its smallest magnitude; the nominal warp reverses it at every speed."""
+    ranges = {k: tuple(v["range"]) for k, v in SECTION["parameters"].items() if "range" in v}
+    p = contact.case_parameters(P, ranges, SECTION["contact"]["cases"]["weight_dominant"])
+    cfg, cam = SECTION["contact"], SECTION["cam"]
+    speed, sideways, quasi = contact.rigid_reversal(cfg, cam, p, 1.0, np.array([100.0, 200.0]), 360)
+    assert not quasi.any() and (100.0 < speed).all() and (speed < 200.0).all()
+    low = contact.rigid_reactions(cfg, cam, p, 100.0 * RAD_S_PER_RPM, 360)
+    sense = np.sign(low[:, :, 0].mean(axis=0))
+    for j in range(2):
+        at = contact.rigid_reactions(cfg, cam, p, speed[j] * RAD_S_PER_RPM, 360)[:, j]
+        below = contact.rigid_reactions(cfg, cam, p, 0.99 * speed[j] * RAD_S_PER_RPM, 360)[:, j]
+        assert abs((sense[j] * at[:, 0]).min()) < 1e-6 * np.abs(at).max() and (sense[j] * below[:, 0]).min() > 0
+        assert np.isclose(np.hypot(*at.T).min(), sideways[j])
+    nominal = contact.rigid_reversal(cfg, cam, P, 1.0, np.array([100.0, 200.0]), 360)
+    assert nominal[2].all()
