@@ -417,6 +417,13 @@ verdict_figure(
 # %% [markdown]
 # ### 3a. The optimal diameters: is a load the paper does not print the cause?
 #
+# Why the diameter rows read "not printed" and carry no value of ours: the paper prints the diameters, but reproducing
+# them needs what it does not print, the penalty factor at which its optimiser stopped (its objective SS depends on it
+# and on the unprinted reference diameter), or a load beyond the inertia loads. Our converged optimum of its stated
+# problem is a different point (the tables below); that it differs is
+# a finding ("its optimum is not optimal"), not a row's verdict, because a row compares a printed number with the same
+# quantity computed from the paper's inputs, and here those inputs are incomplete.
+#
 # The paper names one load, the links' own inertia (its eq. 7 and the constraint (16) on the "dynamic" stress). Under it
 # alone a member's own load grows as the square of its diameter and its section modulus as the cube, so the bending
 # stress of a member loaded by its own inertia alone (the arm) falls as 1/d (the crank and coupler also carry the
