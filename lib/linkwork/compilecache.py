@@ -27,12 +27,19 @@ def root() -> Path:
     return Path(os.environ.get("LINKWORK_CACHE") or Path.home() / ".cache" / "linkwork")
 
 
+#: The compile cache's own folders: numba's compiled functions, the generated scene modules, the compile locks.
+SUBFOLDERS = ("numba", "multibody", "locks")
+
+
 def problem() -> str | None:
     """Why the compile cache folder cannot be used (a file in its place, no write permission), or None."""
     folder = root()
     named = f"LINKWORK_CACHE={folder}" if os.environ.get("LINKWORK_CACHE") else f"the compile cache {folder}"
     if folder.exists() and not folder.is_dir():
         return f"{named} is a file, not a folder: point LINKWORK_CACHE to a folder (or unset it for ~/.cache/linkwork)"
+    for part in SUBFOLDERS:  # the folders the jobs compile and lock in
+        if (folder / part).exists() and not (folder / part).is_dir():
+            return f"{folder / part} is a file where the compile cache keeps a folder: remove it (rm {folder / part})"
     existing = folder
     while not existing.exists() and existing != existing.parent:
         existing = existing.parent
