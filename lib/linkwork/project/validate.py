@@ -42,24 +42,31 @@ def _schema_message(error) -> str:
             f"config key {key}: value {value!r} was read as a string, not a number (YAML needs a dot and a signed"
             " exponent, e.g. 1.0e-6)"
         )
-    guard = error.schema.get("x-size-guard") if isinstance(error.schema, Mapping) else None
-    if guard and error.validator in ("maximum", "minimum"):
-        side = "above the largest" if error.validator == "maximum" else "below the smallest"
-        return (
-            f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({guard}); a"
-            " size guard for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one"
-        )
-    why = error.schema.get("x-range") if isinstance(error.schema, Mapping) else None
-    if why and error.validator in ("maximum", "minimum"):
-        side = "above the largest" if error.validator == "maximum" else "below the smallest"
-        return (
-            f"config key {key}: value {_short(value)} is {side} allowed value {error.validator_value:g} ({why});"
-            " the documented range, set in config/schema.yaml: widen it there if your linkage needs it"
-        )
+    bound = _bound_message(error)
+    if bound:
+        return f"config key {key}: value {_short(value)} is {bound}"
     return (
         f"config key {key}: value {_short(value)}:"
         f" {error.message if len(error.message) < 200 else error.message[:200] + ' ...'}"
     )
+
+
+#: Why a bound is set (a schema annotation) and where to move it: a size guard of this machine, or a documented range.
+BOUND_KINDS = {
+    "x-size-guard": "a size guard for this 2-core, 24 GiB machine: raise it in config/schema.yaml for a larger one",
+    "x-range": "the documented range, set in config/schema.yaml: widen it there if your linkage needs it",
+}
+
+
+def _bound_message(error) -> str:
+    """'above the largest allowed value X (why); where to move it' for a bound the schema annotates, else ''."""
+    if error.validator not in ("maximum", "minimum") or not isinstance(error.schema, Mapping):
+        return ""
+    side = "above the largest" if error.validator == "maximum" else "below the smallest"
+    for kind, where in BOUND_KINDS.items():
+        if error.schema.get(kind):
+            return f"{side} allowed value {error.validator_value:g} ({error.schema[kind]}); {where}"
+    return ""
 
 
 def validate_schema(config: Mapping[str, Any], schema: Mapping[str, Any]) -> None:
