@@ -96,8 +96,9 @@ caption(
 #
 # The transplanter's peak stress is the largest of h|v''| + |u'| over the frame (the paper's eq. (8) divided by E).
 # Its error against the finest mesh falls slowly with the elements' size, at about first order for the quintic element
-# and not much faster for the cubic one (the table), far below what their bending interpolation gives. The first-order term is the axial strain:
-# the paper's element interpolates the axial displacement linearly, so u' is constant over an element, its mean; where
+# and not much faster for the cubic one (the table), far below what their bending interpolation gives. The first-order
+# term is the axial strain: the paper's element interpolates the axial displacement linearly, so u' is constant over an
+# element, its mean; where
 # the bending peak sits (at a member's end) the inertia loads make the true axial strain vary along the member, and
 # the element's mean misses it by O(h). On a cantilever with a known solution (tests/test_fem.py,
 # `test_the_stress_at_the_clamp_converges_at_order_one_through_the_element_constant_axial_strain`) the curvature at

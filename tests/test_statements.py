@@ -125,7 +125,7 @@ def test_a_parameter_change_that_falsifies_a_finding_shows_it_withdrawn_on_the_p
 
     page, _, _ = render_stiffness_page(tmp_path, cfg)
     text = re.sub(r"\s+", " ", html.unescape(re.sub(r"<[^>]+>", " ", page[page.index("<body"):])))
-    assert "<del>Its modulus, 210000 MPa, is 1/1 of steel" in page
+    assert "<del>It used 210000 MPa: steel links would be 1 times stiffer." in page
     assert "withdrawn: it needs a printed modulus at least 100 times below steel's (steel >= 100), and the results" \
            " give steel = 1" in text
     answer_start = text.index("Does the paper hold up?")
