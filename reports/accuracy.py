@@ -98,12 +98,11 @@ caption(
 # Its error against the finest mesh falls slowly with the elements' size, at about first order for the quintic element
 # and not much faster for the cubic one (the table), far below what their bending interpolation gives. The first-order
 # term is the axial strain: the paper's element interpolates the axial displacement linearly, so u' is constant over an
-# element, its mean; where
-# the bending peak sits (at a member's end) the inertia loads make the true axial strain vary along the member, and
-# the element's mean misses it by O(h). On a cantilever with a known solution (tests/test_fem.py,
-# `test_the_stress_at_the_clamp_converges_at_order_one_through_the_element_constant_axial_strain`) the curvature at
-# the clamp converges at order 2 (cubic) or is exact (quintic), the element's axial strain at order 1, and so does
-# their sum. We keep the paper's element and its stress recovery; the term is the mesh's share of the error bar.
+# element, its mean; where the bending peak sits (at a member's end) the inertia loads make the true axial strain vary
+# along the member, and the element's mean misses it by O(h). On a cantilever with a known solution (a test of the
+# suite, on the same elements) the curvature at the clamp converges at order 2 (cubic) or is exact (quintic), the
+# element's axial strain at order 1, and so does their sum. We keep the paper's element and its stress recovery; the
+# term is the mesh's share of the error bar.
 
 # %%
 fe = df[df.method == in_words("FE mesh and modes")]
